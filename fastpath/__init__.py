@@ -1,0 +1,20 @@
+"""Fast float64 integrator of the bouncer model (numba).
+
+Public API (DESIGN section 4): ``flight_time``, ``step``, ``holmes_step``, ``orbit``, plus
+``flight`` (times with iteration counts and status codes). Kernels live in the submodules.
+"""
+
+from fastpath.api import FlightResult, Orbit, flight, flight_time, holmes_step, orbit, step
+from fastpath.status import FlightStatus, UncertainCollision
+
+__all__ = [
+    "FlightResult",
+    "FlightStatus",
+    "Orbit",
+    "UncertainCollision",
+    "flight",
+    "flight_time",
+    "holmes_step",
+    "orbit",
+    "step",
+]

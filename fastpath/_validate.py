@@ -1,0 +1,43 @@
+"""Input checks shared by the public wrappers: finite float64 values of compatible shapes."""
+
+import numbers
+
+import numpy as np
+
+
+def float_inputs(**named):
+    """Convert named inputs to broadcast float64 arrays; return (arrays, all_scalar).
+
+    Raises ValueError naming the first input that is not a finite real number (or array of them)
+    and when the shapes do not broadcast.
+    """
+    arrays = {}
+    for name, value in named.items():
+        try:
+            arr = np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must be a real number or array of them, got {value!r}") from None
+        if np.iscomplexobj(value):
+            raise ValueError(f"{name} must be real, got {value!r}")
+        bad = ~np.isfinite(arr)
+        if bad.any():
+            where = np.argwhere(bad)[0]
+            at = f" at index {tuple(int(i) for i in where)}" if arr.ndim else ""
+            raise ValueError(f"{name} must be finite, got {float(arr[tuple(where)])!r}{at}")
+        arrays[name] = arr
+    try:
+        shaped = np.broadcast_arrays(*arrays.values())
+    except ValueError:
+        shapes = ", ".join(f"{n} {a.shape}" for n, a in arrays.items())
+        raise ValueError(f"input shapes do not broadcast: {shapes}") from None
+    all_scalar = all(a.ndim == 0 for a in arrays.values())
+    return [np.ascontiguousarray(a).ravel() for a in shaped], shaped[0].shape, all_scalar
+
+
+def count(name, value, minimum=0):
+    """Check that value is an integer >= minimum; return it as int."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise ValueError(f"{name} must be an integer, got {value!r}")
+    if value < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {value}")
+    return int(value)

@@ -1,0 +1,165 @@
+"""Public functions of the fast path: validate, broadcast, call the kernels (DESIGN section 4)."""
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import prange
+
+from fastpath._jit import parallel_jit
+from fastpath._validate import count, float_inputs
+from fastpath.collision import collide
+from fastpath.flight import CONVERGED, NOT_DEPARTING, solve_flight
+from fastpath.holmes import holmes_collide
+from fastpath.orbit import exact_orbit, holmes_orbit
+from fastpath.status import FlightStatus, UncertainCollision
+
+
+@dataclass(frozen=True)
+class FlightResult:
+    """Flight times with what the solver knows about each: iterations and a FlightStatus code."""
+
+    tau: np.ndarray | float
+    iterations: np.ndarray | int
+    status: np.ndarray | int
+
+
+@dataclass(frozen=True)
+class Orbit:
+    """Successive collisions: phases phi in [0, 2*pi), velocities v, times t since the start.
+
+    ``iterations`` holds the lower-bound steps of each exact flight (None for the Holmes map);
+    ``status`` is CONVERGED, or the status of the flight that stopped the orbit early.
+    """
+
+    phi: np.ndarray
+    v: np.ndarray
+    t: np.ndarray
+    iterations: np.ndarray | None
+    status: FlightStatus
+    model: str
+    eps: float
+
+
+@parallel_jit
+def _flights(phi, v, eps, tau, iterations, status):
+    for i in prange(len(phi)):
+        tau[i], iterations[i], status[i] = solve_flight(phi[i], v[i], eps[i])
+
+
+@parallel_jit
+def _steps(phi, v, eps, phi1, v1, tau, status):
+    for i in prange(len(phi)):
+        phi1[i], v1[i], tau[i], _, status[i] = collide(phi[i], v[i], eps[i])
+
+
+@parallel_jit
+def _holmes_steps(phi, v, eps, phi1, v1):
+    for i in prange(len(phi)):
+        phi1[i], v1[i] = holmes_collide(phi[i], v[i], eps[i])
+
+
+def _shaped(shape, scalar, *arrays):
+    if scalar:
+        return tuple(a[0].item() for a in arrays)
+    return tuple(a.reshape(shape) for a in arrays)
+
+
+def _raise_on_status(status, phi, v, eps):
+    """ValueError for non-departures, UncertainCollision for undecidable flights."""
+    for code, error in ((NOT_DEPARTING, ValueError), (None, UncertainCollision)):
+        bad = status == code if code is not None else status != CONVERGED
+        if bad.any():
+            i = int(np.argmax(bad))
+            state = f"phi={float(phi[i])!r}, v={float(v[i])!r}, eps={float(eps[i])!r}"
+            if error is ValueError:
+                w0 = float(v[i] + eps[i] * np.sin(phi[i]))
+                raise ValueError(
+                    f"not a departure: w0 = v + eps*sin(phi) = {w0!r} <= 0 at {state}"
+                    f" (element {i}); the particle does not leave the plate"
+                )
+            name = FlightStatus(int(status[i])).name
+            raise UncertainCollision(
+                f"{int(bad.sum())} flight(s) float64 cannot decide ({name}), first at {state}"
+                f" (element {i}); use fastpath.flight() to inspect the status and"
+                " verify.flight_time() to settle them"
+            )
+
+
+def flight(phi, v, eps):
+    """Flight times with their iteration counts and FlightStatus codes; never raises for status.
+
+    Inputs broadcast; NaN/inf raise ValueError. Non-departures come back as NOT_DEPARTING (tau NaN).
+    """
+    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
+    n = len(phi_a)
+    tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
+    _flights(phi_a, v_a, eps_a, tau, iterations, status)
+    return FlightResult(*_shaped(shape, scalar, tau, iterations, status))
+
+
+def flight_time(phi, v, eps):
+    """Smallest positive root tau of the gap d(tau) = eps*(cos(phi) - cos(phi+tau)) + tau*(v - tau/2).
+
+    Scalars give a float, arrays broadcast. Raises ValueError for NaN/inf input or w0 <= 0, and
+    UncertainCollision where float64 cannot decide a near-graze (eps > 1).
+    """
+    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
+    n = len(phi_a)
+    tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
+    _flights(phi_a, v_a, eps_a, tau, iterations, status)
+    _raise_on_status(status, phi_a, v_a, eps_a)
+    return _shaped(shape, scalar, tau)[0]
+
+
+def step(phi, v, eps):
+    """One collision of the exact map: (phi1, v1, tau), phi1 reduced to [0, 2*pi).
+
+    v1 = tau - v - 2*eps*sin(phi + tau). Errors as for ``flight_time``.
+    """
+    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
+    n = len(phi_a)
+    phi1, v1, tau, status = np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8)
+    _steps(phi_a, v_a, eps_a, phi1, v1, tau, status)
+    _raise_on_status(status, phi_a, v_a, eps_a)
+    return _shaped(shape, scalar, phi1, v1, tau)
+
+
+def holmes_step(phi, v, eps):
+    """One step of the Holmes map: phi1 = (phi + 2v) mod 2*pi, v1 = |v - 2*eps*sin(phi1)|."""
+    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
+    phi1, v1 = np.empty(len(phi_a)), np.empty(len(phi_a))
+    _holmes_steps(phi_a, v_a, eps_a, phi1, v1)
+    return _shaped(shape, scalar, phi1, v1)
+
+
+def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise"):
+    """n collisions from (phi0, v0): an Orbit with arrays .phi .v .t of length n+1.
+
+    model: "exact" (the transcendental map) or "holmes". on_uncertain: "raise" raises
+    UncertainCollision at a flight float64 cannot decide; "stop" returns the orbit up to it, with
+    its status, so the caller can settle that collision (e.g. with ``verify.step``) and go on.
+    """
+    (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)
+    if not scalar:
+        raise ValueError("orbit takes scalar phi0, v0 and eps; use step() for arrays of states")
+    n = count("n", n)
+    if model not in ("exact", "holmes"):
+        raise ValueError(f"model must be 'exact' or 'holmes', got {model!r}")
+    if on_uncertain not in ("raise", "stop"):
+        raise ValueError(f"on_uncertain must be 'raise' or 'stop', got {on_uncertain!r}")
+    phi0, v0, eps = float(phi_a[0]), float(v_a[0]), float(eps_a[0])
+    phi, v, t = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
+    if model == "holmes":
+        holmes_orbit(phi0, v0, eps, phi, v, t)
+        return Orbit(phi, v, t, None, FlightStatus.CONVERGED, model, eps)
+    iterations = np.zeros(n, np.int64)
+    done, status = exact_orbit(phi0, v0, eps, phi, v, t, iterations)
+    if status != CONVERGED:
+        at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])
+        if status == NOT_DEPARTING or on_uncertain == "raise":
+            try:
+                _raise_on_status(np.array([status]), *at)
+            except (ValueError, UncertainCollision) as err:
+                raise type(err)(f"collision {done} of the orbit: {err}") from None
+        phi, v, t, iterations = phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done]
+    return Orbit(phi, v, t, iterations, FlightStatus(status), model, eps)

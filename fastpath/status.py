@@ -1,0 +1,23 @@
+"""Outcome of one flight, as the kernels report it, and the error raised for undecidable cases."""
+
+from enum import IntEnum
+
+
+class FlightStatus(IntEnum):
+    """Status code returned with every flight time.
+
+    CONVERGED      the first root of the gap is located to within rounding.
+    UNCERTAIN      a near-graze (eps > 1): the gap is within its rounding error of zero where its
+                   slope is too small to tell a collision from a miss. Settle it with ``verify``.
+    NOT_DEPARTING  w0 = v + eps*sin(phi) <= 0: the particle does not leave the plate.
+    MAX_ITERATIONS the lower-bound steps crawled past a near-tangency too slowly; treat as UNCERTAIN.
+    """
+
+    CONVERGED = 0
+    UNCERTAIN = 1
+    NOT_DEPARTING = 2
+    MAX_ITERATIONS = 3
+
+
+class UncertainCollision(ArithmeticError):
+    """A flight whose first collision float64 cannot decide; ``verify.flight_time`` settles it."""
