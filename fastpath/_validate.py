@@ -16,7 +16,8 @@ def float_inputs(**named):
         try:
             arr = np.asarray(value, dtype=np.float64)
         except (TypeError, ValueError):
-            raise ValueError(f"{name} must be a real number or array of them, got {value!r}") from None
+            msg = f"{name} must be a real number or array of them, got {value!r}"
+            raise ValueError(msg) from None
         if np.iscomplexobj(value):
             raise ValueError(f"{name} must be real, got {value!r}")
         bad = ~np.isfinite(arr)

@@ -98,7 +98,7 @@ def flight(phi, v, eps):
 
 
 def flight_time(phi, v, eps):
-    """Smallest positive root tau of the gap d(tau) = eps*(cos(phi) - cos(phi+tau)) + tau*(v - tau/2).
+    """Smallest positive root tau of d(tau) = eps*(cos(phi) - cos(phi+tau)) + tau*(v - tau/2).
 
     Scalars give a float, arrays broadcast. Raises ValueError for NaN/inf input or w0 <= 0, and
     UncertainCollision where float64 cannot decide a near-graze (eps > 1).

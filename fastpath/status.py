@@ -10,7 +10,7 @@ class FlightStatus(IntEnum):
     UNCERTAIN      a near-graze (eps > 1): the gap is within its rounding error of zero where its
                    slope is too small to tell a collision from a miss. Settle it with ``verify``.
     NOT_DEPARTING  w0 = v + eps*sin(phi) <= 0: the particle does not leave the plate.
-    MAX_ITERATIONS the lower-bound steps crawled past a near-tangency too slowly; treat as UNCERTAIN.
+    MAX_ITERATIONS the lower-bound steps crawled past a near-tangency too slowly: as UNCERTAIN.
     """
 
     CONVERGED = 0
