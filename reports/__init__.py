@@ -1,0 +1,1 @@
+"""Application layer: composes ``fastpath`` and ``verify`` into checked runs, the CLI and reports."""
