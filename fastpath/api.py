@@ -152,7 +152,7 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise"):
     if model == "holmes":
         holmes_orbit(phi0, v0, eps, phi, v, t)
         return Orbit(phi, v, t, None, FlightStatus.CONVERGED, model, eps)
-    iterations = np.zeros(n, np.int64)
+    iterations = np.zeros(n, np.int32)
     done, status = exact_orbit(phi0, v0, eps, phi, v, t, iterations)
     if status != CONVERGED:
         at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])

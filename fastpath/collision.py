@@ -9,7 +9,7 @@ incoming velocity v_in = v - tau, the elastic impact gives
 import math
 
 from fastpath._jit import jit
-from fastpath.flight import solve_flight
+from fastpath.flight import flight_from
 from fastpath.phase import reduce_phase
 
 
@@ -17,7 +17,20 @@ from fastpath.phase import reduce_phase
 def collide(phi, v, eps):
     """Return (phi1, v1, tau, iterations, status) for one flight and impact."""
     phi = reduce_phase(phi)
-    tau, iterations, status = solve_flight(phi, v, eps)
-    phi1 = reduce_phase(phi + tau)
-    v1 = tau - v - 2.0 * eps * math.sin(phi1)
+    phi1, _, _, v1, tau, iterations, status = collide_from(
+        phi, math.sin(phi), math.cos(phi), v, eps
+    )
     return phi1, v1, tau, iterations, status
+
+
+@jit
+def collide_from(phi, sin_phi, cos_phi, v, eps):
+    """(phi1, sin(phi1), cos(phi1), v1, tau, iterations, status) for phi in [0, 2*pi).
+
+    Takes and returns the sine and cosine of the phase, so that a chain of collisions calls
+    libm's sine and cosine once per collision.
+    """
+    tau, sin1, cos1, iterations, status = flight_from(phi, sin_phi, cos_phi, v, eps)
+    phi1 = reduce_phase(phi + tau)
+    v1 = tau - v - 2.0 * eps * sin1
+    return phi1, sin1, cos1, v1, tau, iterations, status

@@ -1,4 +1,8 @@
-"""One flight: the smallest positive root of the gap, by the seed's lower-bound steps.
+"""One flight: the smallest positive root of the gap.
+
+For |eps| < 1 the gap is concave and ``fastpath.concave`` finds its single root by bracketed
+Halley steps (about two gap evaluations a flight). For |eps| >= 1, where several roots can exist,
+the seed's lower-bound steps are used, which approach the first root from below:
 
 Gravity and the plate's acceleration give d''(t) >= -(1 + |eps|) =: -a, so from a time t_k with
 d_k = d(t_k) > 0 and slope r_k = d'(t_k),
@@ -21,6 +25,8 @@ near-tangent dip whose sign float64 cannot tell: that flight is returned as UNCE
 import math
 
 from fastpath._jit import jit
+from fastpath.concave import ITERATION_LIMIT as CONCAVE_LIMIT
+from fastpath.concave import concave_flight
 from fastpath.gap import gap, gap_error, gap_rate
 from fastpath.phase import reduce_phase
 from fastpath.status import FlightStatus
@@ -49,9 +55,31 @@ def solve_flight(phi, v, eps):
     tau is the smallest positive root of the gap; ``status`` is a FlightStatus code.
     """
     phi = reduce_phase(phi)
-    w0 = v + eps * math.sin(phi)
+    tau, _, _, iterations, status = flight_from(phi, math.sin(phi), math.cos(phi), v, eps)
+    return tau, iterations, status
+
+
+@jit
+def flight_from(phi, sin_phi, cos_phi, v, eps):
+    """(tau, sin(phi + tau), cos(phi + tau), iterations, status) for phi in [0, 2*pi).
+
+    The caller supplies sin and cos of the departure phase, which the previous collision has
+    already computed: an orbit needs one libm sine and cosine per collision.
+    """
+    w0 = v + eps * sin_phi
     if not w0 > 0.0:
-        return math.nan, 0, NOT_DEPARTING
+        return math.nan, math.nan, math.nan, 0, NOT_DEPARTING
+    if abs(eps) < 1.0:
+        tau, sin_end, cos_end, evaluations = concave_flight(phi, sin_phi, cos_phi, v, eps)
+        status = CONVERGED if evaluations < CONCAVE_LIMIT else MAX_ITERATIONS
+        return tau, sin_end, cos_end, evaluations, status
+    tau, iterations, status = lower_bound_flight(phi, v, eps, w0)
+    return tau, math.sin(phi + tau), math.cos(phi + tau), iterations, status
+
+
+@jit
+def lower_bound_flight(phi, v, eps, w0):
+    """(tau, iterations, status) by the seed's lower-bound steps; phi reduced, w0 > 0."""
     a = 1.0 + abs(eps)
     convex_bound = abs(eps) - 1.0  # d'' <= |eps| - 1: a dip is possible only if this is > 0
     t = 2.0 * w0 / a  # the step from d(0) = 0, d'(0) = w0

@@ -4,8 +4,10 @@ The driver fills preallocated arrays; t is the time since the start (t[0] = 0), 
 from the flight times (the Holmes flight time is 2*v).
 """
 
+import math
+
 from fastpath._jit import jit
-from fastpath.collision import collide
+from fastpath.collision import collide_from
 from fastpath.flight import CONVERGED
 from fastpath.holmes import holmes_collide
 from fastpath.phase import reduce_phase
@@ -20,8 +22,11 @@ def exact_orbit(phi0, v0, eps, phi, v, t, iterations):
     phi[0] = reduce_phase(phi0)
     v[0] = v0
     t[0] = 0.0
+    sin_phi, cos_phi = math.sin(phi[0]), math.cos(phi[0])
     for k in range(len(iterations)):
-        phi1, v1, tau, its, status = collide(phi[k], v[k], eps)
+        phi1, sin_phi, cos_phi, v1, tau, its, status = collide_from(
+            phi[k], sin_phi, cos_phi, v[k], eps
+        )
         iterations[k] = its
         if status != CONVERGED:
             return k, status

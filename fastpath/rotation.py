@@ -1,0 +1,36 @@
+"""Sines and cosines moved along by angle addition instead of fresh libm calls.
+
+An iteration that moves from angle x to x + h needs sin and cos at the new point; for |h| small
+the Taylor polynomials of sin h and cos h are cheaper than two libm calls and as accurate:
+
+    sin(x + h) = sin(x)*cos(h) + cos(x)*sin(h),   cos(x + h) = cos(x)*cos(h) - sin(x)*sin(h)
+
+With |h| <= SMALL_ANGLE = 0.125 the truncation errors h**11/11! and h**12/12! are below 3e-18
+(a fortieth of the unit roundoff relative to sin h, and far below it for cos h).
+"""
+
+import math
+
+from fastpath._jit import jit
+
+SMALL_ANGLE = 0.125
+
+
+@jit
+def small_sin_cos(h):
+    """(sin h, cos h) for |h| <= SMALL_ANGLE by Taylor polynomials (Horner form)."""
+    h2 = h * h
+    s = h * (1.0 - h2 / 6.0 * (1.0 - h2 / 20.0 * (1.0 - h2 / 42.0 * (1.0 - h2 / 72.0))))
+    c = 1.0 - h2 / 2.0 * (
+        1.0 - h2 / 12.0 * (1.0 - h2 / 30.0 * (1.0 - h2 / 56.0 * (1.0 - h2 / 90.0)))
+    )
+    return s, c
+
+
+@jit
+def rotate(sin_x, cos_x, x, h):
+    """(sin(x + h), cos(x + h)) from sin x and cos x: angle addition for small h, else libm."""
+    if abs(h) > SMALL_ANGLE:
+        return math.sin(x + h), math.cos(x + h)
+    s, c = small_sin_cos(h)
+    return sin_x * c + cos_x * s, cos_x * c - sin_x * s
