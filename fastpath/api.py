@@ -8,7 +8,7 @@ from numba import prange
 from fastpath._jit import parallel_jit
 from fastpath._validate import count, float_inputs
 from fastpath.collision import collide
-from fastpath.flight import CONVERGED, NOT_DEPARTING, solve_flight
+from fastpath.flight import CONVERGED, METHODS, NOT_DEPARTING, solve_flight
 from fastpath.holmes import holmes_collide
 from fastpath.orbit import exact_orbit, holmes_orbit
 from fastpath.status import FlightStatus, UncertainCollision
@@ -41,9 +41,9 @@ class Orbit:
 
 
 @parallel_jit
-def _flights(phi, v, eps, tau, iterations, status):
+def _flights(phi, v, eps, method, tau, iterations, status):
     for i in prange(len(phi)):
-        tau[i], iterations[i], status[i] = solve_flight(phi[i], v[i], eps[i])
+        tau[i], iterations[i], status[i] = solve_flight(phi[i], v[i], eps[i], method)
 
 
 @parallel_jit
@@ -85,15 +85,24 @@ def _raise_on_status(status, phi, v, eps):
             )
 
 
-def flight(phi, v, eps):
+def _method(method):
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
+    return METHODS[method]
+
+
+def flight(phi, v, eps, method="auto"):
     """Flight times with their iteration counts and FlightStatus codes; never raises for status.
 
     Inputs broadcast; NaN/inf raise ValueError. Non-departures come back as NOT_DEPARTING (tau NaN).
+    method: "auto" (bracketed Halley where the gap is concave, |eps| < 1; the seed's lower-bound
+    steps otherwise) or "seed" (the seed's lower-bound steps everywhere).
     """
+    code = _method(method)
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
-    _flights(phi_a, v_a, eps_a, tau, iterations, status)
+    _flights(phi_a, v_a, eps_a, code, tau, iterations, status)
     return FlightResult(*_shaped(shape, scalar, tau, iterations, status))
 
 
@@ -106,7 +115,7 @@ def flight_time(phi, v, eps):
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
-    _flights(phi_a, v_a, eps_a, tau, iterations, status)
+    _flights(phi_a, v_a, eps_a, METHODS["auto"], tau, iterations, status)
     _raise_on_status(status, phi_a, v_a, eps_a)
     return _shaped(shape, scalar, tau)[0]
 
@@ -132,13 +141,15 @@ def holmes_step(phi, v, eps):
     return _shaped(shape, scalar, phi1, v1)
 
 
-def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise"):
+def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto"):
     """n collisions from (phi0, v0): an Orbit with arrays .phi .v .t of length n+1.
 
     model: "exact" (the transcendental map) or "holmes". on_uncertain: "raise" raises
     UncertainCollision at a flight float64 cannot decide; "stop" returns the orbit up to it, with
     its status, so the caller can settle that collision (e.g. with ``verify.step``) and go on.
+    method: the exact flight solver, as for ``flight``.
     """
+    code = _method(method)
     (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)
     if not scalar:
         raise ValueError("orbit takes scalar phi0, v0 and eps; use step() for arrays of states")
@@ -153,7 +164,7 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise"):
         holmes_orbit(phi0, v0, eps, phi, v, t)
         return Orbit(phi, v, t, None, FlightStatus.CONVERGED, model, eps)
     iterations = np.zeros(n, np.int32)
-    done, status = exact_orbit(phi0, v0, eps, phi, v, t, iterations)
+    done, status = exact_orbit(phi0, v0, eps, phi, v, t, iterations, code)
     if status != CONVERGED:
         at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])
         if status == NOT_DEPARTING or on_uncertain == "raise":

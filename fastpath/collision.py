@@ -9,7 +9,7 @@ incoming velocity v_in = v - tau, the elastic impact gives
 import math
 
 from fastpath._jit import jit
-from fastpath.flight import flight_from
+from fastpath.flight import AUTO, flight_from
 from fastpath.phase import reduce_phase
 
 
@@ -24,13 +24,13 @@ def collide(phi, v, eps):
 
 
 @jit
-def collide_from(phi, sin_phi, cos_phi, v, eps):
+def collide_from(phi, sin_phi, cos_phi, v, eps, method=AUTO):
     """(phi1, sin(phi1), cos(phi1), v1, tau, iterations, status) for phi in [0, 2*pi).
 
     Takes and returns the sine and cosine of the phase, so that a chain of collisions calls
     libm's sine and cosine once per collision.
     """
-    tau, sin1, cos1, iterations, status = flight_from(phi, sin_phi, cos_phi, v, eps)
+    tau, sin1, cos1, iterations, status = flight_from(phi, sin_phi, cos_phi, v, eps, method)
     phi1 = reduce_phase(phi + tau)
     v1 = tau - v - 2.0 * eps * sin1
     return phi1, sin1, cos1, v1, tau, iterations, status

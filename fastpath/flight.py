@@ -36,6 +36,10 @@ UNCERTAIN = int(FlightStatus.UNCERTAIN)
 NOT_DEPARTING = int(FlightStatus.NOT_DEPARTING)
 MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
 
+AUTO = 0  # bracketed Halley for |eps| < 1 (fastpath.concave), lower-bound steps otherwise
+SEED = 1  # the seed's lower-bound steps for every eps (kept for comparison)
+METHODS = {"auto": AUTO, "seed": SEED}
+
 ITERATION_LIMIT = 100_000  # crawling past a near-tangency at eps slightly above 1 is slow
 
 
@@ -49,18 +53,20 @@ def lower_bound_step(d, r, a):
 
 
 @jit
-def solve_flight(phi, v, eps):
+def solve_flight(phi, v, eps, method=AUTO):
     """Return (tau, iterations, status) for a departure at phase phi (any real) with velocity v.
 
     tau is the smallest positive root of the gap; ``status`` is a FlightStatus code.
     """
     phi = reduce_phase(phi)
-    tau, _, _, iterations, status = flight_from(phi, math.sin(phi), math.cos(phi), v, eps)
+    tau, _, _, iterations, status = flight_from(
+        phi, math.sin(phi), math.cos(phi), v, eps, method
+    )
     return tau, iterations, status
 
 
 @jit
-def flight_from(phi, sin_phi, cos_phi, v, eps):
+def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO):
     """(tau, sin(phi + tau), cos(phi + tau), iterations, status) for phi in [0, 2*pi).
 
     The caller supplies sin and cos of the departure phase, which the previous collision has
@@ -69,7 +75,7 @@ def flight_from(phi, sin_phi, cos_phi, v, eps):
     w0 = v + eps * sin_phi
     if not w0 > 0.0:
         return math.nan, math.nan, math.nan, 0, NOT_DEPARTING
-    if abs(eps) < 1.0:
+    if abs(eps) < 1.0 and method == AUTO:
         tau, sin_end, cos_end, evaluations = concave_flight(phi, sin_phi, cos_phi, v, eps)
         status = CONVERGED if evaluations < CONCAVE_LIMIT else MAX_ITERATIONS
         return tau, sin_end, cos_end, evaluations, status

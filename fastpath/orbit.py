@@ -14,8 +14,10 @@ from fastpath.phase import reduce_phase
 
 
 @jit
-def exact_orbit(phi0, v0, eps, phi, v, t, iterations):
+def exact_orbit(phi0, v0, eps, phi, v, t, iterations, method):
     """Fill phi, v, t (length n+1) and iterations (length n); return (collisions done, status).
+
+    method: a ``fastpath.flight`` method code (AUTO or SEED).
 
     Stops early at the first flight that is not CONVERGED; its status is returned.
     """
@@ -25,7 +27,7 @@ def exact_orbit(phi0, v0, eps, phi, v, t, iterations):
     sin_phi, cos_phi = math.sin(phi[0]), math.cos(phi[0])
     for k in range(len(iterations)):
         phi1, sin_phi, cos_phi, v1, tau, its, status = collide_from(
-            phi[k], sin_phi, cos_phi, v[k], eps
+            phi[k], sin_phi, cos_phi, v[k], eps, method
         )
         iterations[k] = its
         if status != CONVERGED:

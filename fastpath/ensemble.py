@@ -1,0 +1,192 @@
+"""Ensemble kernels: many starts through the exact map, recording only histograms.
+
+Escape and transport (the seed's Sections 3 and 4). Each particle runs ``collide`` from its
+start (n = 0, t = 0 is never tested against the holes) until
+
+* collision n = 1, 2, ... lands at a phase phi_n (mod 2*pi) inside a hole j: it escapes through
+  hole j with escape index N = n and escape time T = t_n = tau_0 + ... + tau_{n-1};
+* the horizon: the next collision would have index n > ``max_collisions`` or time
+  t > ``max_time``: it is censored, and we know only N > n and T > t (the last known bound);
+* a flight that float64 cannot decide (status UNCERTAIN or MAX_ITERATIONS, only for |eps| > 1,
+  or NOT_DEPARTING at a graze): the particle is flagged with its state (phi, v, t, n) and
+  stops; the driver settles that collision with ``verify`` and resumes it here.
+
+A hole is the arc [lo, lo + width) mod 2*pi with lo in [0, 2*pi), so holes centred at 0 wrap:
+phi is inside iff ((phi - lo) mod 2*pi) < width.
+
+Only counts are kept: for each hole the histograms of N and T in the caller's fixed bins
+(bin k holds values x with edges[k] <= x < edges[k+1], the last bin is open, values below
+edges[0] go to bin 0), and the histograms of the censoring bounds. The particles of a chunk are
+split into a fixed number of blocks, each with its own histogram rows; the caller sums them.
+Integer counts make the sum, hence the result, identical for any number of threads, and the
+memory is set by the chunk and the bins, not by the number of particles.
+
+Verification sample: particle i with ``sample_slot[i] = s >= 0`` stores, in ``samples[s]``, the
+pre-collision state and fast result (n, phi, v, phi1, v1, tau) of its collision
+n = min(``sample_target[i]``, last collision it made in this kernel).
+"""
+
+import numpy as np
+from numba import prange
+
+from fastpath._jit import jit, parallel_jit
+from fastpath.collision import collide
+from fastpath.flight import CONVERGED
+from fastpath.phase import TWO_PI
+
+NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only
+SAMPLE_FIELDS = ("n", "phi", "v", "phi1", "v1", "tau")
+FLAG_FIELDS = ("phi", "v", "t", "n")
+
+
+@jit
+def exit_hole(phi, hole_lo, hole_width):
+    """Index of the hole containing the reduced phase phi in [0, 2*pi), or -1.
+
+    Hole j is the arc [hole_lo[j], hole_lo[j] + hole_width[j]) mod 2*pi.
+    """
+    for j in range(len(hole_lo)):
+        d = phi - hole_lo[j]
+        if d < 0.0:
+            d += TWO_PI
+        if d < hole_width[j]:
+            return j
+    return -1
+
+
+@jit
+def bin_index(edges, x):
+    """k with edges[k] <= x < edges[k+1] (last bin open above, values below edges[0] -> 0)."""
+    k = np.searchsorted(edges, x, side="right") - 1
+    return max(k, 0)
+
+
+@jit
+def _store_sample(samples, s, n, phi, v, phi1, v1, tau):
+    samples[s, 0] = n
+    samples[s, 1] = phi
+    samples[s, 2] = v
+    samples[s, 3] = phi1
+    samples[s, 4] = v1
+    samples[s, 5] = tau
+
+
+@jit
+def _flag(flags, flag_state, i, status, phi, v, t, n):
+    flags[i] = status
+    flag_state[i, 0] = phi
+    flag_state[i, 1] = v
+    flag_state[i, 2] = t
+    flag_state[i, 3] = n
+
+
+@parallel_jit
+def escape_chunk(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max_time,
+                 n_edges, t_edges, record_n, record_t, sample_slot, sample_target,
+                 esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state, samples):
+    """Run the particles (phi0[i], v0[i]) at time t0[i] after n0[i] collisions to their exit.
+
+    Outputs (added to; the caller zeroes them): ``esc_n[b, j, k]`` / ``esc_t[b, j, k]`` escapes
+    through hole j with N / T in bin k, ``cens_n[b, k]`` / ``cens_t[b, k]`` censoring bounds,
+    ``collisions[b]`` collisions simulated, for block b = 0 .. len(collisions)-1;
+    ``flags[i]`` the status of an undecided flight (0 if none) with ``flag_state[i]`` =
+    (phi, v, t, n) before it; ``samples`` as in the module docstring.
+    """
+    m = len(phi0)
+    blocks = len(collisions)
+    per_block = (m + blocks - 1) // blocks
+    for b in prange(blocks):
+        done = 0
+        for i in range(b * per_block, min(m, (b + 1) * per_block)):
+            phi, v, t, n = phi0[i], v0[i], t0[i], n0[i]
+            slot, target = sample_slot[i], sample_target[i]
+            flags[i] = 0
+            while True:
+                if n >= max_collisions:
+                    if record_n:
+                        cens_n[b, bin_index(n_edges, n)] += 1
+                    if record_t:
+                        cens_t[b, bin_index(t_edges, t)] += 1
+                    break
+                phi1, v1, tau, _, status = collide(phi, v, eps)
+                if status != CONVERGED:
+                    _flag(flags, flag_state, i, status, phi, v, t, n)
+                    break
+                t1 = t + tau
+                if t1 > max_time:
+                    if record_n:
+                        cens_n[b, bin_index(n_edges, n)] += 1
+                    if record_t:
+                        cens_t[b, bin_index(t_edges, t1)] += 1
+                    break
+                n += 1
+                done += 1
+                if slot >= 0 and n <= target:
+                    _store_sample(samples, slot, n, phi, v, phi1, v1, tau)
+                phi, v, t = phi1, v1, t1
+                j = exit_hole(phi, hole_lo, hole_width)
+                if j >= 0:
+                    if record_n:
+                        esc_n[b, j, bin_index(n_edges, n)] += 1
+                    if record_t:
+                        esc_t[b, j, bin_index(t_edges, t)] += 1
+                    break
+        collisions[b] += done
+
+
+@parallel_jit
+def portrait_chunk(phi0, v0, n0, eps, max_collisions, v_lo, v_hi, sample_slot, sample_target,
+                   counts, collisions, flags, flag_state, samples):
+    """Phase-space portrait: histogram the collision states (phi_n, v_n), n = 1..max_collisions.
+
+    ``counts[b, p, q]`` counts the states with phi in bin p of [0, 2*pi) and v in bin q of
+    [v_lo, v_hi) (uniform bins; states outside are not counted), for block b. Flags and samples
+    as for ``escape_chunk`` (flag_state[i, 2], the time, is not tracked and stays 0).
+    """
+    m = len(phi0)
+    blocks = len(collisions)
+    per_block = (m + blocks - 1) // blocks
+    n_phi, n_v = counts.shape[1], counts.shape[2]
+    for b in prange(blocks):
+        done = 0
+        for i in range(b * per_block, min(m, (b + 1) * per_block)):
+            phi, v, n = phi0[i], v0[i], n0[i]
+            slot, target = sample_slot[i], sample_target[i]
+            flags[i] = 0
+            while n < max_collisions:
+                phi1, v1, tau, _, status = collide(phi, v, eps)
+                if status != CONVERGED:
+                    _flag(flags, flag_state, i, status, phi, v, 0.0, n)
+                    break
+                n += 1
+                done += 1
+                if slot >= 0 and n <= target:
+                    _store_sample(samples, slot, n, phi, v, phi1, v1, tau)
+                phi, v = phi1, v1
+                if v_lo <= v < v_hi:
+                    p = min(int(phi / TWO_PI * n_phi), n_phi - 1)
+                    q = min(int((v - v_lo) / (v_hi - v_lo) * n_v), n_v - 1)
+                    counts[b, p, q] += 1
+        collisions[b] += done
+
+
+def log_edges(lo, decades, per_decade, integer=False):
+    """Lower bin edges lo*10**(k/per_decade), k = 0..decades*per_decade (rounded and
+    deduplicated when ``integer``), as float64."""
+    k = np.arange(decades * per_decade + 1)
+    edges = lo * 10.0 ** (k / per_decade)
+    if integer:
+        edges = np.unique(np.round(edges))
+    return edges.astype(np.float64)
+
+
+__all__ = [
+    "NO_LIMIT",
+    "SAMPLE_FIELDS",
+    "FLAG_FIELDS",
+    "bin_index",
+    "escape_chunk",
+    "exit_hole",
+    "log_edges",
+    "portrait_chunk",
+]
