@@ -1,0 +1,29 @@
+"""Independent reference for the bouncer model: mpmath precision plus interval certificates.
+
+Never imports ``fastpath`` (the independence rule of DESIGN.md Section 3).
+"""
+
+from .certify import FlightCertificate, certify_flight, flight_time
+from .collision import step
+from .conditioning import condition_number
+from .errors import UndecidableCollision
+from .gap import gap
+from .grazing import GrazingContact, grazing_contact, grazing_departure
+from .jacobian import jacobian
+from .orbit import Orbit, orbit
+
+__all__ = [
+    "FlightCertificate",
+    "GrazingContact",
+    "Orbit",
+    "UndecidableCollision",
+    "certify_flight",
+    "condition_number",
+    "flight_time",
+    "gap",
+    "grazing_contact",
+    "grazing_departure",
+    "jacobian",
+    "orbit",
+    "step",
+]

@@ -1,0 +1,27 @@
+"""Errors raised by the reference integrator."""
+
+from __future__ import annotations
+
+
+class UndecidableCollision(ArithmeticError):
+    """The first collision could not be decided even at the largest precision allowed.
+
+    Raised instead of guessing when an interval comparison stays ambiguous at ``max_dps``
+    digits: a near-tangency (``d`` has a local minimum indistinguishable from 0: graze or not),
+    a departure velocity ``w0`` indistinguishable from 0, or a root that cannot be separated.
+    The message names the state, the precision reached and what stayed undecided.
+    """
+
+    def __init__(self, phi, v, eps, dps_reached: int, what: str) -> None:
+        self.phi, self.v, self.eps = phi, v, eps
+        self.dps_reached = dps_reached
+        self.what = what
+        super().__init__(
+            f"flight from phi={_short(phi)}, v={_short(v)}, eps={_short(eps)} is undecidable "
+            f"at {dps_reached} digits: {what}"
+        )
+
+
+def _short(x) -> str:
+    s = str(x)
+    return s if len(s) <= 40 else s[:40] + "..."
