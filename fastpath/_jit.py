@@ -2,9 +2,48 @@
 
 ``fastmath`` stays off: the rigour of the lower-bound step and the error bounds of the gap
 assume IEEE round-to-nearest arithmetic, which reassociation would break.
+
+Compiled kernels are cached on disk (``cache=True``), but numba checks only the timestamp of the
+file that defines a kernel, not of the kernels it calls from other modules: an edited callee
+would silently keep its old machine code. So the cache lives in a directory named by a digest of
+all of fastpath's sources, under ``NUMBA_CACHE_DIR`` if set, else the user cache directory.
+numba reads that setting when a kernel is decorated, so it is changed only for that moment and
+other libraries' caches stay where they were.
 """
+
+import hashlib
+import os
+from pathlib import Path
 
 import numba
 
-jit = numba.njit(cache=True, nogil=True, error_model="numpy")
-parallel_jit = numba.njit(cache=True, nogil=True, error_model="numpy", parallel=True)
+
+def _cache_dir():
+    digest = hashlib.sha256()
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        digest.update(path.name.encode() + b"\0" + path.read_bytes())
+    root = os.environ.get("NUMBA_CACHE_DIR") or os.path.join(
+        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
+        "bouncer-verify",
+        "numba",
+    )
+    return os.path.join(root, digest.hexdigest()[:16])
+
+
+CACHE_DIR = _cache_dir()
+
+
+def _cached_njit(**options):
+    def decorate(function):
+        saved = numba.config.CACHE_DIR
+        numba.config.CACHE_DIR = CACHE_DIR
+        try:
+            return numba.njit(cache=True, nogil=True, error_model="numpy", **options)(function)
+        finally:
+            numba.config.CACHE_DIR = saved
+
+    return decorate
+
+
+jit = _cached_njit()
+parallel_jit = _cached_njit(parallel=True)

@@ -10,13 +10,13 @@ import math
 
 from fastpath._jit import jit
 from fastpath.flight import AUTO, flight_from
-from fastpath.phase import reduce_phase
+from fastpath.phase import centre_phase, reduce_phase
 
 
 @jit
 def collide(phi, v, eps):
     """Return (phi1, v1, tau, iterations, status) for one flight and impact."""
-    phi = reduce_phase(phi)
+    phi = centre_phase(phi)
     phi1, _, _, v1, tau, iterations, status = collide_from(
         phi, math.sin(phi), math.cos(phi), v, eps
     )
@@ -25,12 +25,14 @@ def collide(phi, v, eps):
 
 @jit
 def collide_from(phi, sin_phi, cos_phi, v, eps, method=AUTO):
-    """(phi1, sin(phi1), cos(phi1), v1, tau, iterations, status) for phi in [0, 2*pi).
+    """(phi1, sin(phi1), cos(phi1), v1, tau, iterations, status) for phi in [-pi, 2*pi).
 
     Takes and returns the sine and cosine of the phase, so that a chain of collisions calls
     libm's sine and cosine once per collision.
     """
-    tau, sin1, cos1, iterations, status = flight_from(phi, sin_phi, cos_phi, v, eps, method)
+    tau, sin1, cos1, iterations, status = flight_from(
+        centre_phase(phi), sin_phi, cos_phi, v, eps, method
+    )
     phi1 = reduce_phase(phi + tau)
     v1 = tau - v - 2.0 * eps * sin1
     return phi1, sin1, cos1, v1, tau, iterations, status

@@ -28,7 +28,7 @@ from fastpath._jit import jit
 from fastpath.concave import ITERATION_LIMIT as CONCAVE_LIMIT
 from fastpath.concave import concave_flight
 from fastpath.gap import gap, gap_error, gap_rate
-from fastpath.phase import reduce_phase
+from fastpath.phase import centre_phase
 from fastpath.status import FlightStatus
 
 CONVERGED = int(FlightStatus.CONVERGED)
@@ -58,7 +58,7 @@ def solve_flight(phi, v, eps, method=AUTO):
 
     tau is the smallest positive root of the gap; ``status`` is a FlightStatus code.
     """
-    phi = reduce_phase(phi)
+    phi = centre_phase(phi)
     tau, _, _, iterations, status = flight_from(
         phi, math.sin(phi), math.cos(phi), v, eps, method
     )
@@ -67,7 +67,7 @@ def solve_flight(phi, v, eps, method=AUTO):
 
 @jit
 def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO):
-    """(tau, sin(phi + tau), cos(phi + tau), iterations, status) for phi in [0, 2*pi).
+    """(tau, sin(phi + tau), cos(phi + tau), iterations, status) for phi in [-pi, pi).
 
     The caller supplies sin and cos of the departure phase, which the previous collision has
     already computed: an orbit needs one libm sine and cosine per collision.

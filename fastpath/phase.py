@@ -10,6 +10,7 @@ import math
 
 from fastpath._jit import jit
 
+PI = math.pi
 TWO_PI = 2.0 * math.pi
 # 2*pi = HI + MID + LO to ~1e-35 (HI and MID have 31 significant bits; checked in the tests).
 TWO_PI_HI = 6.2831853069365025
@@ -35,4 +36,20 @@ def reduce_phase(x):
         r -= TWO_PI
     if r >= TWO_PI:  # r was -tiny and r + 2*pi rounded up to 2*pi
         r = 0.0
+    return r
+
+
+@jit
+def centre_phase(x):
+    """Return x mod 2*pi in [-pi, pi); a phase already in that range is returned unchanged.
+
+    The flight kernels take centred phases: the rounding error of sin(phi + t/2) grows with
+    |phi|, and a departure given as -0.3 must not be moved to 2*pi - 0.3 (which also costs the
+    representation error of 2*pi).
+    """
+    if -PI <= x < PI:
+        return x
+    r = reduce_phase(x)
+    if r >= PI:
+        r -= TWO_PI
     return r
