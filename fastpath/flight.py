@@ -27,7 +27,7 @@ import math
 from fastpath._jit import jit
 from fastpath.concave import ITERATION_LIMIT as CONCAVE_LIMIT
 from fastpath.concave import concave_flight
-from fastpath.gap import gap, gap_error, gap_rate
+from fastpath.gap import UNIT_ROUNDOFF, gap, gap_error, gap_rate
 from fastpath.phase import centre_phase
 from fastpath.status import FlightStatus
 
@@ -84,19 +84,35 @@ def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO):
 
 
 @jit
+def may_be_graze(phi, eps, t, r, d_err):
+    """Whether a gap within rounding of zero at t (|d| <= d_err) may be a near-tangent dip.
+
+    The exact gap is then <= 2*d_err at t. Where it is locally concave, d2 = d''(t) < 0, it
+    stays concave for a time R = -d2/|eps| (the third derivative is bounded by |eps|), so with
+    slope r < 0 it surely crosses zero within 2*d_err/|r| if that is shorter than R: a collision
+    at t up to rounding. Otherwise a dip of depth <= 2*d_err can follow only if
+    r > -sqrt(4*b*d_err), with b = |eps| - 1 the largest possible curvature (safety factor 2).
+    """
+    convex_bound = abs(eps) - 1.0
+    if convex_bound <= 0.0:
+        return False  # the gap is concave everywhere: no dip
+    curvature = -1.0 + eps * math.cos(phi + t) + 4.0 * UNIT_ROUNDOFF * abs(eps)
+    if curvature < 0.0 and r < 0.0 and 2.0 * d_err < -r * (-curvature / abs(eps)):
+        return False
+    return r > -2.0 * math.sqrt(4.0 * convex_bound * d_err)
+
+
+@jit
 def lower_bound_flight(phi, v, eps, w0):
     """(tau, iterations, status) by the seed's lower-bound steps; phi reduced, w0 > 0."""
     a = 1.0 + abs(eps)
-    convex_bound = abs(eps) - 1.0  # d'' <= |eps| - 1: a dip is possible only if this is > 0
     t = 2.0 * w0 / a  # the step from d(0) = 0, d'(0) = w0
     for k in range(1, ITERATION_LIMIT + 1):
         d = gap(phi, v, eps, t)
         r = gap_rate(phi, v, eps, t)
         d_err = gap_error(phi, v, eps, t)
         if d <= d_err:
-            # Zero within rounding. A dip of depth <= 2*d_err can follow only if the slope
-            # r > -sqrt(4*b*d_err) (parabola with curvature <= b); a safety factor 2 on that.
-            if convex_bound > 0.0 and r > -2.0 * math.sqrt(4.0 * convex_bound * d_err):
+            if may_be_graze(phi, eps, t, r, d_err):
                 return t, k, UNCERTAIN
             return t, k, CONVERGED
         t_next = t + lower_bound_step(d, r, a)
