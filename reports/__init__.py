@@ -1,1 +1,1 @@
-"""Application layer: composes ``fastpath`` and ``verify`` into checked runs, the CLI and reports."""
+"""Application layer: composes ``fastpath`` and ``verify`` into checked runs, the CLI, reports."""

@@ -1,7 +1,18 @@
-"""The ``bouncer`` command. Exit status: 0 ok, 1 failure, 2 bad input (one-line message)."""
+"""The ``bouncer`` command. Exit status: 0 ok, 1 failure, 2 bad input (one-line message).
+
+    bouncer demo [--eps E] [--collisions N] [--sample S] [--seed S]
+    bouncer scenes
+    bouncer run SCENE_OR_FILE [--particles N] [--seed S] [--out DIR] [--threads K]
+                              [--resume] [--force] [--quiet]
+    bouncer plot RUN_DIR [--out FILE] [--fit MODEL --window LO HI [--clock C] [--curve NAME]]
+    bouncer verify RUN_DIR
+"""
 
 import argparse
+import resource
 import sys
+
+from reports.rundir import RunFailed
 
 
 def _demo(args):
@@ -9,6 +20,67 @@ def _demo(args):
 
     run_demo(eps=args.eps, collisions=args.collisions, sample=args.sample, seed=args.seed)
     return 0
+
+
+def _scenes(args):
+    from reports.scenes import builtin_scenes, parse_scene
+
+    for name, text in builtin_scenes().items():
+        scene = parse_scene(text, name)
+        curves = sum(len(x.curves) for x in scene.experiments())
+        print(f"{name:20s} {scene.kind:12s} eps={scene.eps:g}  {scene.particles} particles x "
+              f"{len(scene.experiments())} start sets, {curves} curves  {scene.description}")
+    return 0
+
+
+def _set_threads(threads):
+    if threads is None:
+        return None
+    import numba
+
+    limit = numba.config.NUMBA_NUM_THREADS
+    if not 1 <= threads <= limit:
+        raise ValueError(f"--threads must be between 1 and {limit}, got {threads}")
+    numba.set_num_threads(threads)
+    return threads
+
+
+def _run(args):
+    from reports.runner import run
+    from reports.scenes import load_scene
+
+    scene = load_scene(args.scene)
+    threads = _set_threads(args.threads)
+    out = args.out or f"runs/{scene.name}"
+    manifest = run(scene, out, particles=args.particles, seed=args.seed, resume=args.resume,
+                   force=args.force, progress=not args.quiet, threads=threads)
+    ver = manifest["verification"]
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"{manifest['status']}: {out}  {manifest['particles_total']} particles, "
+          f"{manifest['collisions']} collisions in {manifest['wall_time_s']:.1f} s "
+          f"({manifest['collisions_per_s'] or 0:.3g}/s), peak memory {peak:.0f} MiB")
+    print(f"verification: {ver['sampled']} sampled collisions, worst error "
+          f"{ver['worst_error']:.3g} kappa*u, {ver['overstepped']} overstepped, "
+          f"{ver['uncertain_settled']} uncertain settled by verify")
+    return 0
+
+
+def _plot(args):
+    from reports.plotting import plot_run
+
+    for line in plot_run(args.run_dir, out=args.out, fit=args.fit, window=args.window,
+                         clock=args.clock, curve=args.curve):
+        print(line)
+    return 0
+
+
+def _verify(args):
+    from reports.recheck import recheck
+
+    ok, lines = recheck(args.run_dir)
+    for line in lines:
+        print(line)
+    return 0 if ok else 1
 
 
 def build_parser():
@@ -21,6 +93,33 @@ def build_parser():
     demo.add_argument("--sample", type=int, default=200)
     demo.add_argument("--seed", type=int, default=0)
     demo.set_defaults(func=_demo)
+
+    scenes = sub.add_parser("scenes", help="list the built-in scenes")
+    scenes.set_defaults(func=_scenes)
+
+    run = sub.add_parser("run", help="a trusted ensemble run of a scene (built-in name or TOML)")
+    run.add_argument("scene", metavar="SCENE_OR_FILE")
+    run.add_argument("--particles", type=int, help="starts per curve (default: the scene's)")
+    run.add_argument("--seed", type=int, help="seed (default: the scene's)")
+    run.add_argument("--out", help="run directory (default: runs/SCENE_NAME)")
+    run.add_argument("--threads", type=int, help="numba threads (results do not depend on it)")
+    run.add_argument("--resume", action="store_true", help="continue a killed run in --out")
+    run.add_argument("--force", action="store_true", help="overwrite an existing run directory")
+    run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.set_defaults(func=_run)
+
+    plot = sub.add_parser("plot", help="survival curves (or the portrait) of a run, as PNG")
+    plot.add_argument("run_dir", metavar="RUN_DIR")
+    plot.add_argument("--out", help="image file (default: RUN_DIR/survival.png)")
+    plot.add_argument("--fit", choices=["exponential", "stretched", "power"])
+    plot.add_argument("--window", type=float, nargs=2, metavar=("LO", "HI"))
+    plot.add_argument("--clock", choices=["collisions", "time"], default="time")
+    plot.add_argument("--curve", help="fit only this curve")
+    plot.set_defaults(func=_plot)
+
+    check = sub.add_parser("verify", help="recompute a run's verification sample")
+    check.add_argument("run_dir", metavar="RUN_DIR")
+    check.set_defaults(func=_verify)
     return parser
 
 
@@ -32,6 +131,9 @@ def main(argv=None):
     except ValueError as err:
         print(f"bouncer: error: {err}", file=sys.stderr)
         return 2
+    except RunFailed as err:
+        print(f"bouncer: run failed: {err}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

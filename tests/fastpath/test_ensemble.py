@@ -1,0 +1,162 @@
+"""The ensemble kernels: hole membership, bins, conservation of particles, thread independence."""
+
+import math
+
+import numba
+import numpy as np
+import pytest
+
+import fastpath
+from fastpath.ensemble import NO_LIMIT, bin_index, escape_chunk, exit_hole, log_edges
+
+TWO_PI = 2 * math.pi
+EPS = 0.6
+N_EDGES = log_edges(1.0, 8, 10, integer=True)
+T_EDGES = np.concatenate([[0.0], log_edges(0.1, 9, 10)])
+
+
+def run_kernel(
+    phi0, v0, hole_lo, hole_width, max_n=NO_LIMIT, max_t=np.inf, blocks=8, sample_target=None
+):
+    m = len(phi0)
+    holes = len(hole_lo)
+    nb, tb = len(N_EDGES), len(T_EDGES)
+    out = {
+        "esc_n": np.zeros((blocks, holes, nb), np.int64),
+        "esc_t": np.zeros((blocks, holes, tb), np.int64),
+        "cens_n": np.zeros((blocks, nb), np.int64),
+        "cens_t": np.zeros((blocks, tb), np.int64),
+        "collisions": np.zeros(blocks, np.int64),
+        "flags": np.zeros(m, np.int8),
+        "flag_state": np.zeros((m, 4)),
+    }
+    slot = np.full(m, -1, np.int64)
+    target = np.zeros(m, np.int64)
+    samples = np.zeros((0, 6))
+    if sample_target is not None:
+        slot[:] = np.arange(m)
+        target[:] = sample_target
+        samples = np.zeros((m, 6))
+    escape_chunk(
+        np.asarray(phi0, float),
+        np.asarray(v0, float),
+        np.zeros(m),
+        np.zeros(m, np.int64),
+        EPS,
+        np.asarray(hole_lo, float),
+        np.asarray(hole_width, float),
+        max_n,
+        max_t,
+        N_EDGES,
+        T_EDGES,
+        True,
+        True,
+        slot,
+        target,
+        out["esc_n"],
+        out["esc_t"],
+        out["cens_n"],
+        out["cens_t"],
+        out["collisions"],
+        out["flags"],
+        out["flag_state"],
+        samples,
+    )
+    out["samples"] = samples
+    return out
+
+
+def starts(m, seed=1):
+    rng = np.random.default_rng(seed)
+    return rng.uniform(3.85, 4.15, m), rng.uniform(2, 4, m)
+
+
+@pytest.mark.parametrize(
+    ("phi", "inside"),
+    [
+        (0.0, True),
+        (0.1, True),
+        (TWO_PI - 0.1, True),
+        (0.2, False),
+        (TWO_PI - 0.2, False),
+        (math.pi, False),
+    ],
+)
+def test_hole_centred_at_zero_wraps(phi, inside):
+    lo = np.array([(0.0 - 0.15) % TWO_PI])
+    assert (exit_hole(phi, lo, np.array([0.3])) == 0) == inside
+
+
+def test_second_hole_is_found():
+    lo = np.array([(0.0 - 0.5) % TWO_PI, math.pi - 0.5])
+    assert exit_hole(math.pi, lo, np.array([1.0, 1.0])) == 1
+
+
+def test_bins_put_values_in_half_open_intervals():
+    assert bin_index(N_EDGES, 1.0) == 0
+    assert bin_index(N_EDGES, 2.0) == 1
+    assert bin_index(T_EDGES, 0.0) == 0
+    assert bin_index(T_EDGES, 0.05) == 0
+    assert bin_index(T_EDGES, 0.1) == 1
+    assert bin_index(T_EDGES, 1e12) == len(T_EDGES) - 1
+    assert len(N_EDGES) > 8 * 5 and N_EDGES[-1] == 1e8  # eight decades, integer edges
+
+
+def test_every_particle_escapes_or_is_censored():
+    phi, v = starts(3000)
+    out = run_kernel(phi, v, [(2.5 - 0.15) % TWO_PI], [0.3], max_n=200)
+    escaped, censored = out["esc_n"].sum(), out["cens_n"].sum()
+    assert escaped + censored == 3000
+    assert out["esc_t"].sum() == escaped and out["cens_t"].sum() == censored
+    assert censored > 0 and not out["flags"].any()
+
+
+def test_escape_matches_a_plain_orbit():
+    """The kernel's escape index and time agree with fastpath.orbit for each particle."""
+    phi, v = starts(40, seed=5)
+    lo, width = (1.0 - 0.5) % TWO_PI, 1.0
+    for p, w in zip(phi, v, strict=True):
+        out = run_kernel([p], [w], [lo], [width], max_n=500, blocks=1)
+        orb = fastpath.orbit(p, w, EPS, 500)
+        hits = np.flatnonzero(((orb.phi[1:] - lo) % TWO_PI) < width)
+        if len(hits) == 0:
+            assert out["cens_n"].sum() == 1
+            continue
+        n = hits[0] + 1
+        assert out["esc_n"][0, 0, bin_index(N_EDGES, n)] == 1
+        assert out["esc_t"][0, 0, bin_index(T_EDGES, orb.t[n])] == 1
+        assert out["collisions"].sum() == n
+
+
+def test_time_horizon_censors_before_the_late_collision():
+    phi, v = starts(500)
+    out = run_kernel(phi, v, [(2.5 - 0.15) % TWO_PI], [0.3], max_t=50.0)
+    censored_times = np.flatnonzero(out["cens_t"].sum(axis=0))
+    assert T_EDGES[censored_times[0] + 1] > 50.0  # bounds are > 50: beyond the horizon
+
+
+def test_sample_holds_the_state_before_the_target_collision():
+    phi, v = starts(50, seed=3)
+    out = run_kernel(phi, v, [(2.5 - 0.15) % TWO_PI], [0.3], max_n=10, sample_target=3)
+    for row in out["samples"]:
+        n, p, w, p1, w1, tau = row
+        assert 1 <= n <= 3
+        assert fastpath.step(p, w, EPS) == (p1, w1, tau)
+
+
+def test_counts_do_not_depend_on_the_number_of_threads():
+    if numba.config.NUMBA_NUM_THREADS < 2:
+        pytest.skip("one thread only")
+    phi, v = starts(20_000, seed=7)
+    before = numba.get_num_threads()
+    try:
+        results = []
+        for threads in (1, 2):
+            numba.set_num_threads(threads)
+            results.append(
+                run_kernel(phi, v, [(2.0 - 0.15) % TWO_PI], [0.3], max_n=2000, blocks=16)
+            )
+    finally:
+        numba.set_num_threads(before)
+    for key in ("esc_n", "esc_t", "cens_n", "cens_t", "collisions"):
+        np.testing.assert_array_equal(results[0][key], results[1][key])
