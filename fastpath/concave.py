@@ -15,11 +15,12 @@ more than rounding.
 Two starts and two ways of evaluating the gap, each one libm sine and cosine per flight; later
 iterates move the angles along by angle addition (``fastpath.rotation``):
 
-- Near the Holmes limit (v > HOLMES_START_V) start at t = 2*v, where t*(v - t/2) vanishes, and
+- Unless the flight may be short (lower bound 2*w0/(1+|eps|) below 1), start at the Holmes
+  flight time t = 2*v, where t*(v - t/2) vanishes, and
   write t = 2*v + delta: d = eps*(cos(phi) - cos(phi + t)) - t*delta/2, d' = -v - delta +
   eps*sin(phi + t), d'' = -1 + eps*cos(phi + t), with the angle phi + t = theta0 + delta,
-  theta0 = phi + 2*v (its rounding error kept exactly by TwoSum). Here t > 1, so the plate term
-  has no harmful cancellation.
+  theta0 = phi + 2*v (its rounding error kept exactly by TwoSum). Here t >= 1, so the plate
+  term's rounding error, ~|eps|*u, is within the gap's error bound (``fastpath.gap``).
 - Otherwise start at the root of w0*t - (1 - eps*cos(phi))*t**2/2 (the plate's acceleration
   frozen at departure) and use the half angle t/2: d = 2*eps*sin(t/2)*sin(phi + t/2) +
   t*(v - t/2), free of cancellation at small t.
@@ -33,7 +34,6 @@ from fastpath._jit import jit
 from fastpath.gap import gap_error
 from fastpath.rotation import rotate
 
-HOLMES_START_V = 2.0
 ITERATION_LIMIT = 2200  # bisection alone exhausts any float64 bracket in < 2100 steps
 
 
@@ -60,7 +60,7 @@ def concave_flight(phi, sin_phi, cos_phi, v, eps):
 
     evaluations == ITERATION_LIMIT means the bracket did not close (never seen; reported).
     """
-    if v > HOLMES_START_V:
+    if 2.0 * (v + eps * sin_phi) >= 1.0 + abs(eps):
         return _flight_from_holmes(phi, sin_phi, cos_phi, v, eps)
     return _flight_half_angle(phi, sin_phi, cos_phi, v, eps)
 

@@ -16,14 +16,18 @@ from fastpath._jit import jit
 SMALL_ANGLE = 0.125
 
 
+# Taylor coefficients (-1)**k/(2k+1)! and (-1)**k/(2k)!, multiplied rather than divided by:
+# without fastmath the compiler keeps a division by a constant as a (slow) division.
+_S3, _S5, _S7, _S9 = -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0
+_C2, _C4, _C6, _C8, _C10 = -0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0, -1.0 / 3628800.0
+
+
 @jit
 def small_sin_cos(h):
     """(sin h, cos h) for |h| <= SMALL_ANGLE by Taylor polynomials (Horner form)."""
     h2 = h * h
-    s = h * (1.0 - h2 / 6.0 * (1.0 - h2 / 20.0 * (1.0 - h2 / 42.0 * (1.0 - h2 / 72.0))))
-    c = 1.0 - h2 / 2.0 * (
-        1.0 - h2 / 12.0 * (1.0 - h2 / 30.0 * (1.0 - h2 / 56.0 * (1.0 - h2 / 90.0)))
-    )
+    s = h + h * h2 * (_S3 + h2 * (_S5 + h2 * (_S7 + h2 * _S9)))
+    c = 1.0 + h2 * (_C2 + h2 * (_C4 + h2 * (_C6 + h2 * (_C8 + h2 * _C10))))
     return s, c
 
 
