@@ -4,6 +4,7 @@ Never imports ``fastpath`` (the independence rule of DESIGN.md Section 3).
 """
 
 from .certify import FlightCertificate, certify_flight, flight_time
+from .check import CheckReport, Failure, assert_integrator, check_integrator, load_callable
 from .collision import step
 from .conditioning import condition_number
 from .errors import UndecidableCollision
@@ -26,4 +27,9 @@ __all__ = [
     "jacobian",
     "orbit",
     "step",
+    "CheckReport",
+    "Failure",
+    "assert_integrator",
+    "check_integrator",
+    "load_callable",
 ]
