@@ -66,23 +66,25 @@ def _shaped(shape, scalar, *arrays):
 
 def _raise_on_status(status, phi, v, eps):
     """ValueError for non-departures, UncertainCollision for undecidable flights."""
-    for code, error in ((NOT_DEPARTING, ValueError), (None, UncertainCollision)):
-        bad = status == code if code is not None else status != CONVERGED
-        if bad.any():
-            i = int(np.argmax(bad))
-            state = f"phi={float(phi[i])!r}, v={float(v[i])!r}, eps={float(eps[i])!r}"
-            if error is ValueError:
-                w0 = float(v[i] + eps[i] * np.sin(phi[i]))
-                raise ValueError(
-                    f"not a departure: w0 = v + eps*sin(phi) = {w0!r} <= 0 at {state}"
-                    f" (element {i}); the particle does not leave the plate"
-                )
-            name = FlightStatus(int(status[i])).name
-            raise UncertainCollision(
-                f"{int(bad.sum())} flight(s) float64 cannot decide ({name}), first at {state}"
-                f" (element {i}); use fastpath.flight() to inspect the status and"
-                " verify.flight_time() to settle them"
-            )
+
+    def state(i):
+        return f"phi={float(phi[i])!r}, v={float(v[i])!r}, eps={float(eps[i])!r} (element {i})"
+
+    not_departing = status == NOT_DEPARTING
+    if not_departing.any():
+        i = int(np.argmax(not_departing))
+        w0 = float(v[i] + eps[i] * np.sin(phi[i]))
+        raise ValueError(f"not a departure: w0 = v + eps*sin(phi) = {w0!r} <= 0 at {state(i)};"
+                         " the particle does not leave the plate")
+    undecided = status != CONVERGED
+    if undecided.any():
+        i = int(np.argmax(undecided))
+        name = FlightStatus(int(status[i])).name
+        raise UncertainCollision(
+            f"{int(undecided.sum())} flight(s) float64 cannot decide ({name}), first at"
+            f" {state(i)}; use fastpath.flight() to inspect the status and verify.flight_time()"
+            " to settle them"
+        )
 
 
 def _method(method):
