@@ -3,7 +3,10 @@
     bouncer demo [--eps E] [--collisions N] [--sample S] [--seed S]
     bouncer scenes
     bouncer run SCENE_OR_FILE [--particles N] [--seed S] [--out DIR] [--threads K]
-                              [--resume] [--force] [--quiet]
+                              [--resume] [--force] [--quiet] [--scheduler ADDRESS]
+    bouncer sweep [SCENE_OR_FILE] [--eps LO HI N] [--centre LO HI N] [--width LO HI N]
+                  [--n-star N] [--particles N] [--seed S] [--verify-samples N] [--out DIR]
+                  [--threads K] [--scheduler ADDRESS] [--force] [--quiet]
     bouncer plot RUN_DIR [--out FILE] [--fit MODEL --window LO HI [--clock C] [--curve NAME]]
     bouncer verify RUN_DIR
 """
@@ -50,15 +53,53 @@ def _run(args):
     from reports.scenes import load_scene
 
     scene = load_scene(args.scene)
-    threads = _set_threads(args.threads)
+    threads = _threads(args)
     out = args.out or f"runs/{scene.name}"
     manifest = run(scene, out, particles=args.particles, seed=args.seed, resume=args.resume,
-                   force=args.force, progress=not args.quiet, threads=threads)
+                   force=args.force, progress=not args.quiet, threads=threads,
+                   scheduler=args.scheduler)
     ver = manifest["verification"]
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"{manifest['status']}: {out}  {manifest['particles_total']} particles, "
           f"{manifest['collisions']} collisions in {manifest['wall_time_s']:.1f} s "
           f"({manifest['collisions_per_s'] or 0:.3g}/s), peak memory {peak:.0f} MiB")
+    print(f"verification: {ver['sampled']} sampled collisions, worst error "
+          f"{ver['worst_error']:.3g} kappa*u, {ver['overstepped']} overstepped, "
+          f"{ver['uncertain_settled']} uncertain settled by verify")
+    session = manifest.get("session") or {}
+    if session.get("scheduler"):
+        print(f"cluster: {session['scheduler']}, {session['workers']} workers, "
+              f"{session['chunks_computed']} chunks computed there")
+    return 0
+
+
+def _threads(args):
+    """--threads: numba threads here; on a cluster, of each task (the workers check it)."""
+    if args.threads is not None and args.scheduler is not None:
+        if args.threads < 1:
+            raise ValueError(f"--threads must be >= 1, got {args.threads}")
+        return args.threads
+    return _set_threads(args.threads)
+
+
+def _sweep(args):
+    from reports.scenes import load_scene
+    from reports.sweep import grid_values, sweep
+
+    scene = load_scene(args.scene)
+    threads = _threads(args)
+    grid = {name: grid_values(*getattr(args, name), name)
+            for name in ("eps", "centre", "width") if getattr(args, name) is not None}
+    out = args.out or f"sweeps/{scene.name}"
+    manifest = sweep(scene, out, grid=grid, n_star=args.n_star, particles=args.particles,
+                     seed=args.seed, verify_samples=args.verify_samples,
+                     scheduler=args.scheduler, threads=threads, force=args.force,
+                     progress=not args.quiet)
+    ver = manifest["verification"]
+    print(f"{manifest['status']}: {out}/sweep.csv, {out}/escape-rate.png  {manifest['points']}"
+          f" points ({manifest['skipped']} skipped) x {manifest['particles']} particles,"
+          f" n* = {manifest['n_star']}, {manifest['collisions']} collisions in"
+          f" {manifest['wall_time_s']:.1f} s")
     print(f"verification: {ver['sampled']} sampled collisions, worst error "
           f"{ver['worst_error']:.3g} kappa*u, {ver['overstepped']} overstepped, "
           f"{ver['uncertain_settled']} uncertain settled by verify")
@@ -106,7 +147,29 @@ def build_parser():
     run.add_argument("--resume", action="store_true", help="continue a killed run in --out")
     run.add_argument("--force", action="store_true", help="overwrite an existing run directory")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.add_argument("--scheduler", metavar="ADDRESS",
+                     help="Dask scheduler (tcp://host:8786): run the chunks on that cluster")
     run.set_defaults(func=_run)
+
+    sweep = sub.add_parser("sweep", help="escape-rate map over eps, hole centre and/or width")
+    sweep.add_argument("scene", metavar="SCENE_OR_FILE", nargs="?", default="paper-escape",
+                       help="base escape scene (default: paper-escape)")
+    for name, what in (("eps", "eps"), ("centre", "hole centre"), ("width", "hole width")):
+        sweep.add_argument(f"--{name}", type=float, nargs=3, metavar=("LO", "HI", "N"),
+                           help=f"sweep {what} over N values from LO to HI")
+    sweep.add_argument("--n-star", type=int, default=50,
+                       help="rate = -ln P(n*)/n* (default 50 collisions)")
+    sweep.add_argument("--particles", type=int, default=2000, help="starts per grid point")
+    sweep.add_argument("--seed", type=int, help="seed (default: the scene's)")
+    sweep.add_argument("--verify-samples", type=int, default=500,
+                       help="collisions verified over the whole sweep (default 500)")
+    sweep.add_argument("--out", help="sweep directory (default: sweeps/SCENE_NAME)")
+    sweep.add_argument("--threads", type=int, help="numba threads (results do not depend on it)")
+    sweep.add_argument("--scheduler", metavar="ADDRESS",
+                       help="Dask scheduler (tcp://host:8786): run the chunks on that cluster")
+    sweep.add_argument("--force", action="store_true", help="overwrite an existing sweep")
+    sweep.add_argument("--quiet", action="store_true", help="no progress bar")
+    sweep.set_defaults(func=_sweep)
 
     plot = sub.add_parser("plot", help="survival curves (or the portrait) of a run, as PNG")
     plot.add_argument("run_dir", metavar="RUN_DIR")

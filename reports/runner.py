@@ -15,16 +15,28 @@ summed exactly. After each chunk:
    (an overstep): the run stops with status ``failed``;
 3. merged counts and the finished chunks are checkpointed atomically, with the manifest
    (status ``partial``). ``resume`` skips finished chunks; the end result is identical.
+
+Steps 1 and 2 are ``run_chunk(scene, seed, curve, chunk, particles)``, a pure function of its
+arguments returning a ``ChunkResult`` (counts, the verified sample rows, overstepped rows, or a
+failure as data), so it runs the same in this process or as a task on a Dask worker
+(``reports.cluster``, ``run(..., scheduler=...)``). The merge (``Tally.merge``) is keyed by the
+chunk index (curve, chunk): a chunk already merged is ignored, counts are integer sums, and the
+sample rows and the list of finished chunks are kept sorted by index, so the merged state is a
+function of the *set* of finished chunks only, whatever order they finish in.
 """
 
 from __future__ import annotations
 
+import bisect
+import hashlib
 import json
 import math
 import platform
 import subprocess
 import sys
+import threading
 import time
+from contextlib import ExitStack, closing
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from importlib import metadata
@@ -157,8 +169,36 @@ class Tally:
         with np.load(path) as z:
             meta = json.loads(str(z["meta"]))
             return cls(z["esc_n"], z["esc_t"], z["cens_n"], z["cens_t"], z["portrait"],
-                       meta["collisions"], meta["settled"], [tuple(c) for c in meta["finished"]],
-                       meta["samples"], meta["elapsed"], meta["started"])
+                       meta["collisions"], meta["settled"],
+                       sorted(tuple(c) for c in meta["finished"]),
+                       sorted(meta["samples"], key=_sample_key), meta["elapsed"],
+                       meta["started"])
+
+    def merge(self, result, kind):
+        """Add a finished chunk's ``ChunkResult``; False (and nothing changes) if its index
+        (curve, chunk) is merged already. Keyed and sorted by index, so any completion order
+        gives the same state."""
+        key = (result.curve, result.chunk)
+        at = bisect.bisect_left(self.finished, key)
+        if at < len(self.finished) and self.finished[at] == key:
+            return False
+        e, counts = result.curve, result.counts
+        self.esc_n[e, :len(counts.esc_n)] += counts.esc_n
+        self.esc_t[e, :len(counts.esc_t)] += counts.esc_t
+        self.cens_n[e] += counts.cens_n
+        self.cens_t[e] += counts.cens_t
+        if kind == "phase-space":
+            self.portrait += counts.portrait
+        self.collisions += counts.collisions
+        self.settled += counts.settled
+        for row in result.rows:
+            bisect.insort(self.samples, list(row), key=_sample_key)
+        self.finished.insert(at, key)
+        return True
+
+
+def _sample_key(row):
+    return (int(row[0]), int(row[1]), int(row[2]))
 
 
 @dataclass
@@ -172,6 +212,30 @@ class ChunkCounts:
     settled: int = 0
 
 
+@dataclass
+class ChunkResult:
+    """What ``run_chunk`` returns (small and picklable: it travels back from a Dask worker).
+
+    ``rows`` are the chunk's verified sample rows (``rundir.SAMPLE_COLUMNS``), ``bad`` those of
+    them that overstepped; ``failure`` is the message of a collision verify could not settle
+    (the run fails with it) or None; ``code`` a digest of the sources that computed it.
+    """
+
+    curve: int
+    chunk: int
+    counts: ChunkCounts
+    rows: list
+    bad: list
+    failure: str | None = None
+    seconds: float = 0.0
+    code: str = ""
+
+
+# numba's workqueue threading layer must not be entered by two threads at once (a Dask worker
+# with several threads would); one kernel at a time per process, each parallel inside
+_KERNEL_LOCK = threading.Lock()
+
+
 def _kernel(plan, exp, state, slot, target, samples, out):
     """One pass of the fast kernel over the particles in ``state`` = (phi, v, t, n)."""
     sc = plan.scene
@@ -182,8 +246,9 @@ def _kernel(plan, exp, state, slot, target, samples, out):
         blocks = min(PORTRAIT_BLOCKS, m)
         counts = np.zeros((blocks, sc.phi_bins, sc.v_bins), np.int64)
         collisions = np.zeros(blocks, np.int64)
-        portrait_chunk(phi, v, n, sc.eps, sc.max_collisions, sc.v_range[0], sc.v_range[1],
-                       slot, target, counts, collisions, flags, flag_state, samples)
+        with _KERNEL_LOCK:
+            portrait_chunk(phi, v, n, sc.eps, sc.max_collisions, sc.v_range[0], sc.v_range[1],
+                           slot, target, counts, collisions, flags, flag_state, samples)
         out.portrait += counts.sum(axis=0)
     else:
         blocks = min(BLOCKS, m)
@@ -192,10 +257,12 @@ def _kernel(plan, exp, state, slot, target, samples, out):
                                                                          np.int64)
         cens_n, cens_t = np.zeros((blocks, nb), np.int64), np.zeros((blocks, tb), np.int64)
         collisions = np.zeros(blocks, np.int64)
-        escape_chunk(phi, v, t, n, sc.eps, np.array(exp.hole_lo), np.array(exp.hole_width),
-                     sc.max_collisions or NO_LIMIT, sc.max_time or np.inf, plan.n_edges,
-                     plan.t_edges, "collisions" in sc.clocks, "time" in sc.clocks, slot, target,
-                     esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state, samples)
+        with _KERNEL_LOCK:
+            escape_chunk(phi, v, t, n, sc.eps, np.array(exp.hole_lo), np.array(exp.hole_width),
+                         sc.max_collisions or NO_LIMIT, sc.max_time or np.inf, plan.n_edges,
+                         plan.t_edges, "collisions" in sc.clocks, "time" in sc.clocks, slot,
+                         target, esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state,
+                         samples)
         out.esc_n[:holes] += esc_n.sum(axis=0)
         out.esc_t[:holes] += esc_t.sum(axis=0)
         out.cens_n += cens_n.sum(axis=0)
@@ -214,8 +281,9 @@ def settle(phi, v, eps):
     return float(phi1), float(v1), float(tau)
 
 
-def run_chunk(plan, e, k):
-    """Simulate chunk k of experiment e: (ChunkCounts, sample rows)."""
+def simulate_chunk(plan, e, k):
+    """Simulate chunk k of experiment e, settling flagged collisions by verify:
+    (ChunkCounts, sample rows not yet verified)."""
     sc, exp = plan.scene, plan.experiments[e]
     phi, v, slot, target, picks = chunk_starts(plan, e, k)
     m = len(phi)
@@ -265,6 +333,57 @@ def run_chunk(plan, e, k):
     return out, rows
 
 
+def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
+    """Chunk ``chunk`` of curve (experiment) ``curve`` of the run of ``scene`` with ``seed`` and
+    ``particles`` per curve (default: the scene's): simulated, flagged collisions settled and
+    the sample verified, all here (in the worker, on a cluster). A pure function of its
+    arguments; ``threads`` (numba threads of this call) does not change the result.
+
+    A collision verify cannot settle is returned as ``failure`` (data, not an exception), so
+    that Dask's retries are spent only on lost workers and unexpected errors.
+    """
+    t0 = time.perf_counter()
+    plan = make_plan(scene, particles, seed)
+    if not (0 <= curve < len(plan.experiments) and 0 <= chunk < plan.chunks_per_experiment):
+        raise ValueError(f"no chunk ({curve}, {chunk}) in a run of {len(plan.experiments)}"
+                         f" curves x {plan.chunks_per_experiment} chunks")
+    if threads is not None:
+        import numba
+
+        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
+    empty = ChunkCounts(*(np.zeros(0, np.int64) for _ in range(5)))
+    try:
+        counts, rows = simulate_chunk(plan, curve, chunk)
+        bad = verify_rows(rows, scene.eps)
+    except RunFailed as err:
+        return ChunkResult(curve, chunk, empty, [], [], str(err),
+                           time.perf_counter() - t0, CODE_DIGEST)
+    return ChunkResult(curve, chunk, counts, rows, bad, None, time.perf_counter() - t0,
+                       CODE_DIGEST)
+
+
+# the verify modules behind verify.step and verify.condition_number (what a chunk calls)
+_VERIFY_SOURCES = ("_inputs", "_precision", "certify", "collision", "conditioning", "errors",
+                   "gap")
+
+
+def _code_digest():
+    """Digest of the sources a chunk's result depends on (all of fastpath, verify's step and
+    condition number, runner, scenes), as imported: the client refuses results from workers
+    that run other sources."""
+    root = Path(__file__).resolve().parent.parent
+    digest = hashlib.sha256()
+    files = [*sorted((root / "fastpath").glob("*.py")),
+             *(root / "verify" / f"{name}.py" for name in _VERIFY_SOURCES),
+             root / "reports" / "runner.py", root / "reports" / "scenes.py"]
+    for path in files:
+        digest.update(path.name.encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+CODE_DIGEST = _code_digest()
+
+
 def check_sample(phi, v, tau, eps):
     """verify's flight time from the same float64 state: (tau_ref, error in kappa*u, overstep)."""
     tau_ref = verify.step(phi, v, eps, dps=VERIFY_DPS)[2]
@@ -307,13 +426,22 @@ def summary(tally):
 
 
 def run(scene, out, particles=None, seed=None, resume=False, force=False, progress=True,
-        threads=None):
+        threads=None, scheduler=None):
     """Run (or resume) ``scene`` into the directory ``out``; returns the final manifest.
+
+    ``scheduler``: None runs the chunks here, one after another (numba threads inside each);
+    a Dask scheduler address (``"tcp://host:8786"``) or a ``distributed.Client`` sends them as
+    tasks to that cluster (``reports.cluster``). The result is bit-identical either way, and a
+    run started one way resumes the other way without recomputing finished chunks.
 
     Raises ValueError for bad input (exit 2) and RunFailed when a check fails (exit 1).
     """
     plan = make_plan(scene, particles, seed)
     out = Path(out)
+    if scheduler is not None:
+        from reports import cluster
+
+        cluster.check_available()
     resuming = rundir.prepare(out, resume, force)
     ckpt = out / "checkpoint.npz"
     if resuming:
@@ -331,51 +459,93 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
         tally = Tally.empty(plan)
     done = set(tally.finished)
     todo = [c for c in plan.chunks if c not in done]
-    _manifest(out, plan, tally, "partial", threads)
+    session = {"scheduler": None, "workers": None, "worker_threads": None,
+               "chunks_computed": 0}
+    _manifest(out, plan, tally, "partial", threads, session=session)
     total = plan.particles * len(plan.experiments)
     bar = _progress(plan, total - sum(plan.chunk_particles(k) for _, k in todo), total, progress)
+    jobs = [((e, k), (scene, plan.seed, e, k, plan.particles, threads)) for e, k in todo]
     try:
-        for e, k in todo:
-            t0 = time.perf_counter()
-            counts, rows = run_chunk(plan, e, k)
-            bad = verify_rows(rows, scene.eps)
-            tally.esc_n[e] += counts.esc_n
-            tally.esc_t[e] += counts.esc_t
-            tally.cens_n[e] += counts.cens_n
-            tally.cens_t[e] += counts.cens_t
-            if scene.kind == "phase-space":
-                tally.portrait += counts.portrait
-            tally.collisions += counts.collisions
-            tally.settled += counts.settled
-            tally.samples.extend(rows)
-            tally.finished.append((e, k))
-            tally.elapsed += time.perf_counter() - t0
-            if bad:
-                _fail(out, plan, tally, threads, bad)
-            tally.save(ckpt)
-            _manifest(out, plan, tally, "partial", threads)
-            if bar is not None:
-                bar.update(plan.chunk_particles(k))
-                bar.set_postfix_str(f"{tally.collisions / max(tally.elapsed, 1e-9):.3g} coll/s",
-                                    refresh=False)
+        with _executor(scheduler, session) as execute, closing(execute(jobs)) as results:
+            last = time.perf_counter()
+            for _, result in results:
+                check_result(result)
+                if not tally.merge(result, scene.kind):
+                    continue
+                session["chunks_computed"] += 1
+                now = time.perf_counter()
+                tally.elapsed += now - last
+                last = now
+                if result.bad:
+                    _fail(out, plan, tally, threads, result.bad, session)
+                tally.save(ckpt)
+                _manifest(out, plan, tally, "partial", threads, session=session)
+                if bar is not None:
+                    bar.update(plan.chunk_particles(result.chunk))
+                    bar.set_postfix_str(f"{tally.collisions / max(tally.elapsed, 1e-9):.3g}"
+                                        " coll/s", refresh=False)
     except RunFailed as err:
         if not getattr(err, "recorded", False):
-            _manifest(out, plan, tally, "failed", threads, failure=str(err))
+            _manifest(out, plan, tally, "failed", threads, failure=str(err), session=session)
         raise
     finally:
         if bar is not None:
             bar.close()
+    finished = set(tally.finished)
+    missing = [c for c in plan.chunks if c not in finished]
+    if missing:  # cannot happen unless an executor drops a task: never write a short result
+        raise RunFailed(f"{len(missing)} chunk(s) never came back, first {missing[0]}")
     write_results(out, plan, tally)
-    return _manifest(out, plan, tally, "complete", threads)
+    return _manifest(out, plan, tally, "complete", threads, session=session)
 
 
-def _fail(out, plan, tally, threads, bad):
+def check_result(result):
+    """RunFailed for a chunk that failed (data from ``run_chunk``) or that other sources
+    computed (a worker with another bouncer-verify: not bit-identical)."""
+    if result.failure:
+        raise RunFailed(result.failure)
+    if result.code != CODE_DIGEST:
+        raise RunFailed(f"chunk ({result.curve}, {result.chunk}) was computed by other sources"
+                        f" (digest {result.code}, here {CODE_DIGEST}): install the same"
+                        " bouncer-verify on the client and every worker")
+
+
+def _local(jobs):
+    for key, args in jobs:
+        yield key, run_chunk(*args)
+
+
+class _executor:
+    """Context manager giving ``execute(jobs) -> iterator of (key, ChunkResult)``: here, or on
+    the Dask cluster of ``scheduler`` (closing what it opened on exit)."""
+
+    def __init__(self, scheduler, session):
+        self.scheduler, self.session, self.stack = scheduler, session, None
+
+    def __enter__(self):
+        if self.scheduler is None:
+            return _local
+        from reports import cluster
+
+        self.stack = ExitStack()
+        client = self.stack.enter_context(cluster.connect(self.scheduler))
+        self.session.update(cluster.describe(client))
+        return lambda jobs: cluster.map_chunks(client, jobs)
+
+    def __exit__(self, *exc):
+        if self.stack is not None:
+            self.stack.close()
+        return False
+
+
+def _fail(out, plan, tally, threads, bad, session=None):
     row = dict(zip(rundir.SAMPLE_COLUMNS, bad[0], strict=True))
     msg = (f"OVERSTEP: {len(bad)} sampled collision(s) where the fast flight time exceeds"
            f" verify's first root by more than {OVERSTEP_TOLERANCE:g}*kappa*u, first: {row}")
     ver = summary(tally)
     ver["overstepped"] = len(bad)
-    _manifest(out, plan, tally, "failed", threads, failure=msg, verification=ver)
+    _manifest(out, plan, tally, "failed", threads, failure=msg, verification=ver,
+              session=session)
     write_results(out, plan, tally)
     err = RunFailed(msg)
     err.recorded = True
@@ -417,7 +587,7 @@ def _git():
     return {"commit": commit, "dirty": dirty}
 
 
-def _manifest(out, plan, tally, status, threads, failure=None, verification=None):
+def _manifest(out, plan, tally, status, threads, failure=None, verification=None, session=None):
     sc = plan.scene
     curves = {}
     for e, exp in enumerate(plan.experiments):
@@ -438,6 +608,7 @@ def _manifest(out, plan, tally, status, threads, failure=None, verification=None
         "chunks": len(plan.chunks),
         "chunks_done": len(tally.finished),
         "threads": threads,
+        "session": session,
         "versions": _versions(),
         "git": _git(),
         "started": tally.started,

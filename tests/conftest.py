@@ -1,4 +1,4 @@
-"""Hypothesis profiles: ``default`` is quick; ``ci`` (HYPOTHESIS_PROFILE=ci, set by .ci/run) is heavier.
+"""Hypothesis profiles: ``default`` is quick, ``ci`` (HYPOTHESIS_PROFILE=ci, .ci/run) heavier.
 
 deadline=None everywhere: the first call of a numba kernel compiles it.
 """

@@ -178,7 +178,7 @@ def test_flagged_particles_are_settled_by_verify_and_resume(monkeypatch):
     particle; the driver settles collision 1 with verify and the particles resume in fastpath."""
     scene = parse_scene(SMALL.replace("particles = 3000", "particles = 300"))
     plan = runner.make_plan(scene)
-    base, _ = runner.run_chunk(plan, 0, 0)
+    base, _ = runner.simulate_chunk(plan, 0, 0)
     real = runner.escape_chunk
     calls = []
 
@@ -192,7 +192,7 @@ def test_flagged_particles_are_settled_by_verify_and_resume(monkeypatch):
         return None
 
     monkeypatch.setattr(runner, "escape_chunk", undecided_first)
-    settled, _ = runner.run_chunk(plan, 0, 0)
+    settled, _ = runner.simulate_chunk(plan, 0, 0)
     assert settled.settled == 300 and len(calls) == 2
     assert settled.esc_n.sum() + settled.cens_n.sum() == 300
     assert settled.esc_n[0, 0] == base.esc_n[0, 0]  # the settled first collisions agree
@@ -212,7 +212,7 @@ def test_survival_agrees_with_a_verify_only_simulation():
     text = text.replace("collisions = 3000", "collisions = 40")
     scene = parse_scene(text)
     plan = runner.make_plan(scene)
-    counts, _ = runner.run_chunk(plan, 0, 0)
+    counts, _ = runner.simulate_chunk(plan, 0, 0)
     phi0, v0, *_ = runner.chunk_starts(plan, 0, 0)
     lo, width = plan.experiments[0].hole_lo[0], 1.5
     slow = np.full(len(phi0), 10**9)
