@@ -9,12 +9,19 @@
                   [--threads K] [--scheduler ADDRESS] [--force] [--quiet]
     bouncer plot RUN_DIR [--out FILE] [--fit MODEL --window LO HI [--clock C] [--curve NAME]]
     bouncer verify RUN_DIR
+    bouncer check MODULE:FUNCTION [--step MODULE:FUNCTION] [--suite NAME]
+    bouncer bench [--collisions N] [--repeats R] [--particles N]
+    bouncer report [--particles N] [--out DIR] [--quick] [--compare MODULE:FUNCTION]
+                   [--include-run RUN_DIR]
 """
 
 import argparse
 import resource
 import sys
 
+from reports.bench import add_bench_parser
+from reports.check_cli import add_check_parser
+from reports.report import add_report_parser
 from reports.rundir import RunFailed
 
 
@@ -180,9 +187,13 @@ def build_parser():
     plot.add_argument("--curve", help="fit only this curve")
     plot.set_defaults(func=_plot)
 
-    check = sub.add_parser("verify", help="recompute a run's verification sample")
-    check.add_argument("run_dir", metavar="RUN_DIR")
-    check.set_defaults(func=_verify)
+    recheck = sub.add_parser("verify", help="recompute a run's verification sample")
+    recheck.add_argument("run_dir", metavar="RUN_DIR")
+    recheck.set_defaults(func=_verify)
+
+    add_report_parser(sub)
+    add_check_parser(sub)
+    add_bench_parser(sub)
     return parser
 
 
