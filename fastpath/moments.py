@@ -141,9 +141,10 @@ def _ratio(num, den):
 
 def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_collisions=None):
     """Velocity moments of the orbits from (phi0[i], v0[i]) at collision indices ``n_grid`` and
-    times ``t_grid``: a ``Moments``. ``blocks`` fixes the partition of the particles (not the
-    threads: any thread count gives the same numbers). ``max_collisions`` caps each orbit
-    (default: 100 * n_grid[-1] + 10**6 when a time grid is given, else n_grid[-1]).
+    times ``t_grid``: a ``Moments``. ``blocks`` (at most; fewer if some would be empty) fixes
+    the partition of the particles (not the threads: any thread count gives the same numbers).
+    ``max_collisions`` caps each orbit (default: 100 * n_grid[-1] + 10**6 when a time grid is
+    given, else n_grid[-1]).
 
     Raises ValueError for non-finite inputs, non-departing starts (v0 + eps*sin(phi0) <= 0),
     unsorted or negative grids, an unknown model.
@@ -169,6 +170,8 @@ def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_coll
     if not len(n_grid) and not len(t_grid):
         raise ValueError("give n_grid and/or t_grid")
     blocks = max(1, min(count("blocks", blocks, 1), len(phi_a)))
+    per_block = -(-len(phi_a) // blocks)
+    blocks = -(-len(phi_a) // per_block)  # no empty block
     if max_collisions is None:
         n_last = int(n_grid[-1]) if len(n_grid) else 0
         max_collisions = 100 * n_last + 10**6 if len(t_grid) else n_last
