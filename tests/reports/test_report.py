@@ -1,0 +1,39 @@
+"""`bouncer report` and `bouncer bench` end to end, at smoke-test sizes (no timing asserted)."""
+
+import re
+
+import pytest
+
+from reports.cli import main
+
+
+@pytest.mark.slow
+def test_quick_report_has_every_section_and_its_figures(tmp_path, capsys):
+    out = tmp_path / "report"
+    assert main(["report", "--quick", "--out", str(out)]) == 0
+    text = (out / "report.md").read_text(encoding="utf-8")
+    for heading in ("## Speed: exact map against the Holmes map", "## Stability on hard cases",
+                    "## How long this report took"):
+        assert heading in text
+    images = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text)
+    assert len(images) >= 6
+    for image in images:
+        assert (out / image).is_file(), image
+        assert (out / image).with_suffix(".pdf").is_file() or image.startswith("included-")
+    assert "x Holmes" in text
+
+
+def test_report_rejects_bad_input(tmp_path, capsys):
+    assert main(["report", "--particles", "0", "--out", str(tmp_path / "r")]) == 2
+    assert main(["report", "--include-run", str(tmp_path), "--out", str(tmp_path / "r")]) == 2
+    assert main(["report", "--compare", "no_such_module:f", "--out", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("bouncer: error:") == 3 and "Traceback" not in err
+
+
+def test_bench_prints_ratios_to_the_holmes_map(capsys):
+    assert main(["bench", "--collisions", "20000", "--repeats", "1", "--particles", "2000"]) == 0
+    out = capsys.readouterr().out
+    assert re.search(r"\| exact \(auto\) \| [\d.]+ \| [\d.]+ \|", out)
+    assert "collisions/s" in out and "peak memory" in out
+    assert main(["bench", "--repeats", "0"]) == 2
