@@ -1,11 +1,11 @@
 """Stability on hard cases: each method's error, iterations and status on departures that break
 naive solvers.
 
-The cases (built here, from the issue's description): small departure speeds w0 = 1e-3..1e-12,
-huge v up to 1e6, eps across {1e-8, 0.2429, 0.6, 0.999999, 1, 1.000001, 3, 100}, phases at and
-next to 0 and pi, unreduced phases (1e6 + 0.3), and eps > 1 near-grazing pairs at several
-clearances (``verify.grazing_contact``; negative clearance: two close roots just before the
-contact time T, positive: the particle passes above the plate at T and lands later).
+The cases are ``verify.hard_cases.HARD_CASES``, the one table the property tests also check:
+small departure speeds w0 = 1e-3..1e-12, huge v up to 1e6, eps across {1e-8, 0.2429, 0.6,
+0.999999, 1, 1.000001, 3, 100}, phases at and next to 0 and pi, unreduced phases, and eps > 1
+near-grazing pairs at several clearances (negative clearance: two close roots just before the
+contact time T; positive: the particle passes above the plate at T and lands later).
 """
 
 from __future__ import annotations
@@ -14,61 +14,16 @@ import math
 from pathlib import Path
 
 from reports.methods import default_methods
-from reports.work_precision import (
-    Case,
-    Error,
-    departure_with_w0,
-    evaluate,
-    grazing_case,
-)
+from reports.work_precision import Case, Error, evaluate
+from verify.hard_cases import HARD_CASES
 
-EPS_SWEEP = (1e-8, 0.2429, 0.6, 0.999999, 1.0, 1.000001, 3.0, 100.0)
+QUICK_STRIDE = 6  # every 6th case in quick mode
 
 
 def hard_cases(quick: bool = False) -> list[Case]:
-    """The hard cases (about 60; a dozen with ``quick``)."""
-    cases: list[Case] = []
-
-    def add(phi, v, eps, label):
-        cases.append(Case(float(phi), float(v), float(eps), label, "hard"))
-
-    small_w0 = (1e-3, 1e-12) if quick else (1e-3, 1e-6, 1e-9, 1e-12)
-    for w0 in small_w0:
-        add(4.0, departure_with_w0(4.0, w0, 0.6), 0.6, f"w0={w0:.0e}, phi=4, eps=0.6")
-        add(0.0, w0, 0.6, f"w0={w0:.0e}, phi=0, eps=0.6")
-        if not quick:
-            add(4.0, departure_with_w0(4.0, w0, 3.0), 3.0, f"w0={w0:.0e}, phi=4, eps=3")
-    huge = ((1e6, 0.6), (1e6, 3.0)) if quick else (
-        (1e5, 0.6), (1e6, 0.6), (1e6, 1e-8), (1e6, 3.0), (1e6, 100.0), (1e5, 0.999999))
-    for v, eps in huge:
-        add(1.0, v, eps, f"v={v:.0e}, eps={eps!r}")
-    sweep = (0.6, 1.0, 3.0) if quick else EPS_SWEEP
-    for eps in sweep:
-        add(0.5, 0.5, eps, f"eps={eps!r}, phi=0.5, v=0.5")
-        if not quick:
-            add(2.0, 3.0, eps, f"eps={eps!r}, phi=2, v=3")
-    phases = {"phi=0": 0.0, "phi=pi": math.pi, "phi=nextafter(pi,0)": math.nextafter(math.pi, 0),
-              "phi=nextafter(pi,4)": math.nextafter(math.pi, 4),
-              "phi=nextafter(2pi,0)": math.nextafter(2 * math.pi, 0),
-              "phi=5e-324": 5e-324}
-    for label, phi in list(phases.items())[: 2 if quick else None]:
-        add(phi, 1.0, 0.6, f"{label}, v=1, eps=0.6")
-        if not quick:
-            add(phi, 1.0, 3.0, f"{label}, v=1, eps=3")
-    for phi in (1e6 + 0.3,) if quick else (1e3 + 0.3, 1e6 + 0.3, -1e6 + 0.3):
-        add(phi, 2.5, 0.6, f"phi={phi:g}, v=2.5, eps=0.6")
-        if not quick:
-            add(phi, 2.5, 3.0, f"phi={phi:g}, v=2.5, eps=3")
-    clearances = (-1e-2, -1e-8, 1e-8) if quick else (-1e-2, -1e-5, -1e-8, -1e-11, -1e-14, 1e-14,
-                                                     1e-11, 1e-8, 1e-5)
-    for eps, psi, t_guess in ((3.0, 0.1, 6.0),) if quick else ((3.0, 0.1, 6.0), (1.5, 0.2, 6.0),
-                                                               (100.0, 0.5, 20.0)):
-        for c in clearances:
-            case = grazing_case(eps, psi, t_guess, c, f"graze eps={eps:g}, clearance={c:+.0e}")
-            if case is not None:
-                cases.append(Case(case.phi, case.v, case.eps, case.label, "hard", case.contact,
-                                  case.clearance))
-    return cases
+    """The shared hard-case table as report cases (every QUICK_STRIDE-th with ``quick``)."""
+    table = HARD_CASES[::QUICK_STRIDE] if quick else HARD_CASES
+    return [Case(c.phi, c.v, c.eps, c.id, "hard", c.contact, c.clearance) for c in table]
 
 
 def _cell(err: Error, with_iterations: bool) -> str:
