@@ -136,12 +136,6 @@ def random_states(n: int, seed: int = SEED) -> list[Case]:
     return [cases[i] for i in order]
 
 
-def departure_with_w0(phi: float, w0: float, eps: float) -> float:
-    """v (float64) such that v + eps*sin(phi) = w0 as nearly as float64 allows."""
-    with mp.workdps(40):
-        return float(mp.mpf(w0) - mp.mpf(eps) * mp.sin(mp.mpf(phi)))
-
-
 def grazing_case(eps, psi, t_guess, clearance, label="grazing pair") -> Case | None:
     """A near-grazing departure (float64) from ``verify.grazing_contact``, or None."""
     try:
