@@ -39,11 +39,18 @@ ITERATION_LIMIT = 2200  # bisection alone exhausts any float64 bracket in < 2100
 
 @jit
 def halley(t, d, d1, d2, lo, hi):
-    """Halley step from t, or the bracket's midpoint if the step leaves (lo, hi)."""
+    """Narrow the bracket (lo, hi) by the sign of d at t, then step: (t_next, lo, hi).
+
+    t_next is the Halley step from t, or the bracket's midpoint if that step leaves it.
+    """
+    if d > 0.0:
+        lo = t
+    else:
+        hi = t
     t_next = t - 2.0 * d * d1 / (2.0 * d1 * d1 - d * d2)
-    if lo < t_next < hi:
-        return t_next
-    return 0.5 * (lo + hi)
+    if not lo < t_next < hi:
+        t_next = 0.5 * (lo + hi)
+    return t_next, lo, hi
 
 
 @jit
@@ -81,11 +88,7 @@ def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps):
         d1 = -v - delta + eps * s
         if abs(d) <= gap_error(phi, v, eps, t):
             break
-        if d > 0.0:
-            lo = t
-        else:
-            hi = t
-        t_next = halley(t, d, d1, -1.0 + eps * c, lo, hi)
+        t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, lo, hi)
         if t_next == t:
             break
         delta_next = t_next - two_v
@@ -113,11 +116,7 @@ def _flight_half_angle(phi, sin_phi, cos_phi, v, eps):
         d1 = v - t + eps * s
         if abs(d) <= gap_error(phi, v, eps, t):
             break
-        if d > 0.0:
-            lo = t
-        else:
-            hi = t
-        t_next = halley(t, d, d1, -1.0 + eps * c, lo, hi)
+        t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, lo, hi)
         if t_next == t:
             break
         sin_h, cos_h = rotate(sin_h, cos_h, 0.5 * t, 0.5 * (t_next - t))
