@@ -17,6 +17,7 @@ Figures are written as PNG and PDF next to ``report.md``; files are replaced ato
 from __future__ import annotations
 
 import datetime
+import math
 import os
 import platform
 import subprocess
@@ -98,7 +99,12 @@ def _included_run(out_dir, run_dir, echo):
         f"## Included run: {scene.name}, {manifest['particles']:,} particles per curve", "",
         f"Run directory `{name}` (status {manifest['status']}, seed {manifest['seed']}, "
         f"{manifest['collisions']:,} collisions, started {manifest.get('started', '?')}, "
-        f"finished {manifest.get('finished', '?')}). Verification: {v['sampled']} sampled "
+        f"finished {manifest.get('finished', '?')}, {manifest.get('threads')} threads: "
+        f"{manifest.get('wall_time_s', math.nan):.0f} s wall, "
+        f"{manifest.get('collisions_per_s', math.nan):.3g} collisions/s, "
+        f"{manifest.get('wall_time_s', math.nan) / len(manifest['curves']):.0f} s per curve on "
+        "average). Verification: "
+        f"{v['sampled']} sampled "
         f"collisions recomputed by verify, worst error {v['worst_error']:.3g} kappa*u, "
         f"{v['uncertain_settled']} uncertain collisions settled by verify, {v['overstepped']} "
         "overstepped.", "",
