@@ -418,8 +418,9 @@ class _Checker:
         phi, v, eps = case[:3]
         return Failure(prop, phi, v, eps, expected, obtained, message, call)
 
-    # -- no_overstep
-    def no_overstep(self, case):
+    def _against_reference(self, prop, case):
+        """(tau_ref, kappa, tau) for the user's flight time at ``case``; _DISCARD where verify
+        cannot decide, a Failure where the callable raises or returns a non-time."""
         phi, v, eps = case
         ref = self.reference(phi, v, eps)
         if ref is None:
@@ -428,7 +429,16 @@ class _Checker:
         try:
             tau = _call_flight(self.fn, phi, v, eps)
         except _Bad as bad:
-            return self._fail("no_overstep", case, float(tau_ref), bad.text, bad.message)
+            return self._fail(prop, case, float(tau_ref), bad.text, bad.message)
+        return tau_ref, kappa, tau
+
+    # -- no_overstep
+    def no_overstep(self, case):
+        phi, v, eps = case
+        got = self._against_reference("no_overstep", case)
+        if not isinstance(got, tuple):
+            return got  # discarded or failed
+        tau_ref, kappa, tau = got
         with mp.workdps(_WORK_DPS):
             tol = self.k * kappa * U * tau_ref
             excess = _mpf(tau) - tau_ref
@@ -450,14 +460,10 @@ class _Checker:
     # -- accuracy
     def accuracy(self, case):
         phi, v, eps = case
-        ref = self.reference(phi, v, eps)
-        if ref is None:
-            return _DISCARD
-        tau_ref, kappa = ref
-        try:
-            tau = _call_flight(self.fn, phi, v, eps)
-        except _Bad as bad:
-            return self._fail("accuracy", case, float(tau_ref), bad.text, bad.message)
+        got = self._against_reference("accuracy", case)
+        if not isinstance(got, tuple):
+            return got  # discarded or failed
+        tau_ref, kappa, tau = got
         with mp.workdps(_WORK_DPS):
             rel = abs(_mpf(tau) - tau_ref) / tau_ref
             k_obs = float(rel / (kappa * U))
