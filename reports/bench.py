@@ -92,8 +92,8 @@ def orbit_table(best, collisions, eps, repeats):
 
 def bench_command(args):
     """Entry point of ``bouncer bench``."""
-    if args.collisions < 1 or args.repeats < 1 or args.particles < 1:
-        raise ValueError("--collisions, --repeats and --particles must be >= 1")
+    if args.collisions < 1 or args.repeats < 1 or args.particles < 0:
+        raise ValueError("--collisions and --repeats must be >= 1, --particles >= 0")
     best = time_orbits(args.eps, args.collisions, args.repeats)
     print(orbit_table(best, args.collisions, args.eps, args.repeats))
     if args.particles:
@@ -117,6 +117,7 @@ def add_bench_parser(subparsers):
                        help="orbit length for the per-collision timing (default 10^7)")
     bench.add_argument("--repeats", type=int, default=5)
     bench.add_argument("--particles", type=int, default=100_000,
-                       help="paper-escape particles per curve for the throughput (default 10^5)")
+                       help="paper-escape particles per curve for the throughput (default 10^5;"
+                       " 0 skips it)")
     bench.add_argument("--threads", type=int, default=None)
     bench.set_defaults(func=bench_command)
