@@ -3,12 +3,13 @@ the bouncer is, and the seed's results reproduced from verified runs.
 
 Sections, each computed in this run (nothing is copied in by hand):
 
-1. speed: ``fastpath.orbit`` exact against the Holmes map, ns per collision (``reports.bench``);
+1. speed: ``fastpath.orbit`` exact against the Holmes map, ns per collision
+   (``reports.precision.bench``);
 2. work-precision: every method's error against ``verify`` and its time per collision, with the
-   missed collisions on close root pairs (``reports.work_precision``), and the hard-case table
-   from the same evaluation (``reports.hard_case_table``);
-3. the seed's figures from trusted ensemble runs (``reports.paper_figures``);
-4. physics checks against published results (``reports.physics_checks``);
+   missed collisions on close root pairs (``reports.precision.work_precision``), and the
+   hard-case table from the same evaluation (``reports.precision.hard_case_table``);
+3. the seed's figures from trusted ensemble runs (``reports.paper.figures``);
+4. physics checks against published results (``reports.paper.physics_checks``);
 5. optionally, finished runs given with ``--include-run`` (e.g. the paper-scale escape run).
 
 Figures are written as PNG and PDF next to ``report.md``; files are replaced atomically.
@@ -24,20 +25,31 @@ import subprocess
 import time
 from pathlib import Path
 
-from reports import rundir
+from reports.paper.figures import paper_figures_section
+from reports.paper.physics_checks import physics_checks_section
+from reports.precision.bench import orbit_table, time_orbits
+from reports.precision.hard_case_table import hard_case_markdown
+from reports.precision.methods import default_methods
+from reports.precision.work_precision import (
+    plot_work_precision,
+    run_work_precision,
+    work_precision_markdown,
+)
+from reports.runs import rundir
+from reports.runs.provenance import versions
+from reports.runs.recheck import load_run
+from reports.stats.plot import plot_run
 
 DEFAULT_OUT = "bouncer-report"
 
 
 def _header(particles, quick):
-    from reports.runner import _versions
-
     try:
         commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                                 text=True, timeout=5, cwd=Path(__file__).parent).stdout.strip()
     except (OSError, subprocess.SubprocessError):
         commit = ""
-    versions = ", ".join(f"{k} {v}" for k, v in _versions().items())
+    packages = ", ".join(f"{k} {v}" for k, v in versions().items())
     size = "quick (smoke-test sizes)" if quick else (
         f"{particles:,} particles per curve" if particles else "default sizes")
     return "\n".join([
@@ -45,7 +57,7 @@ def _header(particles, quick):
         "",
         f"Built {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC on {platform.node()}"
         f" ({platform.machine()}, {os.cpu_count()} cores), {size}; "
-        f"{versions}" + (f"; git {commit}" if commit else "") + ".",
+        f"{packages}" + (f"; git {commit}" if commit else "") + ".",
         "",
         "Errors of flight times are given in units of kappa*u: kappa is the condition number "
         "of the flight time (`verify.condition_number`) and u = 2^-53 the unit roundoff, so a "
@@ -55,8 +67,6 @@ def _header(particles, quick):
 
 
 def _speed_section(quick, echo):
-    from reports.bench import orbit_table, time_orbits
-
     collisions, repeats = (200_000, 2) if quick else (10_000_000, 3)
     echo(f"speed: orbits of {collisions:,} collisions, exact and Holmes, {repeats} rounds")
     best = time_orbits(0.6, collisions, repeats)
@@ -65,14 +75,6 @@ def _speed_section(quick, echo):
 
 
 def _precision_sections(out_dir, quick, compare, echo):
-    from reports.hard_case_table import hard_case_markdown
-    from reports.methods import default_methods
-    from reports.work_precision import (
-        plot_work_precision,
-        run_work_precision,
-        work_precision_markdown,
-    )
-
     methods = default_methods() + list(compare)
     result = run_work_precision(quick=quick, methods=methods, echo=echo)
     plot_work_precision(result, out_dir / "work_precision")
@@ -86,9 +88,6 @@ def _precision_sections(out_dir, quick, compare, echo):
 
 
 def _included_run(out_dir, run_dir, echo):
-    from reports.plotting import plot_run
-    from reports.recheck import load_run
-
     manifest, scene = load_run(run_dir)
     name = Path(run_dir).name
     image = f"included-{name}.png"
@@ -115,9 +114,6 @@ def _included_run(out_dir, run_dir, echo):
 def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), include_runs=(),
                  echo=print):
     """Compute every section and write ``out_dir/report.md``; returns its path."""
-    from reports.paper_figures import paper_figures_section
-    from reports.physics_checks import physics_checks_section
-
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
@@ -148,37 +144,3 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
     rundir.write_atomic(path, "\n".join(parts))
     echo(f"report written to {path} in {total:.0f} s")
     return path
-
-
-def report_command(args):
-    """Entry point of ``bouncer report``."""
-    from reports.methods import method_from_callable
-
-    if args.particles is not None and args.particles < 1:
-        raise ValueError(f"--particles must be >= 1, got {args.particles}")
-    for run_dir in args.include_run:
-        if not (Path(run_dir) / rundir.MANIFEST).is_file():
-            raise ValueError(f"--include-run {run_dir}: not a run directory (no manifest.json)")
-    compare = []
-    if args.compare:
-        from verify.check import load_callable
-
-        compare = [method_from_callable(spec, load_callable(spec)) for spec in args.compare]
-    build_report(args.out, particles=args.particles, quick=args.quick, compare=compare,
-                 include_runs=args.include_run)
-    return 0
-
-
-def add_report_parser(subparsers):
-    report = subparsers.add_parser(
-        "report", help="speed, work-precision, hard cases, the seed's figures, physics checks")
-    report.add_argument("--out", default=DEFAULT_OUT, help=f"output folder (default {DEFAULT_OUT})")
-    report.add_argument("--particles", type=int, default=None,
-                        help="particles per curve of the ensemble runs (default: sized to finish"
-                        " in about 10 minutes on 2 cores)")
-    report.add_argument("--quick", action="store_true", help="tiny sizes, for a smoke test")
-    report.add_argument("--compare", action="append", default=[], metavar="MODULE:FUNCTION",
-                        help="add your flight_time(phi, v, eps) to the comparison (repeatable)")
-    report.add_argument("--include-run", action="append", default=[], metavar="RUN_DIR",
-                        help="add a finished run's survival figure and verification summary")
-    report.set_defaults(func=report_command)

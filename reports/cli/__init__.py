@@ -1,0 +1,48 @@
+"""The ``bouncer`` command. Exit status: 0 ok, 1 failure, 2 bad input (one-line message).
+
+    bouncer demo [--eps E] [--collisions N] [--sample S] [--seed S]
+    bouncer scenes
+    bouncer run SCENE_OR_FILE [--particles N] [--seed S] [--out DIR] [--threads K]
+                              [--resume] [--force] [--quiet] [--scheduler ADDRESS]
+    bouncer sweep [SCENE_OR_FILE] [--eps LO HI N] [--centre LO HI N] [--width LO HI N]
+                  [--n-star N] [--particles N] [--seed S] [--verify-samples N] [--out DIR]
+                  [--threads K] [--scheduler ADDRESS] [--force] [--quiet]
+    bouncer plot RUN_DIR [--out FILE] [--fit MODEL --window LO HI [--clock C] [--curve NAME]]
+    bouncer verify RUN_DIR
+    bouncer check MODULE:FUNCTION [--step MODULE:FUNCTION] [--suite NAME]
+    bouncer bench [--collisions N] [--repeats R] [--particles N]
+    bouncer report [--particles N] [--out DIR] [--quick] [--compare MODULE:FUNCTION]
+                   [--include-run RUN_DIR]
+"""
+
+import argparse
+import sys
+
+from reports.cli import bench, check, demo, plot, report, run, scenes, sweep, verify
+from reports.runs.rundir import RunFailed
+
+SUBCOMMANDS = (demo, scenes, run, sweep, plot, verify, report, check, bench)
+
+
+def build_parser():
+    parser = argparse.ArgumentParser(
+        prog="bouncer", description="Validated numerics for the bouncer model.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    for command in SUBCOMMANDS:
+        command.add_parser(sub)
+    return parser
+
+
+def main(argv=None):
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except ValueError as err:
+        print(f"bouncer: error: {err}", file=sys.stderr)
+        return 2
+    except RunFailed as err:
+        print(f"bouncer: run failed: {err}", file=sys.stderr)
+        return 1
+
+

@@ -1,0 +1,21 @@
+"""``bouncer plot RUN_DIR``: the survival curves (or the portrait) of a run, as PNG."""
+
+from reports.stats.plot import plot_run
+
+
+def _plot(args):
+    for line in plot_run(args.run_dir, out=args.out, fit=args.fit, window=args.window,
+                         clock=args.clock, curve=args.curve):
+        print(line)
+    return 0
+
+
+def add_parser(subparsers):
+    plot = subparsers.add_parser("plot", help="survival curves (or the portrait) of a run, as PNG")
+    plot.add_argument("run_dir", metavar="RUN_DIR")
+    plot.add_argument("--out", help="image file (default: RUN_DIR/survival.png)")
+    plot.add_argument("--fit", choices=["exponential", "stretched", "power"])
+    plot.add_argument("--window", type=float, nargs=2, metavar=("LO", "HI"))
+    plot.add_argument("--clock", choices=["collisions", "time"], default="time")
+    plot.add_argument("--curve", help="fit only this curve")
+    plot.set_defaults(func=_plot)

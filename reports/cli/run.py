@@ -1,0 +1,45 @@
+"""``bouncer run SCENE_OR_FILE``: a trusted ensemble run of a scene."""
+
+import resource
+
+from reports.cli.threads import threads_option
+from reports.runs.driver import run
+from reports.runs.scenes import load_scene
+
+
+def _run(args):
+    scene = load_scene(args.scene)
+    threads = threads_option(args)
+    out = args.out or f"runs/{scene.name}"
+    manifest = run(scene, out, particles=args.particles, seed=args.seed, resume=args.resume,
+                   force=args.force, progress=not args.quiet, threads=threads,
+                   scheduler=args.scheduler)
+    ver = manifest["verification"]
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"{manifest['status']}: {out}  {manifest['particles_total']} particles, "
+          f"{manifest['collisions']} collisions in {manifest['wall_time_s']:.1f} s "
+          f"({manifest['collisions_per_s'] or 0:.3g}/s), peak memory {peak:.0f} MiB")
+    print(f"verification: {ver['sampled']} sampled collisions, worst error "
+          f"{ver['worst_error']:.3g} kappa*u, {ver['overstepped']} overstepped, "
+          f"{ver['uncertain_settled']} uncertain settled by verify")
+    session = manifest.get("session") or {}
+    if session.get("scheduler"):
+        print(f"cluster: {session['scheduler']}, {session['workers']} workers, "
+              f"{session['chunks_computed']} chunks computed there")
+    return 0
+
+
+def add_parser(subparsers):
+    run = subparsers.add_parser(
+        "run", help="a trusted ensemble run of a scene (built-in name or TOML)")
+    run.add_argument("scene", metavar="SCENE_OR_FILE")
+    run.add_argument("--particles", type=int, help="starts per curve (default: the scene's)")
+    run.add_argument("--seed", type=int, help="seed (default: the scene's)")
+    run.add_argument("--out", help="run directory (default: runs/SCENE_NAME)")
+    run.add_argument("--threads", type=int, help="numba threads (results do not depend on it)")
+    run.add_argument("--resume", action="store_true", help="continue a killed run in --out")
+    run.add_argument("--force", action="store_true", help="overwrite an existing run directory")
+    run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.add_argument("--scheduler", metavar="ADDRESS",
+                     help="Dask scheduler (tcp://host:8786): run the chunks on that cluster")
+    run.set_defaults(func=_run)

@@ -1,0 +1,240 @@
+"""One chunk of a run, computed and verified: ``run_chunk``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+import verify
+from fastpath.ensemble import (
+    NO_LIMIT,
+    bin_index,
+    escape_chunk,
+    exit_hole,
+    portrait_chunk,
+)
+from reports.runs.counts import Counts
+from reports.runs.plan import BLOCKS, PORTRAIT_BLOCKS, chunk_starts, make_plan
+from reports.runs.rundir import RunFailed
+
+UNIT_ROUNDOFF = 2.0**-53
+
+
+OVERSTEP_TOLERANCE = 16.0  # in units of kappa*u
+
+
+VERIFY_DPS = 30
+
+
+@dataclass
+class ChunkResult:
+    """What ``run_chunk`` returns (small and picklable: it travels back from a Dask worker).
+
+    ``rows`` are the chunk's verified sample rows (``rundir.SAMPLE_COLUMNS``), ``bad`` those of
+    them that overstepped; ``failure`` is the message of a collision verify could not settle
+    (the run fails with it) or None; ``code`` a digest of the sources that computed it.
+    """
+
+    curve: int
+    chunk: int
+    counts: Counts
+    rows: list
+    bad: list
+    failure: str | None = None
+    seconds: float = 0.0
+    code: str = ""
+
+
+# numba's workqueue threading layer must not be entered by two threads at once (a Dask worker
+# with several threads would); one kernel at a time per process, each parallel inside
+_KERNEL_LOCK = threading.Lock()
+
+
+def _kernel(plan, exp, state, slot, target, samples, out):
+    """One pass of the fast kernel over the particles in ``state`` = (phi, v, t, n)."""
+    sc = plan.scene
+    phi, v, t, n = state
+    m = len(phi)
+    flags, flag_state = np.zeros(m, np.int8), np.zeros((m, 4))
+    if sc.kind == "phase-space":
+        blocks = min(PORTRAIT_BLOCKS, m)
+        counts = np.zeros((blocks, sc.phi_bins, sc.v_bins), np.int64)
+        collisions = np.zeros(blocks, np.int64)
+        with _KERNEL_LOCK:
+            portrait_chunk(phi, v, n, sc.eps, sc.max_collisions, sc.v_range[0], sc.v_range[1],
+                           slot, target, counts, collisions, flags, flag_state, samples)
+        out.portrait += counts.sum(axis=0)
+    else:
+        blocks = min(BLOCKS, m)
+        holes, nb, tb = len(exp.hole_lo), len(plan.n_edges), len(plan.t_edges)
+        esc_n, esc_t = np.zeros((blocks, holes, nb), np.int64), np.zeros((blocks, holes, tb),
+                                                                         np.int64)
+        cens_n, cens_t = np.zeros((blocks, nb), np.int64), np.zeros((blocks, tb), np.int64)
+        collisions = np.zeros(blocks, np.int64)
+        with _KERNEL_LOCK:
+            escape_chunk(phi, v, t, n, sc.eps, np.array(exp.hole_lo), np.array(exp.hole_width),
+                         sc.max_collisions or NO_LIMIT, sc.max_time or np.inf, plan.n_edges,
+                         plan.t_edges, "collisions" in sc.clocks, "time" in sc.clocks, slot,
+                         target, esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state,
+                         samples)
+        out.esc_n[:holes] += esc_n.sum(axis=0)
+        out.esc_t[:holes] += esc_t.sum(axis=0)
+        out.cens_n += cens_n.sum(axis=0)
+        out.cens_t += cens_t.sum(axis=0)
+    out.collisions += int(collisions.sum())
+    return flags, flag_state
+
+
+def settle(phi, v, eps):
+    """The collision float64 could not decide, by ``verify.step``: floats (phi1, v1, tau)."""
+    try:
+        phi1, v1, tau = verify.step(phi, v, eps, dps=VERIFY_DPS)
+    except (verify.UndecidableCollision, ValueError) as err:
+        raise RunFailed(f"verify could not settle the flagged collision from phi={phi!r},"
+                        f" v={v!r}: {err}") from None
+    return float(phi1), float(v1), float(tau)
+
+
+def simulate_chunk(plan, e, k):
+    """Simulate chunk k of experiment e, settling flagged collisions by verify:
+    (Counts, sample rows not yet verified)."""
+    sc, exp = plan.scene, plan.experiments[e]
+    phi, v, slot, target, picks = chunk_starts(plan, e, k)
+    m = len(phi)
+    holes = max(len(exp.hole_lo), 1)
+    out = Counts.zeros(plan, holes)
+    samples = np.zeros((len(picks), 6))
+    state = (phi, v, np.zeros(m), np.zeros(m, np.int64))
+    max_n = sc.max_collisions or NO_LIMIT
+    max_t = sc.max_time or np.inf
+    hole_lo, hole_w = np.array(exp.hole_lo), np.array(exp.hole_width)
+    while len(state[0]):
+        flags, flag_state = _kernel(plan, exp, state, slot, target, samples, out)
+        resume = []
+        for i in np.flatnonzero(flags):
+            phi_i, v_i, t_i, n_i = flag_state[i]
+            phi1, v1, tau = settle(phi_i, v_i, sc.eps)
+            out.settled += 1
+            t1, n1 = t_i + tau, int(n_i) + 1
+            if t1 > max_t:  # as the kernel: censored before this collision
+                out.cens_n[bin_index(plan.n_edges, float(n_i))] += 1
+                out.cens_t[bin_index(plan.t_edges, t1)] += 1
+                continue
+            out.collisions += 1
+            if sc.kind == "phase-space":
+                lo, hi = sc.v_range
+                if lo <= v1 < hi:
+                    p = min(int(phi1 / (2 * math.pi) * sc.phi_bins), sc.phi_bins - 1)
+                    q = min(int((v1 - lo) / (hi - lo) * sc.v_bins), sc.v_bins - 1)
+                    out.portrait[p, q] += 1
+                if n1 >= max_n:
+                    continue
+            else:
+                j = exit_hole(phi1, hole_lo, hole_w)
+                if j >= 0:
+                    out.esc_n[j, bin_index(plan.n_edges, float(n1))] += 1
+                    out.esc_t[j, bin_index(plan.t_edges, t1)] += 1
+                    continue
+            resume.append((i, phi1, v1, t1, n1))
+        idx = np.array([r[0] for r in resume], np.int64)
+        state = tuple(np.array([r[c] for r in resume], dtype)
+                      for c, dtype in ((1, float), (2, float), (3, float), (4, np.int64)))
+        slot, target = slot[idx], target[idx]
+    rows = [[e, k, int(picks[s]), *map(float, samples[s])] for s in range(len(picks))
+            if samples[s, 0] > 0]
+    return out, rows
+
+
+def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
+    """Chunk ``chunk`` of curve (experiment) ``curve`` of the run of ``scene`` with ``seed`` and
+    ``particles`` per curve (default: the scene's): simulated, flagged collisions settled and
+    the sample verified, all here (in the worker, on a cluster). A pure function of its
+    arguments; ``threads`` (numba threads of this call) does not change the result.
+
+    A collision verify cannot settle is returned as ``failure`` (data, not an exception), so
+    that Dask's retries are spent only on lost workers and unexpected errors.
+    """
+    t0 = time.perf_counter()
+    plan = make_plan(scene, particles, seed)
+    if not (0 <= curve < len(plan.experiments) and 0 <= chunk < plan.chunks_per_experiment):
+        raise ValueError(f"no chunk ({curve}, {chunk}) in a run of {len(plan.experiments)}"
+                         f" curves x {plan.chunks_per_experiment} chunks")
+    if threads is not None:
+        import numba
+
+        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
+    empty = Counts(*(np.zeros(0, np.int64) for _ in range(5)))
+    try:
+        counts, rows = simulate_chunk(plan, curve, chunk)
+        bad = verify_rows(rows, scene.eps)
+    except RunFailed as err:
+        return ChunkResult(curve, chunk, empty, [], [], str(err),
+                           time.perf_counter() - t0, CODE_DIGEST)
+    return ChunkResult(curve, chunk, counts, rows, bad, None, time.perf_counter() - t0,
+                       CODE_DIGEST)
+
+
+# the verify modules behind verify.step and verify.condition_number (what a chunk calls)
+_VERIFY_SOURCES = ("_inputs", "_precision", "certify", "collision", "conditioning", "errors",
+                   "gap")
+
+
+def _code_digest():
+    """Digest of the sources a chunk's result depends on (all of fastpath, verify's step and
+    condition number, and the run engine ``reports/runs``), as imported: the client refuses
+    results from workers that run other sources."""
+    root = Path(__file__).resolve().parents[2]
+    digest = hashlib.sha256()
+    files = [*sorted((root / "fastpath").glob("*.py")),
+             *(root / "verify" / f"{name}.py" for name in _VERIFY_SOURCES),
+             *sorted((root / "reports" / "runs").glob("*.py"))]
+    for path in files:
+        digest.update(path.name.encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+CODE_DIGEST = _code_digest()
+
+
+def check_sample(phi, v, tau, eps):
+    """verify's flight time from the same float64 state: (tau_ref, error in kappa*u, overstep)."""
+    tau_ref = verify.step(phi, v, eps, dps=VERIFY_DPS)[2]
+    kappa = verify.condition_number(phi, v, eps, tau_ref)
+    rel = (tau - tau_ref) / tau_ref
+    error = float(abs(rel) / (kappa * UNIT_ROUNDOFF))
+    return float(tau_ref), error, bool(rel > OVERSTEP_TOLERANCE * kappa * UNIT_ROUNDOFF)
+
+
+def verify_rows(rows, eps):
+    """Recompute the chunk's sample; rows gain tau_ref and error. Returns overstepped rows."""
+    bad = []
+    for row in rows:
+        _, _, _, n, phi, v, phi1, v1, tau = row
+        try:
+            tau_ref, error, overstep = check_sample(phi, v, tau, eps)
+        except (verify.UndecidableCollision, ValueError) as err:
+            raise RunFailed(f"verify could not decide sampled collision {int(n)} from "
+                            f"phi={phi!r}, v={v!r} that fastpath converged: {err}") from None
+        row[3] = int(n)
+        row.extend([tau_ref, error])
+        if overstep:
+            bad.append(row)
+    return bad
+
+
+def check_result(result):
+    """RunFailed for a chunk that failed (data from ``run_chunk``) or that other sources
+    computed (a worker with another bouncer-verify: not bit-identical)."""
+    if result.failure:
+        raise RunFailed(result.failure)
+    if result.code != CODE_DIGEST:
+        raise RunFailed(f"chunk ({result.curve}, {result.chunk}) was computed by other sources"
+                        f" (digest {result.code}, here {CODE_DIGEST}): install the same"
+                        " bouncer-verify on the client and every worker")

@@ -1,0 +1,253 @@
+"""Trusted ensemble runs: the driver around ``fastpath.ensemble`` with ``verify`` checks.
+
+The run is a fixed list of chunks (experiment e, chunk k) of at most ``scene.chunk_size`` starts.
+Chunk (e, k) draws its starts, its verification picks and their collision indices from
+``numpy.random.SeedSequence(seed, spawn_key=(e, k))`` only, so a result depends on
+(scene, seed, particles) and not on threads, chunk order or interruptions; counts are integers,
+summed exactly. After each chunk:
+
+1. flagged particles (a flight float64 cannot decide) are settled by ``verify.step`` and resume
+   in ``fastpath`` until they escape or reach the horizon;
+2. the chunk's sampled collisions are recomputed by ``verify.step`` from the same float64 state;
+   the error of the fast flight time is measured in units of kappa*u (kappa from
+   ``verify.condition_number``, u = 2**-53):  err = |tau_fast - tau_ref| / (tau_ref*kappa*u).
+   tau_fast - tau_ref > 16*kappa*u*tau_ref means the fast path jumped past the first collision
+   (an overstep): the run stops with status ``failed``;
+3. merged counts and the finished chunks are checkpointed atomically, with the manifest
+   (status ``partial``). ``resume`` skips finished chunks; the end result is identical.
+
+Steps 1 and 2 are ``run_chunk(scene, seed, curve, chunk, particles)``, a pure function of its
+arguments returning a ``ChunkResult`` (counts, the verified sample rows, overstepped rows, or a
+failure as data), so it runs the same in this process or as a task on a Dask worker
+(``reports.runs.cluster``, ``run(..., scheduler=...)``). The merge (``Tally.merge``) is keyed by the
+chunk index (curve, chunk): a chunk already merged is ignored, counts are integer sums, and the
+sample rows and the list of finished chunks are kept sorted by index, so the merged state is a
+function of the *set* of finished chunks only, whatever order they finish in.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from contextlib import closing
+from pathlib import Path
+
+import numpy as np
+
+from reports.runs import cluster, rundir
+from reports.runs.chunk import OVERSTEP_TOLERANCE, VERIFY_DPS, check_result
+from reports.runs.counts import Tally
+from reports.runs.executor import Executor
+from reports.runs.plan import COLLISION_DECADES, TIME_DECADES, TIME_FIRST, make_plan
+from reports.runs.provenance import git, now, versions
+from reports.runs.rundir import RunFailed
+from reports.runs.scenes import parse_scene
+from reports.runs.survival import survival_curve, wilson
+
+
+def summary(tally):
+    """The verification summary of the manifest."""
+    worst = max(tally.samples, key=lambda r: r[10], default=None)
+    out = {"sampled": len(tally.samples),
+           "worst_error": worst[10] if worst else 0.0,
+           "uncertain_settled": tally.settled,
+           "overstepped": 0,
+           "error_unit": "condition number x unit roundoff (kappa * 2**-53)",
+           "overstep_tolerance": OVERSTEP_TOLERANCE,
+           "verify_dps": VERIFY_DPS}
+    if worst:
+        out["worst_at"] = dict(zip(rundir.SAMPLE_COLUMNS, worst, strict=True))
+    return out
+
+
+def run(scene, out, particles=None, seed=None, resume=False, force=False, progress=True,
+        threads=None, scheduler=None):
+    """Run (or resume) ``scene`` into the directory ``out``; returns the final manifest.
+
+    ``scheduler``: None runs the chunks here, one after another (numba threads inside each);
+    a Dask scheduler address (``"tcp://host:8786"``) or a ``distributed.Client`` sends them as
+    tasks to that cluster (``reports.runs.cluster``). The result is bit-identical either way, and a
+    run started one way resumes the other way without recomputing finished chunks.
+
+    Raises ValueError for bad input (exit 2) and RunFailed when a check fails (exit 1).
+    """
+    plan = make_plan(scene, particles, seed)
+    out = Path(out)
+    if scheduler is not None:
+        cluster.check_available()
+    resuming = rundir.prepare(out, resume, force)
+    ckpt = out / "checkpoint.npz"
+    if resuming:
+        old = rundir.read_json(out / rundir.MANIFEST)
+        stored = parse_scene((out / "scene.toml").read_text(encoding="utf-8"), "stored scene")
+        if stored != scene or old["particles"] != plan.particles or old["seed"] != plan.seed:
+            raise ValueError(f"--resume: {out} holds a run of scene {old['scene']['name']!r} with "
+                             f"{old['particles']} particles and seed {old['seed']}; give the"
+                             " same scene, --particles and --seed")
+        if old["status"] == "complete":
+            return old
+        tally = Tally.load(ckpt) if ckpt.is_file() else Tally.empty(plan)
+    else:
+        rundir.write_atomic(out / "scene.toml", scene.source)
+        tally = Tally.empty(plan)
+    done = set(tally.finished)
+    todo = [c for c in plan.chunks if c not in done]
+    session = {"scheduler": None, "workers": None, "worker_threads": None,
+               "chunks_computed": 0}
+    _manifest(out, plan, tally, "partial", threads, session=session)
+    total = plan.particles * len(plan.experiments)
+    bar = _progress(plan, total - sum(plan.chunk_particles(k) for _, k in todo), total, progress)
+    jobs = [((e, k), (scene, plan.seed, e, k, plan.particles, threads)) for e, k in todo]
+    try:
+        with Executor(scheduler, session) as execute, closing(execute(jobs)) as results:
+            last = time.perf_counter()
+            for _, result in results:
+                check_result(result)
+                if not tally.merge(result, scene.kind):
+                    continue
+                session["chunks_computed"] += 1
+                now = time.perf_counter()
+                tally.elapsed += now - last
+                last = now
+                if result.bad:
+                    _fail(out, plan, tally, threads, result.bad, session)
+                tally.save(ckpt)
+                _manifest(out, plan, tally, "partial", threads, session=session)
+                if bar is not None:
+                    bar.update(plan.chunk_particles(result.chunk))
+                    bar.set_postfix_str(f"{tally.collisions / max(tally.elapsed, 1e-9):.3g}"
+                                        " coll/s", refresh=False)
+    except RunFailed as err:
+        if not getattr(err, "recorded", False):
+            _manifest(out, plan, tally, "failed", threads, failure=str(err), session=session)
+        raise
+    finally:
+        if bar is not None:
+            bar.close()
+    finished = set(tally.finished)
+    missing = [c for c in plan.chunks if c not in finished]
+    if missing:  # cannot happen unless an executor drops a task: never write a short result
+        raise RunFailed(f"{len(missing)} chunk(s) never came back, first {missing[0]}")
+    write_results(out, plan, tally)
+    return _manifest(out, plan, tally, "complete", threads, session=session)
+
+
+
+
+
+
+def _fail(out, plan, tally, threads, bad, session=None):
+    row = dict(zip(rundir.SAMPLE_COLUMNS, bad[0], strict=True))
+    msg = (f"OVERSTEP: {len(bad)} sampled collision(s) where the fast flight time exceeds"
+           f" verify's first root by more than {OVERSTEP_TOLERANCE:g}*kappa*u, first: {row}")
+    ver = summary(tally)
+    ver["overstepped"] = len(bad)
+    _manifest(out, plan, tally, "failed", threads, failure=msg, verification=ver,
+              session=session)
+    write_results(out, plan, tally)
+    err = RunFailed(msg)
+    err.recorded = True
+    raise err
+
+
+def _progress(plan, initial, total, enabled):
+    if not enabled:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, initial=initial, unit="particle", unit_scale=True,
+                desc=plan.scene.name, file=sys.stderr, smoothing=0.1)
+
+
+
+
+
+
+def _manifest(out, plan, tally, status, threads, failure=None, verification=None, session=None):
+    sc = plan.scene
+    curves = {}
+    for e, exp in enumerate(plan.experiments):
+        clock = "esc_n" if "collisions" in sc.clocks else "esc_t"
+        esc = getattr(tally, clock)[e]
+        cens = tally.cens_n[e] if clock == "esc_n" else tally.cens_t[e]
+        done = sum(plan.chunk_particles(k) for ee, k in tally.finished if ee == e)
+        curves[exp.name] = {"particles_done": done, "censored": int(cens.sum()),
+                            "escaped": {c: int(esc[j].sum()) for j, c in enumerate(exp.curves)}}
+    manifest = {
+        "status": status,
+        "scene": {"name": sc.name, "kind": sc.kind, "file": "scene.toml", "eps": sc.eps,
+                  "horizon": {"collisions": sc.max_collisions, "time": sc.max_time}},
+        "seed": plan.seed,
+        "particles": plan.particles,
+        "particles_total": plan.particles * len(plan.experiments),
+        "chunk_size": sc.chunk_size,
+        "chunks": len(plan.chunks),
+        "chunks_done": len(tally.finished),
+        "threads": threads,
+        "session": session,
+        "versions": versions(),
+        "git": git(),
+        "started": tally.started,
+        "updated": now(),
+        "finished": now() if status == "complete" else None,
+        "wall_time_s": round(tally.elapsed, 3),
+        "collisions": tally.collisions,
+        "collisions_per_s": round(tally.collisions / tally.elapsed) if tally.elapsed else None,
+        "verification": verification or summary(tally),
+        "curves": curves,
+        "bins": {"collisions": {"first": 1, "decades": COLLISION_DECADES,
+                                "per_decade": sc.bins_per_decade, "integer": True},
+                 "time": {"first": TIME_FIRST, "decades": TIME_DECADES,
+                          "per_decade": sc.bins_per_decade, "below_first": [0.0, TIME_FIRST]}},
+        "survival_band": "95% Wilson score interval",
+    }
+    if failure:
+        manifest["failure"] = failure
+    rundir.write_json(out / rundir.MANIFEST, manifest)
+    return manifest
+
+
+def survival_rows(plan, tally):
+    """Rows curve,clock,x,p,p_lo,p_hi of survival.csv (module docstring of statistics)."""
+    rows = []
+    for e, exp in enumerate(plan.experiments):
+        for clock in plan.scene.clocks:
+            if clock == "collisions":
+                edges, esc, cens = plan.n_edges, tally.esc_n[e], tally.cens_n[e]
+            else:
+                edges, esc, cens = plan.t_edges, tally.esc_t[e], tally.cens_t[e]
+            for j, curve in enumerate(exp.curves):
+                x, surv, p = survival_curve(esc[j], cens, edges, plan.particles, clock,
+                                            add_censored=plan.scene.kind == "escape")
+                lo, hi = wilson(surv, plan.particles)
+                for xi, pi, li, hi_ in zip(x, p, lo, hi, strict=True):
+                    xs = str(int(xi)) if clock == "collisions" else repr(float(xi))
+                    rows.append([curve, clock, xs, repr(float(pi)), repr(float(li)),
+                                 repr(float(hi_))])
+    return rows
+
+
+def write_results(out, plan, tally):
+    """survival.csv, counts.csv (or portrait.npy) and sample.csv from the merged tally."""
+    sc = plan.scene
+    if sc.kind == "phase-space":
+        rundir.save_npy_atomic(out / "portrait.npy", tally.portrait)
+    else:
+        rundir.write_csv(out / "survival.csv", ["curve", "clock", "x", "p", "p_lo", "p_hi"],
+                         survival_rows(plan, tally))
+        rows = []
+        for e, exp in enumerate(plan.experiments):
+            for clock in sc.clocks:
+                edges = plan.n_edges if clock == "collisions" else plan.t_edges
+                esc = tally.esc_n[e] if clock == "collisions" else tally.esc_t[e]
+                cens = tally.cens_n[e] if clock == "collisions" else tally.cens_t[e]
+                outcomes = [(c, esc[j]) for j, c in enumerate(exp.curves)] + [("censored", cens)]
+                for name, counts in outcomes:
+                    for b in np.flatnonzero(counts):
+                        rows.append([exp.name, clock, name, repr(float(edges[b])),
+                                     int(counts[b])])
+        rundir.write_csv(out / "counts.csv",
+                         ["experiment", "clock", "outcome", "lower_edge", "count"], rows)
+    samples = sorted(tally.samples, key=lambda r: (r[0], r[1], r[2]))
+    rundir.write_csv(out / "sample.csv", rundir.SAMPLE_COLUMNS,
+                     [[*map(int, r[:4]), *map(repr, map(float, r[4:]))] for r in samples])

@@ -1,0 +1,348 @@
+"""Scenes: small TOML files describing an ensemble run, validated into a frozen dataclass.
+
+A scene gives the model parameter ``eps``, the initial measure (uniform on a box in phi and v),
+the holes (arcs of collision phase mod 2*pi, each ``[c - w/2, c + w/2)`` for centre c and width w),
+the horizon (a collision count and/or a time), the particle count per curve, the seed and what
+to record. Three kinds:
+
+``escape``       one curve per (width, centre): a single hole open, starts in ``[start]`` (phi, v),
+                 which must not overlap the hole (the seed's Section 3).
+``transport``    for each width, all holes open at once; curve P_ij starts uniform on hole i in
+                 phase (``[start]`` gives only v) and leaves through hole j (Section 4).
+``phase-space``  no holes: a (phi, v) histogram of ``horizon.collisions`` collisions per start.
+
+Built-in scenes live in ``reports/scenes/*.toml`` (package data): ``paper-escape``,
+``paper-transport``, ``paper-phase-space``. ``load_scene`` takes a built-in name or a path.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import tomllib
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+TWO_PI = 2.0 * math.pi
+KINDS = ("escape", "transport", "phase-space")
+CLOCKS = ("collisions", "time")
+MAX_CHUNK = 2**20
+
+_TOP = {"name", "kind", "description", "eps", "particles", "seed", "chunk_size", "start",
+        "holes", "horizon", "record"}
+_TABLES = {
+    "start": {"phi", "v"},
+    "holes": {"centres", "widths"},
+    "horizon": {"collisions", "time"},
+    "record": {"clocks", "bins_per_decade", "verify_samples", "phi_bins", "v_bins", "v_range"},
+}
+
+
+@dataclass(frozen=True)
+class Experiment:
+    """One set of starts with its holes; it gives one curve per exit hole (``curves``).
+
+    Hole j is the arc [hole_lo[j], hole_lo[j] + hole_width[j]) mod 2*pi, hole_lo in [0, 2*pi).
+    """
+
+    name: str
+    curves: tuple[str, ...]
+    hole_lo: tuple[float, ...]
+    hole_width: tuple[float, ...]
+    phi: tuple[float, float]
+    v: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene; see the module docstring. ``source`` is the TOML text it came from."""
+
+    name: str
+    kind: str
+    eps: float
+    particles: int
+    seed: int
+    start_phi: tuple[float, float] | None
+    start_v: tuple[float, float]
+    hole_centres: tuple[float, ...]
+    hole_widths: tuple[float, ...]
+    max_collisions: int | None
+    max_time: float | None
+    clocks: tuple[str, ...] = CLOCKS
+    bins_per_decade: int = 20
+    verify_samples: int = 1000
+    chunk_size: int = 2**16
+    phi_bins: int = 720
+    v_bins: int = 480
+    v_range: tuple[float, float] = (0.0, 12.0)
+    description: str = ""
+    source: str = field(default="", compare=False, repr=False)
+
+    def experiments(self) -> list[Experiment]:
+        """The experiments of the run in their fixed order (it fixes the chunk numbering)."""
+        if self.kind == "phase-space":
+            return [Experiment("portrait", (), (), (), self.start_phi, self.start_v)]
+        out = []
+        many = len(self.hole_widths) > 1
+        for w in self.hole_widths:
+            tag = f"h={_num(w)}"
+            los = tuple(_hole_lo(c, w) for c in self.hole_centres)
+            if self.kind == "escape":
+                for c, lo in zip(self.hole_centres, los, strict=True):
+                    name = f"phi_c={_num(c)}" + (f"/{tag}" if many else "")
+                    out.append(Experiment(name, (name,), (lo,), (w,), self.start_phi,
+                                          self.start_v))
+            else:
+                for i, c in enumerate(self.hole_centres, start=1):
+                    curves = tuple(
+                        (f"{tag}/" if many else "") + f"P{i}{j}"
+                        for j in range(1, len(self.hole_centres) + 1)
+                    )
+                    name = (f"{tag}/" if many else "") + f"from hole {i}"
+                    box = (c - w / 2, c + w / 2)
+                    out.append(Experiment(name, curves, los, (w,) * len(los), box, self.start_v))
+        return out
+
+
+def _num(x):
+    """Short text of a number for curve names: 1 not 1.0, pi to 4 digits."""
+    return f"{x:.4g}"
+
+
+def _hole_lo(centre, width):
+    return (centre - width / 2) % TWO_PI
+
+
+def builtin_scenes() -> dict[str, str]:
+    """Names of the built-in scenes -> their TOML text."""
+    folder = resources.files("reports.runs") / "builtin_scenes"
+    return {
+        p.name.removesuffix(".toml"): p.read_text(encoding="utf-8")
+        for p in sorted(folder.iterdir(), key=lambda p: p.name)
+        if p.name.endswith(".toml")
+    }
+
+
+def load_scene(name_or_path) -> Scene:
+    """A built-in scene by name, or a TOML file by path; ValueError if missing or invalid."""
+    builtin = builtin_scenes()
+    key = str(name_or_path)
+    if key in builtin:
+        return parse_scene(builtin[key], origin=f"built-in scene {key!r}")
+    path = Path(key)
+    if not path.is_file():
+        names = ", ".join(builtin)
+        raise ValueError(f"no scene {key!r}: not a built-in ({names}) and not a file")
+    return parse_scene(path.read_text(encoding="utf-8"), origin=str(path))
+
+
+def parse_scene(text: str, origin: str = "scene") -> Scene:
+    """Parse and validate TOML text; ValueError with ``origin: what is wrong``."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ValueError(f"{origin}: not valid TOML: {err}") from None
+    try:
+        return _validate(data, text)
+    except ValueError as err:
+        raise ValueError(f"{origin}: {err}") from None
+
+
+def _validate(data, text):
+    _keys(data, _TOP, "scene")
+    for table, allowed in _TABLES.items():
+        if table in data:
+            if not isinstance(data[table], dict):
+                raise ValueError(f"[{table}] must be a table")
+            _keys(data[table], allowed, f"[{table}]")
+    name = _string(data, "name")
+    kind = _string(data, "kind")
+    if kind not in KINDS:
+        raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    eps = _real(data.get("eps"), "eps")
+    particles = _integer(data.get("particles"), "particles", 1)
+    seed = _integer(data.get("seed"), "seed", 0)
+    chunk = _integer(data.get("chunk_size", 2**16), "chunk_size", 1)
+    if chunk > MAX_CHUNK:
+        raise ValueError(f"chunk_size must be <= {MAX_CHUNK}, got {chunk}")
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        raise ValueError("description must be a string")
+    start, holes = data.get("start", {}), data.get("holes", {})
+    horizon, record = data.get("horizon", {}), data.get("record", {})
+
+    v_box = _box(start.get("v"), "start.v")
+    if kind == "transport":
+        if "phi" in start:
+            raise ValueError("start.phi is not used by a transport scene: starts lie on hole i")
+        phi_box = None
+    else:
+        phi_box = _box(start.get("phi"), "start.phi")
+        if phi_box[1] - phi_box[0] > TWO_PI:
+            raise ValueError(f"start.phi spans {phi_box[1] - phi_box[0]!r} > 2*pi")
+
+    if kind == "phase-space":
+        if holes:
+            raise ValueError("a phase-space scene has no [holes]")
+        centres, widths = (), ()
+    else:
+        centres = _reals(holes.get("centres"), "holes.centres")
+        widths = _reals(holes.get("widths"), "holes.widths")
+        for w in widths:
+            if not 0 < w < TWO_PI:
+                raise ValueError(f"hole width must be in (0, 2*pi), got {w!r}")
+        if kind == "transport":
+            _check_disjoint(centres, widths)
+
+    max_n, max_t = _horizon(horizon, kind)
+    if kind == "phase-space":
+        if "clocks" in record:
+            raise ValueError("a phase-space scene records no clocks (record.clocks)")
+        clocks = []
+    else:
+        clocks = record.get("clocks", list(CLOCKS))
+        if (not isinstance(clocks, list) or not clocks or len(set(clocks)) != len(clocks)
+                or any(c not in CLOCKS for c in clocks)):
+            raise ValueError(
+                f"record.clocks must be a non-empty list of {CLOCKS}, got {clocks!r}")
+    bins = _integer(record.get("bins_per_decade", 20), "record.bins_per_decade", 1)
+    if bins > 200:
+        raise ValueError(f"record.bins_per_decade must be <= 200, got {bins}")
+    samples = _integer(record.get("verify_samples", 1000), "record.verify_samples", 1)
+    portrait = {}
+    if kind == "phase-space":
+        portrait["phi_bins"] = _integer(record.get("phi_bins", 720), "record.phi_bins", 1)
+        portrait["v_bins"] = _integer(record.get("v_bins", 480), "record.v_bins", 1)
+        portrait["v_range"] = _box(record.get("v_range", [0.0, 12.0]), "record.v_range")
+        if portrait["phi_bins"] * portrait["v_bins"] > 4_000_000:
+            raise ValueError("record.phi_bins * record.v_bins must be <= 4e6")
+    elif any(k in record for k in ("phi_bins", "v_bins", "v_range")):
+        raise ValueError("record.phi_bins, v_bins and v_range belong to phase-space scenes")
+
+    scene = Scene(
+        name=name, kind=kind, eps=eps, particles=particles, seed=seed, start_phi=phi_box,
+        start_v=v_box, hole_centres=centres, hole_widths=widths, max_collisions=max_n,
+        max_time=max_t, clocks=tuple(c for c in CLOCKS if c in clocks), bins_per_decade=bins,
+        verify_samples=samples, chunk_size=chunk, description=description, source=text,
+        **portrait,
+    )
+    for exp in scene.experiments():
+        _check_departures(exp, eps)
+        if kind == "escape":
+            _check_outside(exp)
+    return scene
+
+
+def _keys(table, allowed, where):
+    unknown = sorted(set(table) - allowed)
+    if unknown:
+        raise ValueError(
+            f"unknown key(s) in {where}: {', '.join(unknown)}"
+            f" (allowed: {', '.join(sorted(allowed))})"
+        )
+
+
+def _string(data, key):
+    value = data.get(key)
+    if not isinstance(value, str) or not value:
+        raise ValueError(f"{key} must be a non-empty string, got {value!r}")
+    return value
+
+
+def _real(value, name):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} must be a number, got {value!r}")
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return float(value)
+
+
+def _integer(value, name, minimum):
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise ValueError(f"{name} must be an integer, got {value!r}")
+    if value < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {value}")
+    return int(value)
+
+
+def _reals(value, name):
+    if not isinstance(value, list) or not value:
+        raise ValueError(f"{name} must be a non-empty list of numbers, got {value!r}")
+    return tuple(_real(x, name) for x in value)
+
+
+def _box(value, name):
+    if not isinstance(value, list) or len(value) != 2:
+        raise ValueError(f"{name} must be [low, high], got {value!r}")
+    lo, hi = _real(value[0], name), _real(value[1], name)
+    if not lo < hi:
+        raise ValueError(f"{name} = [{lo!r}, {hi!r}] is empty: need low < high")
+    return (lo, hi)
+
+
+def _horizon(horizon, kind):
+    if "collisions" not in horizon and "time" not in horizon:
+        raise ValueError("[horizon] needs collisions and/or time")
+    max_n = max_t = None
+    if "collisions" in horizon:
+        max_n = _integer(horizon["collisions"], "horizon.collisions", 1)
+        if max_n > 10**8:
+            raise ValueError(f"horizon.collisions must be <= 1e8 (the bins), got {max_n}")
+    if "time" in horizon:
+        if kind == "phase-space":
+            raise ValueError("a phase-space scene's horizon is horizon.collisions only")
+        max_t = _real(horizon["time"], "horizon.time")
+        if not 0 < max_t <= 1e8:
+            raise ValueError(f"horizon.time must be in (0, 1e8] (the bins), got {max_t!r}")
+    if kind == "phase-space" and max_n is None:
+        raise ValueError("a phase-space scene needs horizon.collisions")
+    return max_n, max_t
+
+
+def _arcs_overlap(lo1, w1, lo2, w2):
+    """Whether the arcs [lo1, lo1+w1) and [lo2, lo2+w2) mod 2*pi intersect."""
+    return (lo2 - lo1) % TWO_PI < w1 or (lo1 - lo2) % TWO_PI < w2
+
+
+def _check_disjoint(centres, widths):
+    for w in widths:
+        for a in range(len(centres)):
+            for b in range(a + 1, len(centres)):
+                if _arcs_overlap(_hole_lo(centres[a], w), w, _hole_lo(centres[b], w), w):
+                    raise ValueError(
+                        f"holes centred at {centres[a]!r} and {centres[b]!r} with width {w!r}"
+                        " overlap"
+                    )
+
+
+def _sin_range(a, b):
+    """(min, max) of sin on [a, b]."""
+    vals = [math.sin(a), math.sin(b)]
+    for peak, value in ((math.pi / 2, 1.0), (3 * math.pi / 2, -1.0)):
+        k = math.ceil((a - peak) / TWO_PI)
+        if peak + k * TWO_PI <= b:
+            vals.append(value)
+    return min(vals), max(vals)
+
+
+def _check_departures(exp, eps):
+    """Every start must leave the plate: w0 = v + eps*sin(phi) > 0 on the whole box."""
+    s_min, s_max = _sin_range(*exp.phi)
+    worst = exp.v[0] + min(eps * s_min, eps * s_max)
+    if not worst > 0:
+        raise ValueError(
+            f"starts of {exp.name!r} include non-departures: min of w0 = v + eps*sin(phi) over"
+            f" phi in {list(exp.phi)}, v in {list(exp.v)} is {worst!r} <= 0"
+        )
+
+
+def _check_outside(exp):
+    """An escape start box must not overlap its hole (that is a transport problem)."""
+    width = exp.phi[1] - exp.phi[0]
+    for lo, w in zip(exp.hole_lo, exp.hole_width, strict=True):
+        if _arcs_overlap(exp.phi[0] % TWO_PI, width, lo, w):
+            raise ValueError(
+                f"the start box phi in {list(exp.phi)} overlaps the hole of {exp.name!r};"
+                " use a transport scene for starts on a hole"
+            )

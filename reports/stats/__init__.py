@@ -1,0 +1,1 @@
+"""Statistics on run outputs: fits of survival laws and the survival figure of a run."""

@@ -1,0 +1,102 @@
+"""``bouncer plot RUN_DIR``: the survival curves of a run as in the seed's figures.
+
+Escape (Fig. 2): P(n) against n (log-log) and P(t) against sqrt(t) (log P). Transport
+(Figs. 3-4): P_ij against t and against n (log-log), one row per hole width. Phase space
+(Fig. 1): log(1 + counts) of the (phi, v) histogram. Wilson bands are shaded. With ``fit``,
+the chosen model is fitted over ``window`` to each curve of ``clock`` and drawn dashed.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+
+from reports.runs.recheck import load_run
+from reports.runs.survival import read_survival
+from reports.stats.least_squares import fit_survival
+
+
+def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None):
+    """Draw the run's figure; returns report lines (file written, fits)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    run_dir = Path(run_dir)
+    manifest, scene = load_run(run_dir)
+    if fit and not window:
+        raise ValueError("--fit needs --window LO HI")
+    lines = []
+    if scene.kind == "phase-space":
+        counts = np.load(run_dir / "portrait.npy")
+        fig, ax = plt.subplots(figsize=(7, 5))
+        ax.imshow(np.log1p(counts.T), origin="lower", aspect="auto", cmap="Greys",
+                  extent=(0, 2 * np.pi, *scene.v_range))
+        ax.set_xlabel("phi")
+        ax.set_ylabel("v")
+        ax.set_title(f"{scene.name}: eps = {scene.eps:g}")
+    else:
+        data = read_survival(run_dir / "survival.csv")
+        groups = _groups(scene, data)
+        clocks = list(scene.clocks)
+        fig, axes = plt.subplots(len(groups), len(clocks), squeeze=False,
+                                 figsize=(6 * len(clocks), 4 * len(groups)))
+        for r, (title, names) in enumerate(groups):
+            for c, ck in enumerate(clocks):
+                ax = axes[r, c]
+                for name in names:
+                    if (name, ck) not in data:
+                        continue
+                    x, p, lo, hi = data[name, ck]
+                    xs = np.sqrt(x) if scene.kind == "escape" and ck == "time" else x
+                    pos = p > 0
+                    line, = ax.plot(xs[pos], p[pos], label=name, lw=1)
+                    ax.fill_between(xs[pos], lo[pos], hi[pos], color=line.get_color(),
+                                    alpha=0.2, lw=0)
+                    if fit and ck == clock and (curve is None or curve == name):
+                        lines.append(_fit_line(ax, name, x, p, lo, hi, fit, window, scene, ck))
+                _axes(ax, scene, ck, title, manifest)
+        fig.tight_layout()
+    out = Path(out) if out else run_dir / ("portrait.png" if scene.kind == "phase-space"
+                                           else "survival.png")
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    lines.insert(0, f"wrote {out}")
+    return lines
+
+
+def _groups(scene, data):
+    names = list(dict.fromkeys(name for name, _ in data))  # in file order
+    if scene.kind == "escape":
+        return [(scene.name, names)]
+    by_width = defaultdict(list)
+    for name in names:
+        by_width[name.rpartition("/")[0]].append(name)
+    return [(f"{scene.name} {w}".strip(), ns) for w, ns in by_width.items()]
+
+
+def _fit_line(ax, name, x, p, lo, hi, model, window, scene, clock):
+    try:
+        f = fit_survival(x, p, lo, hi, model, window)
+    except (ValueError, RuntimeError) as err:
+        return f"{name} ({clock}): no fit: {err}"
+    xf = np.linspace(*window, 200)
+    xs = np.sqrt(xf) if scene.kind == "escape" and clock == "time" else xf
+    ax.plot(xs, f(xf), "k--", lw=1)
+    return f"{name} ({clock}): {f}"
+
+
+def _axes(ax, scene, clock, title, manifest):
+    ax.set_yscale("log")
+    ax.set_ylim(0.3 / manifest["particles"], 1.5)
+    if scene.kind == "escape" and clock == "time":
+        ax.set_xlabel("sqrt(t)")
+    else:
+        ax.set_xscale("log")
+        ax.set_xlabel("n (collisions)" if clock == "collisions" else "t")
+    ax.set_ylabel("P")
+    ax.set_title(f"{title} ({manifest['particles']} per curve)", fontsize=9)
+    ax.legend(fontsize=7)

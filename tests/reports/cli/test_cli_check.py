@@ -1,0 +1,94 @@
+"""``bouncer check``: exit 0 when every property holds, 1 when one fails (with the smallest
+failing input), 2 for bad input with a one-line message and no traceback."""
+
+import argparse
+import os
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+from reports.cli.check import add_parser, check_command, main
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+
+
+def test_fastpath_passes(capsys):
+    code = main(["check", "fastpath:flight_time", "--step", "fastpath:step", "--suite", "fast"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert "all properties hold" in out
+    assert out.count("PASS") == 6
+
+
+def test_planted_defect_fails_with_smallest_input(capsys):
+    code = main(["check", "examples.planted_defects:biased_flight_time", "--suite", "accuracy"])
+    out = capsys.readouterr().out
+    assert code == 1
+    assert "FAIL  accuracy" in out
+    assert "smallest failing input" in out
+    assert "accuracy: examples.planted_defects:biased_flight_time at phi=" in out
+
+
+def test_file_path_and_options(capsys):
+    code = main(["check", "examples/planted_defects.py:holmes_flight_time", "--suite",
+                 "fixed_points", "--max-examples", "7", "--seed", "5", "-k", "4"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert "k = 4, seed 5, up to 7 inputs" in out
+
+
+@pytest.mark.parametrize(
+    "argv, text",
+    [
+        (["check", "no_such_module_xyz:f"], "cannot import module 'no_such_module_xyz'"),
+        (["check", "math:pi"], "is not callable"),
+        (["check", "math:nothing_here"], "has no attribute"),
+        (["check", "fastpath"], "expected MODULE:FUNCTION"),
+        (["check", "fastpath:flight_time", "--suite", "bogus"], "unknown suite 'bogus'"),
+        (["check", "fastpath:flight_time", "--suite", "energy"], "needs --step"),
+        (["check", "fastpath:flight_time", "--step", "math:nothing"], "has no attribute"),
+        (["check", "fastpath:flight_time", "--max-examples", "0"], "--max-examples"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(argv, text, capsys):
+    code = main(argv)
+    captured = capsys.readouterr()
+    assert code == 2
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("bouncer: error: ")
+    assert text in lines[0]
+    assert "Traceback" not in captured.err + captured.out
+
+
+def test_parser_builder_composes_with_other_subcommands():
+    parser = argparse.ArgumentParser(prog="bouncer")
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("demo")
+    add_parser(sub)
+    args = parser.parse_args(["check", "m:f", "--step", "m:g", "--suite", "fast"])
+    assert args.func is check_command
+    assert (args.target, args.step, args.suite, args.seed, args.k) == ("m:f", "m:g", "fast", 0, 16)
+
+
+def test_users_own_file_in_the_current_directory(tmp_path):
+    """A fresh process in the user's directory: their module imports, exit 1, no traceback."""
+    (tmp_path / "mysolver.py").write_text(
+        "def flight_time(phi, v, eps):\n    return 2.0 * v  # Holmes\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    run = subprocess.run(
+        [sys.executable, "-m", "reports.cli", "check", "mysolver:flight_time",
+         "--suite", "accuracy", "--max-examples", "20"],
+        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300,
+    )
+    assert run.returncode == 1, run.stderr
+    assert "FAIL  accuracy" in run.stdout
+    assert "Traceback" not in run.stderr
+    bad = subprocess.run(
+        [sys.executable, "-m", "reports.cli", "check", "mysolver:nope"],
+        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300,
+    )
+    assert bad.returncode == 2
+    assert bad.stderr.strip() == "bouncer: error: module 'mysolver' has no attribute 'nope'"
