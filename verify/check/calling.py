@@ -8,12 +8,14 @@ import math
 
 
 class Bad(Exception):
-    """The user's callable misbehaved; ``text`` describes what came back."""
+    """The user's callable misbehaved; ``text`` describes what came back. ``fault`` is
+    "timeout" or "crash" when the call did not return at all (see :mod:`.worker`)."""
 
-    def __init__(self, text: str, message: str) -> None:
+    def __init__(self, text: str, message: str, fault: str | None = None) -> None:
         super().__init__(message)
         self.text = text
         self.message = message
+        self.fault = fault
 
 
 def one_line(err: BaseException) -> str:
@@ -36,6 +38,8 @@ def as_float(x, what: str) -> float:
 def call_flight(fn, phi, v, eps) -> float:
     try:
         out = fn(phi, v, eps)
+    except Bad:  # a worker's timeout or crash, already described
+        raise
     except Exception as err:  # the user's code: any exception is a failure of the property
         raise Bad(f"exception {one_line(err)}", "flight_time raised on a valid departure") \
             from None
@@ -48,6 +52,8 @@ def call_flight(fn, phi, v, eps) -> float:
 def call_step(fn, phi, v, eps) -> tuple[float, float, float]:
     try:
         out = fn(phi, v, eps)
+    except Bad:
+        raise
     except Exception as err:
         raise Bad(f"exception {one_line(err)}", "step raised on a valid departure") from None
     try:

@@ -7,29 +7,32 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .budget import BudgetSpent
 from .properties import DISCARD
 from .report import Failure
 
 
 def property_parts():
-    """Per property: (label, strategy, share of the inputs). Each part runs as its own
-    hypothesis search, so every kind of input gets its share (``one_of`` would not promise it).
+    """Per property: (label, strategy, share of the inputs), the hard inputs first (close root
+    pairs, tiny departure speeds, ...) so that a flawed solver is caught before the budget
+    goes. Each part runs as its own hypothesis search, so every kind of input gets its share
+    (``one_of`` would not promise it).
     """
     from .. import strategies as vs
 
     random = vs.departures(eps=(0.0, 10.0))
     return {
         "no_overstep": (
-            ("random", random, 0.4),
             ("close root pairs", vs.near_grazing(clearance=vs.clearances(-1)), 0.4),
             ("near misses", vs.near_grazing(clearance=vs.clearances(+1)), 0.2),
+            ("random", random, 0.4),
         ),
         "accuracy": (
-            ("random", random, 0.4), ("hard", vs.hard_cases(), 0.4),
+            ("hard", vs.hard_cases(), 0.4), ("random", random, 0.4),
             ("near fixed points", vs.near_fixed_point(), 0.2),
         ),
         "fixed_points": (("fixed points", vs.fixed_points(), 1.0),),
-        "energy": (("random", random, 0.6), ("hard", vs.hard_cases(), 0.4)),
+        "energy": (("hard", vs.hard_cases(), 0.4), ("random", random, 0.6)),
         "holmes_limit": (("large v", vs.large_velocities(), 1.0),),
         # the reversed flight ARRIVES with the forward departure speed w0: for w0 -> 0 and
         # eps > 1 that arrival is a near-graze a float64 method may rightly refuse to decide
@@ -38,7 +41,6 @@ def property_parts():
             ("near fixed points", vs.near_fixed_point(), 0.2),
         ),
     }
-
 
 
 class _Falsified(Exception):
@@ -79,67 +81,120 @@ def _hypothesis_run(test, strategy, max_examples: int, seed: int | None, shrink:
     run()
 
 
+class _Stop(BaseException):  # noqa: N818 - ends a survey; BaseException: see BudgetSpent
+    pass
+
+
 @dataclass
 class _Outcome:
     inputs: int = 0
     failed: int = 0
     failure: Failure | None = None
     note: str = ""
+    cut: bool = False  # the budget ran out before the search finished
 
 
-def _survey(body, count, first, strategy):
+class Run:
+    """What every property's search shares: the seed, the budget, a fault counter (timeouts
+    and crashes of the worker; a property stops at its first) and a progress callback
+    ``progress(property, inputs so far, inputs planned)``."""
+
+    def __init__(self, seed, budget, faults=lambda: 0, progress=None) -> None:
+        self.seed = seed
+        self.budget = budget
+        self.faults = faults
+        self.progress = progress or (lambda name, done, planned: None)
+
+
+def _survey(body, count, first, strategy, run, tick):
     from hypothesis import reject
 
     def survey(case):
+        run.budget.check()
+        faults = run.faults()
         result = body(case)
         if result is DISCARD:
             reject()
         count["inputs"] += 1
+        tick()
         if result is not None:
             count["failed"] += 1
             if not first:
                 first.append((strategy, result))
+            if run.faults() != faults:
+                raise _Stop  # a hang or crash: each costs a timeout or a restart
 
     return survey
 
 
-def run_property(body, parts, max_examples: int, seed: int | None) -> _Outcome:
+def run_property(name, body, parts, max_examples: int, run: Run) -> _Outcome:
     """Each part: a survey of its share of ``max_examples`` inputs that counts the failing ones.
     Then, for the first part with a failure, a second run that stops at the first failure and
-    lets hypothesis shrink it to the smallest failing input."""
+    lets hypothesis shrink it to the smallest failing input. A timeout or crash ends the
+    property at once (unshrunk); so does the budget (``cut``)."""
     from hypothesis import reject
     from hypothesis.errors import Unsatisfiable
+
 
     out = _Outcome()
     first: list[tuple[object, Failure]] = []
     per_part = []
+    planned = sum(max(1, round(max_examples * share)) for _, _, share in parts)
+    stopped = ""
 
-    def falsify(case):
-        result = body(case)
-        if result is DISCARD:
-            reject()
-        if result is not None:
-            raise _Falsified(result)
+    def tick():
+        run.progress(name, out.inputs + count["inputs"], planned)
 
+    run.progress(name, 0, planned)
     for label, strategy, share in parts:
         count = {"inputs": 0, "failed": 0}
-        survey = _survey(body, count, first, strategy)
+        survey = _survey(body, count, first, strategy, run, tick)
         n = max(1, round(max_examples * share))
         try:
-            _hypothesis_run(survey, strategy, n, seed, shrink=False)
+            _hypothesis_run(survey, strategy, n, run.seed, shrink=False)
         except Unsatisfiable:
             out.note = f"too few valid {label} inputs could be drawn"
+        except _Stop:
+            stopped = "stopped at the first timeout or crash"
+        except BudgetSpent:
+            out.cut = True
+            stopped = "the budget ran out"
         out.inputs += count["inputs"]
         out.failed += count["failed"]
         if len(parts) > 1:
             per_part.append(f"{label} {count['failed']}/{count['inputs']}")
+        if stopped:
+            break
     if not first:
         return out
     if len(parts) > 1:
         out.note = "failing: " + ", ".join(per_part)
     strategy, failure = first[0]
+    if stopped:
+        out.failure = failure
+        out.note = "; ".join(filter(None, (out.note, f"{stopped}: first failure, unshrunk")))
+        return out
+    falsified: list[Failure] = []
+    faults = run.faults()
+
+    def falsify(case):
+        if run.faults() != faults:
+            raise _Stop  # shrinking a hang or crash costs a timeout or restart per try
+        run.budget.check()
+        result = body(case)
+        if result is DISCARD:
+            reject()
+        if result is not None:
+            falsified.append(result)
+            raise _Falsified(result)
+
     try:
-        _hypothesis_run(falsify, strategy, max_examples, seed, shrink=True)
+        _hypothesis_run(falsify, strategy, max_examples, run.seed, shrink=True)
+    except (BudgetSpent, _Stop) as err:
+        out.failure = falsified[-1] if falsified else failure
+        why = "the budget ran out" if isinstance(err, BudgetSpent) else "a timeout or crash"
+        out.note += f"; shrinking stopped by {why}: the last failing input tried"
+        return out
     except Exception as err:  # noqa: BLE001 - look for our own failure inside hypothesis' wrap
         found = _find_falsified(err)
         if found is None:

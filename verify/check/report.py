@@ -4,6 +4,7 @@ with ``str``)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from .suites import PROPERTIES
@@ -43,7 +44,8 @@ class Failure:
 
 @dataclass(frozen=True)
 class PropertyResult:
-    """Outcome of one property: ``status`` is "PASS", "FAIL" or "SKIP"."""
+    """Outcome of one property: ``status`` is "PASS", "FAIL", "SKIP" or "INCONCLUSIVE" (the
+    budget ran out before its search finished; ``inputs`` is the count reached)."""
 
     name: str
     status: str
@@ -68,10 +70,24 @@ class CheckReport:
     worst_accuracy_k: float | None
     worst_accuracy_input: tuple[float, float, float] | None = None
     seconds: float = 0.0
+    budget: float = math.inf
+    call_timeout: float = math.inf
+    isolation: str = ""  # how the callables ran: a worker process, or in-process and why
+
+    @property
+    def verdict(self) -> str:
+        """"failed" if a property failed, else "inconclusive" if the budget cut one short,
+        else "passed"."""
+        if any(r.status == "FAIL" for r in self.results):
+            return "failed"
+        if any(r.status == "INCONCLUSIVE" for r in self.results):
+            return "inconclusive"
+        return "passed"
 
     @property
     def ok(self) -> bool:
-        return all(r.status != "FAIL" for r in self.results)
+        """Every property held on all its inputs (skips aside); inconclusive is not ok."""
+        return self.verdict == "passed"
 
     @property
     def failures(self) -> list[Failure]:
@@ -90,6 +106,9 @@ class CheckReport:
             f"suite {self.suite!r}, k = {self.k:g}, seed {self.seed}, up to {self.max_examples}"
             f" inputs per property, {self.seconds:.1f} s",
         ]
+        if self.isolation:
+            lines.append(f"budget {self.budget:g} s, call timeout {self.call_timeout:g} s, "
+                         f"{self.isolation}")
         width = max(len(p) for p in PROPERTIES)
         for r in self.results:
             note = f"  ({r.note})" if r.note else ""
@@ -97,17 +116,25 @@ class CheckReport:
                 what = f"{r.failed} of {r.inputs} inputs fail"
             elif r.status == "SKIP":
                 what = "skipped"
+            elif r.status == "INCONCLUSIVE":
+                what = f"{r.inputs} of {self.max_examples} inputs when the budget ran out"
             else:
                 what = f"{r.inputs} inputs"
             lines.append(f"  {r.status}  {r.name:<{width}}  {what}{note}")
         fails = self.failures
         if fails:
+            unshrunk = any("unshrunk" in r.note for r in self.results if r.failure)
+            how = "hypothesis-shrunk unless its note says unshrunk" if unshrunk \
+                else "hypothesis-shrunk"
             lines.append(
                 f"{len(fails)} of {len(self.results)} properties failed; smallest failing "
-                "input found (hypothesis-shrunk):"
+                f"input found ({how}):"
             )
             for f in fails:
                 lines.extend("  " + line for line in str(f).splitlines())
+        elif self.verdict == "inconclusive":
+            lines.append(f"inconclusive: the budget of {self.budget:g} s ran out before every "
+                         "property had its inputs; no property failed on the inputs tried")
         else:
             lines.append("all properties hold")
         return "\n".join(lines)
