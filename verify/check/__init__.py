@@ -29,7 +29,10 @@ and returns a :class:`CheckReport`. The properties (DESIGN.md Section 2; ``u = 2
     arrival at eps > 1 is a near-graze that a float64 method may rightly refuse to decide.
 
 A callable that raises, returns NaN/inf, a non-positive time or the wrong shape fails the
-property that called it; the checker does not crash. Inputs where ``verify`` itself cannot
+property that called it; the checker does not crash. The callables run in a worker process
+(:mod:`.worker`), so a call that hangs past ``call_timeout`` or kills the process (exit,
+segfault) is such a failure too; the whole check runs under ``budget`` seconds, and a property
+the budget cut short is INCONCLUSIVE with the count reached. Inputs where ``verify`` itself cannot
 decide the first root (:class:`verify.UndecidableCollision`) are discarded.
 
 Each property draws its inputs in parts (e.g. random / close root pairs / near misses), each
@@ -44,7 +47,8 @@ runs, so ``import verify`` does not need it.
 The package, one job per module: ``loading`` (the user's callable from ``MODULE:FUNCTION``),
 ``calling`` (calling it and vetting its output), ``tolerance`` (the tolerance model),
 ``properties`` (the property bodies), ``driver`` (hypothesis: parts, survey, shrink),
-``report`` (the results), ``suites`` (names and sizes), ``api`` (``check_integrator``).
+``report`` (the results), ``suites`` (names and sizes), ``worker`` (the worker process),
+``budget`` (the overall deadline), ``api`` (``check_integrator``).
 """
 
 from .api import assert_integrator, check_integrator
