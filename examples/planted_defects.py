@@ -17,9 +17,19 @@ Try them::
 
     bouncer check examples.planted_defects:naive_gap_flight_time
     bouncer check examples/planted_defects.py:scanner_flight_time --suite no_overstep
+
+Below them, solvers that hang, exit or segfault on some inputs, and one that is right but slow
+(0.05 s a call): the check runs every callable in a worker process under a call timeout and an
+overall budget, so these become findings (or, for the slow one, a pass) instead of a stuck or
+killed checker::
+
+    bouncer check examples.planted_defects:hanging_flight_time
 """
 
+import ctypes
 import math
+import os
+import time
 
 import numba
 
@@ -101,3 +111,43 @@ DEFECTS = {
     "naive_gap_flight_time": (naive_gap_flight_time, "accuracy"),
     "biased_flight_time": (biased_flight_time, "accuracy"),
 }
+
+
+# --------------------------------------------------------------------------- faults
+# Solvers that do not return a wrong number but misbehave: ``bouncer check`` runs them in a
+# worker process, so each becomes a finding that names the input. All are right elsewhere.
+
+SLOW_SECONDS = 0.05  # per call of slow_flight_time
+HANG_BELOW_W0 = 1e-3  # hanging_flight_time never returns for departure speeds below this
+
+
+def _w0(phi, v, eps):
+    return float(v) + float(eps) * math.sin(float(phi))
+
+
+def hanging_flight_time(phi, v, eps):
+    """Fault 1: an iteration that never ends for slow departures (w0 < 1e-3)."""
+    if _w0(phi, v, eps) < HANG_BELOW_W0:
+        while True:
+            time.sleep(60.0)
+    return fastpath.flight_time(phi, v, eps)
+
+
+def exiting_flight_time(phi, v, eps):
+    """Fault 2: a library that calls exit() on slow departures (w0 < 1e-3)."""
+    if _w0(phi, v, eps) < HANG_BELOW_W0:
+        os._exit(3)
+    return fastpath.flight_time(phi, v, eps)
+
+
+def segfault_flight_time(phi, v, eps):
+    """Fault 3: a native extension that dereferences NULL for large v (v > 1e3)."""
+    if float(v) > 1e3:
+        ctypes.string_at(0)  # reads address 0: SIGSEGV
+    return fastpath.flight_time(phi, v, eps)
+
+
+def slow_flight_time(phi, v, eps):
+    """Not a fault: fastpath's flight time, 0.05 s per call (a correct but slow solver)."""
+    time.sleep(SLOW_SECONDS)
+    return fastpath.flight_time(phi, v, eps)

@@ -1,9 +1,12 @@
 """``bouncer check MODULE:FUNCTION [--step MODULE:FUNCTION] [--suite NAME]``.
 
 Runs ``verify.check_integrator`` on a user's flight-time function (and step function) from the
-shell. Exit status: 0 when every property holds, 1 when one fails (the report, then the
-smallest failing input of each failed property), 2 for bad input (a module that does not
-import, a name that is not callable, an unknown suite: one line ``bouncer: error: ...``).
+shell. The callables run in a worker process, each call under ``--call-timeout`` and the
+whole check under ``--budget``; progress goes to stderr. Exit status: 0 when every property
+holds, 1 when one fails (the report, then the smallest failing input of each failed
+property), 2 for bad input (a module that does not import, a name that is not callable, an
+unknown suite: one line ``bouncer: error: ...``), 3 when the budget ran out before every
+property had its inputs and none failed (inconclusive: the report gives the counts reached).
 
 Wire it into the ``bouncer`` parser with ``add_parser(subparsers)``; ``main`` runs it alone
 (``python -m reports.cli.check check MODULE:FUNCTION``).
@@ -42,6 +45,14 @@ def add_parser(subparsers):
     check.add_argument("-k", type=float, default=16.0, metavar="K",
                        help="allowed error in units of condition number x unit roundoff "
                        "(default 16)")
+    check.add_argument("--call-timeout", type=float, default=5.0, metavar="SECONDS",
+                       help="longest one call may take; a call that takes longer is a failure "
+                       "of its property (default 5)")
+    check.add_argument("--budget", type=float, default=120.0, metavar="SECONDS",
+                       help="time for the whole check; properties not finished by then are "
+                       "inconclusive, exit status 3 (default 120)")
+    check.add_argument("--no-progress", action="store_true",
+                       help="no progress bar on stderr")
     check.set_defaults(func=check_command)
     return check
 
@@ -67,21 +78,63 @@ def check_command(args) -> int:
         return _error(f"--max-examples must be >= 1, got {args.max_examples}")
     if not 0 < args.k < float("inf"):
         return _error(f"-k must be a positive finite number, got {args.k}")
-    try:
-        flight_time = load_callable(args.target, search_cwd=True)
-        step = None if args.step is None else load_callable(args.step, search_cwd=True)
+    for option, value in (("--call-timeout", args.call_timeout), ("--budget", args.budget)):
+        if not value > 0:
+            return _error(f"{option} must be a positive number of seconds, got {value}")
+    try:  # load here for a one-line error; the worker process loads them again by name
+        load_callable(args.target, search_cwd=True)
+        if args.step is not None:
+            load_callable(args.step, search_cwd=True)
     except ValueError as err:
         return _error(str(err))
-    report = check_integrator(flight_time, step=step, suite=args.suite,
-                              max_examples=args.max_examples, seed=args.seed, k=args.k)
+    bar = None if args.no_progress else _ProgressBar()
+    try:
+        report = check_integrator(args.target, step=args.step, suite=args.suite,
+                                  max_examples=args.max_examples, seed=args.seed, k=args.k,
+                                  call_timeout=args.call_timeout, budget=args.budget,
+                                  progress=bar)
+    finally:
+        if bar is not None:
+            bar.close()
     print(report)
     if report.ok:
         return 0
+    if report.verdict == "inconclusive":
+        return 3
     print("smallest failing inputs (rerun them in Python):")
     for f in report.failures:
         fn = args.step if f.call == "step" else args.target
         print(f"  {f.property}: {fn} at phi={f.phi!r}, v={f.v!r}, eps={f.eps!r}")
     return 1
+
+
+class _ProgressBar:
+    """``progress(property, done, planned)`` for ``check_integrator`` on stderr: a tqdm bar per
+    property on a terminal, else one line as each property starts."""
+
+    def __init__(self) -> None:
+        self.bar = None
+        self.name = None
+        self.tty = sys.stderr.isatty()
+
+    def __call__(self, name: str, done: int, planned: int) -> None:
+        from tqdm import tqdm
+
+        if name != self.name:
+            self.close()
+            self.name = name
+            if not self.tty:
+                print(f"bouncer check: {name} ({planned} inputs) ...", file=sys.stderr,
+                      flush=True)
+                return
+            self.bar = tqdm(total=planned, desc=f"{name:<13}", unit=" inputs", file=sys.stderr)
+        if self.bar is not None:
+            self.bar.update(done - self.bar.n)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
 
 
 def build_parser() -> argparse.ArgumentParser:

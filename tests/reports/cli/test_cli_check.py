@@ -50,6 +50,8 @@ def test_file_path_and_options(capsys):
         (["check", "fastpath:flight_time", "--suite", "energy"], "needs --step"),
         (["check", "fastpath:flight_time", "--step", "math:nothing"], "has no attribute"),
         (["check", "fastpath:flight_time", "--max-examples", "0"], "--max-examples"),
+        (["check", "fastpath:flight_time", "--budget", "0"], "--budget"),
+        (["check", "fastpath:flight_time", "--call-timeout", "-1"], "--call-timeout"),
     ],
 )
 def test_bad_input_exits_2_with_one_line(argv, text, capsys):
@@ -92,3 +94,22 @@ def test_users_own_file_in_the_current_directory(tmp_path):
     )
     assert bad.returncode == 2
     assert bad.stderr.strip() == "bouncer: error: module 'mysolver' has no attribute 'nope'"
+
+
+def test_budget_spent_exits_3_with_counts_and_progress_on_stderr(capsys):
+    code = main(["check", "examples.planted_defects:slow_flight_time", "--suite", "fast",
+                 "--budget", "4"])
+    captured = capsys.readouterr()
+    assert code == 3, captured.out
+    assert "INCONCLUSIVE" in captured.out and "inputs when the budget ran out" in captured.out
+    assert "bouncer check: no_overstep (20 inputs) ..." in captured.err  # stderr is no tty here
+
+
+def test_a_hang_exits_1_naming_the_input(capsys):
+    code = main(["check", "examples.planted_defects:hanging_flight_time", "--suite",
+                 "accuracy", "--call-timeout", "0.5", "--no-progress"])
+    captured = capsys.readouterr()
+    assert code == 1
+    assert "did not return within the call timeout of 0.5 s" in captured.out
+    assert "accuracy: examples.planted_defects:hanging_flight_time at phi=" in captured.out
+    assert captured.err == ""

@@ -1,0 +1,16 @@
+"""verify.check.driver: the same seed draws the same inputs and gives the same report.
+
+Importing fastpath here is fine: only ``verify/`` itself must not import it.
+"""
+
+import verify
+from examples import planted_defects
+
+
+def test_same_seed_same_report():
+    a = verify.check_integrator(planted_defects.naive_gap_flight_time, suite="no_overstep",
+                                seed=3, max_examples=40)
+    b = verify.check_integrator(planted_defects.naive_gap_flight_time, suite="no_overstep",
+                                seed=3, max_examples=40)
+    assert a.failures == b.failures
+    assert [r.failed for r in a.results] == [r.failed for r in b.results]

@@ -1,0 +1,68 @@
+"""Call the user's code and vet what comes back: a finite real flight time > 0, or a step's
+``(phi1, v1, tau)``. Anything else (an exception, NaN, a wrong shape) becomes :class:`Bad`,
+which the property that called turns into a failure."""
+
+from __future__ import annotations
+
+import math
+
+
+class Bad(Exception):
+    """The user's callable misbehaved; ``text`` describes what came back. ``fault`` is
+    "timeout" or "crash" when the call did not return at all (see :mod:`.worker`)."""
+
+    def __init__(self, text: str, message: str, fault: str | None = None) -> None:
+        super().__init__(message)
+        self.text = text
+        self.message = message
+        self.fault = fault
+
+
+def one_line(err: BaseException) -> str:
+    text = str(err).splitlines()[0] if str(err) else ""
+    return f"{type(err).__name__}: {text}" if text else type(err).__name__
+
+
+def as_float(x, what: str) -> float:
+    try:
+        if hasattr(x, "shape") and getattr(x, "shape", ()) not in ((), (1,)):
+            raise TypeError(f"shape {x.shape}")
+        val = float(x[0] if getattr(x, "shape", ()) == (1,) else x)
+    except (TypeError, ValueError, IndexError) as err:
+        raise Bad(repr(x), f"{what} is not a real number ({one_line(err)})") from None
+    if not math.isfinite(val):
+        raise Bad(repr(val), f"{what} is not finite")
+    return val
+
+
+def call_flight(fn, phi, v, eps) -> float:
+    try:
+        out = fn(phi, v, eps)
+    except Bad:  # a worker's timeout or crash, already described
+        raise
+    except Exception as err:  # the user's code: any exception is a failure of the property
+        raise Bad(f"exception {one_line(err)}", "flight_time raised on a valid departure") \
+            from None
+    tau = as_float(out, "the flight time")
+    if not tau > 0:
+        raise Bad(repr(tau), "the flight time is not positive")
+    return tau
+
+
+def call_step(fn, phi, v, eps) -> tuple[float, float, float]:
+    try:
+        out = fn(phi, v, eps)
+    except Bad:
+        raise
+    except Exception as err:
+        raise Bad(f"exception {one_line(err)}", "step raised on a valid departure") from None
+    try:
+        phi1, v1, tau = out
+    except (TypeError, ValueError):
+        raise Bad(repr(out), "step must return (phi1, v1, tau)") from None
+    phi1 = as_float(phi1, "phi1")
+    v1 = as_float(v1, "v1")
+    tau = as_float(tau, "tau")
+    if not tau > 0:
+        raise Bad(repr((phi1, v1, tau)), "the flight time tau of step is not positive")
+    return phi1, v1, tau
