@@ -1,4 +1,4 @@
-"""The seed's claims as data: one ``Claim`` per statement, each with a verdict and the rule behind it.
+"""The seed's claims as data: one ``Claim`` per statement, with a verdict and the rule behind it.
 
 A verdict is ``confirmed``, ``refuted`` or ``inconclusive`` (the data cannot decide under the
 stated rule). ``statistical`` and ``systematic`` hold the uncertainties of the quantities the
