@@ -1,0 +1,108 @@
+"""The ensemble kernels give the same counts on 1 and on 2 threads.
+
+Each block of particles has its own histogram rows and the caller sums integer counts, so the
+result must not depend on the number of threads (DESIGN section 6). The comparison means
+something only if the second run really has two threads working: numba must offer two, the
+setting must read back as 2, and a probe kernel must see two distinct thread ids in its prange.
+On a machine where numba offers one thread the tests are skipped, never passed.
+"""
+
+import math
+
+import numba
+import numpy as np
+import pytest
+from numba import prange
+
+from fastpath.ensemble import escape_chunk, log_edges, portrait_chunk
+
+TWO_PI = 2 * math.pi
+N_EDGES = log_edges(1.0, 8, 20, integer=True)
+T_EDGES = np.concatenate([[0.0], log_edges(0.1, 9, 20)])
+BLOCKS = 16
+
+pytestmark = pytest.mark.skipif(
+    numba.config.NUMBA_NUM_THREADS < 2,
+    reason=f"numba offers {numba.config.NUMBA_NUM_THREADS} thread (NUMBA_NUM_THREADS): "
+    "1 and 2 threads cannot be compared here",
+)
+
+
+@numba.njit(parallel=True)
+def _thread_ids(blocks):
+    """The numba thread id that ran each prange iteration (and a little work for each)."""
+    ids, work = np.zeros(blocks, np.int64), np.zeros(blocks)
+    for b in prange(blocks):
+        for k in range(20000):
+            work[b] += math.sin(k + b)
+        ids[b] = numba.get_thread_id()
+    return ids, work
+
+
+def on_threads(threads, run):
+    """``run()`` with numba set to ``threads`` threads, checked to be in force and in use."""
+    before = numba.get_num_threads()
+    try:
+        numba.set_num_threads(threads)
+        assert numba.get_num_threads() == threads
+        assert len(set(_thread_ids(64)[0])) == threads
+        return run()
+    finally:
+        numba.set_num_threads(before)
+
+
+def escape_run(eps, max_n, max_t, m=6000, seed=7):
+    rng = np.random.default_rng(seed)
+    phi0, v0 = rng.uniform(3.85, 4.15, m), rng.uniform(2.0, 4.0, m)
+    hole_lo = np.array([(0.0 - 0.15) % TWO_PI, 2.0 - 0.15])
+    hole_width = np.array([0.3, 0.3])
+    nb, tb = len(N_EDGES), len(T_EDGES)
+    out = {"esc_n": np.zeros((BLOCKS, 2, nb), np.int64),
+           "esc_t": np.zeros((BLOCKS, 2, tb), np.int64),
+           "cens_n": np.zeros((BLOCKS, nb), np.int64), "cens_t": np.zeros((BLOCKS, tb), np.int64),
+           "collisions": np.zeros(BLOCKS, np.int64), "flags": np.zeros(m, np.int8),
+           "flag_state": np.zeros((m, 4)), "samples": np.zeros((m // 10, 6))}
+    slot = np.full(m, -1, np.int64)
+    slot[::10] = np.arange(m // 10)
+    target = rng.integers(1, 50, m)
+
+    def run():
+        escape_chunk(phi0, v0, np.zeros(m), np.zeros(m, np.int64), eps, hole_lo, hole_width,
+                     max_n, max_t, N_EDGES, T_EDGES, True, True, slot, target, out["esc_n"],
+                     out["esc_t"], out["cens_n"], out["cens_t"], out["collisions"],
+                     out["flags"], out["flag_state"], out["samples"])
+        return out
+
+    return run
+
+
+@pytest.mark.parametrize(("eps", "max_n", "max_t"), [(0.6, 60, np.inf), (0.6, 2**62, 300.0),
+                                                      (1.5, 500, 2000.0)])
+def test_escape_counts_are_the_same_on_one_and_two_threads(eps, max_n, max_t):
+    """Every output array, block by block (not only the sums), bit for bit."""
+    one = on_threads(1, escape_run(eps, max_n, max_t))
+    two = on_threads(2, escape_run(eps, max_n, max_t))
+    assert one["esc_n"].sum() > 0 and one["cens_n"].sum() > 0
+    assert len(np.flatnonzero(one["collisions"])) == BLOCKS  # every block has work
+    for key in one:
+        np.testing.assert_array_equal(one[key], two[key], err_msg=key)
+
+
+def test_portrait_counts_are_the_same_on_one_and_two_threads():
+    m = 3000
+    rng = np.random.default_rng(3)
+    phi0, v0 = rng.uniform(0.0, TWO_PI, m), rng.uniform(2.0, 6.0, m)
+
+    def run():
+        counts = np.zeros((8, 90, 60), np.int64)
+        collisions = np.zeros(8, np.int64)
+        flags, flag_state = np.zeros(m, np.int8), np.zeros((m, 4))
+        portrait_chunk(phi0, v0, np.zeros(m, np.int64), 0.6, 200, 0.0, 12.0,
+                       np.full(m, -1, np.int64), np.zeros(m, np.int64), counts, collisions, flags,
+                       flag_state, np.zeros((0, 6)))
+        return counts, collisions, flags
+
+    one, two = on_threads(1, run), on_threads(2, run)
+    assert one[0].sum() > 0
+    for a, b in zip(one, two, strict=True):
+        np.testing.assert_array_equal(a, b)
