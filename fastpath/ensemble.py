@@ -31,6 +31,7 @@ from numba import prange
 
 from fastpath._jit import jit, parallel_jit
 from fastpath.collision import collide
+from fastpath.concave import two_sum
 from fastpath.flight import CONVERGED
 from fastpath.phase import TWO_PI
 
@@ -43,13 +44,17 @@ FLAG_FIELDS = ("phi", "v", "t", "n")
 def exit_hole(phi, hole_lo, hole_width):
     """Index of the hole containing the reduced phase phi in [0, 2*pi), or -1.
 
-    Hole j is the arc [hole_lo[j], hole_lo[j] + hole_width[j]) mod 2*pi.
+    Hole j is the arc [hole_lo[j], hole_lo[j] + hole_width[j]) mod 2*pi: phi is in it when
+    d = (phi - lo) mod 2*pi < width. d is carried as an unevaluated sum d_hi + d_lo (two_sum),
+    so the comparison is exact to O(u**2) even where the hole wraps through 2*pi; rounding
+    (phi - lo) + 2*pi first misplaces phases up to ~14 ulps from the wrapped upper edge.
     """
     for j in range(len(hole_lo)):
-        d = phi - hole_lo[j]
-        if d < 0.0:
-            d += TWO_PI
-        if d < hole_width[j]:
+        d_hi, d_lo = two_sum(phi, -hole_lo[j])
+        if d_hi < 0.0:
+            d_hi, carry = two_sum(d_hi, TWO_PI)
+            d_lo += carry
+        if (d_hi - hole_width[j]) + d_lo < 0.0:
             return j
     return -1
 

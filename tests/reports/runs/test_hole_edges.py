@@ -6,11 +6,10 @@ arc [lo, lo + width) mod 2*pi with lo in [0, 2*pi); a reduced collision phase ph
 ((phi - lo) mod 2*pi) < width. A scene gives a hole as centre c and width w: lo = (c - w/2) mod
 2*pi. The phase of collision n >= 1 is tested, never the start.
 
-``exit_hole`` evaluates that rule in float64: d = phi - lo, plus TWO_PI if negative. Where the
-probes are chosen so that both operations are exact (checked with rationals), the convention
-holds exactly; otherwise d carries at most two roundings of numbers below 8, 2**-50 in all, so
-the rule holds for every phase whose exact d is farther than 2**-50 from 0 and from width.
-Within that distance of the upper edge of a hole that wraps through 2*pi it does not (xfail).
+``exit_hole`` evaluates that rule with d = phi - lo carried as an unevaluated double-double
+sum (plus TWO_PI if negative), so the comparison with width is exact to O(u**2): the rule holds
+at every probe, including the upper edge of a hole that wraps through 2*pi (rounding
+(phi - lo) + TWO_PI first misplaced phases up to ~14 ulps from that edge).
 """
 
 import math
@@ -123,9 +122,6 @@ def test_exit_hole_follows_the_rule_beyond_rounding(phi, lo, width, k, near):
     assert (hole(phi, lo, width) == 0) == (d < Fraction(width))
 
 
-@pytest.mark.xfail(strict=True, reason="BUG: exit_hole rounds (phi - lo) + TWO_PI, so phases "
-                   "within ~4e-16 of the upper edge of a hole that wraps through 2*pi are "
-                   "misclassified (misses and false escapes) under either reading of 2*pi")
 @pytest.mark.parametrize(("lo", "width", "k"), [(6.0, 0.5, -11), ((0.0 - 0.15) % TWO_PI, 0.3, 8)],
                          ids=["missed escape", "false escape"])
 def test_wrapped_upper_edge_is_exact(lo, width, k):
