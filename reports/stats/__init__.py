@@ -1,0 +1,1 @@
+"""Survival-law inference on binned, censored escape counts (likelihood fits, model choice)."""
