@@ -51,6 +51,7 @@ PARAMS = {"exponential": ("gamma",), "power_law": ("alpha",),
 _GRID = 25        # beta grid points before the golden section
 _GOLDEN = 60      # golden-section steps (0.618**60 ~ 3e-13 of the bracket)
 _INV_PHI = 0.6180339887498949
+_LOG_BETA_MIN = math.log(1e-16)  # c's profile searches beta down to here
 
 
 @dataclass(frozen=True)
@@ -205,43 +206,52 @@ def _stretched_mle(log_x, e, log_points, weights, beta_max):
             l2 = _stretched_profile(b2, log_x, e, log_points, weights)[1]
     beta = 0.5 * (lo + hi)
     s, lk = _stretched_profile(beta, log_x, e, log_points, weights)
-    for edge in (0.0, beta_max):  # a maximum on the boundary of [0, beta_max]
+    # a maximum on the boundary of [0, beta_max], up to the rounding of l (about u |l| per
+    # term; 1e3 u |l| covers a sum of up to ~1e3 bins): the golden section cannot resolve more
+    tol = 1e3 * 2.0**-53 * (abs(lk) + 1.0)
+    for edge in (0.0, beta_max):
         se, le = _stretched_profile(edge, log_x, e, log_points, weights)
-        if le > lk:
+        if le >= lk - tol:
             beta, s, lk = edge, se, le
     return beta, s, lk
 
 
 @numba.njit(cache=True)
+def _c_fixed(log_c, log_beta, x0, log_x, e, log_points, weights):
+    """l at c = exp(log_c), beta = exp(log_beta): s = c beta x0**beta."""
+    beta = math.exp(log_beta)
+    s = math.exp(log_c + log_beta + beta * math.log(x0))
+    return _derivs(s, _stretched_shape(log_x, beta), e, _stretched_k(log_points, weights, beta))[0]
+
+
+@numba.njit(cache=True)
 def _c_profile(log_c, x0, log_x, e, log_points, weights, beta_max):
-    """max over beta in (0, beta_max] of l with c fixed (s = c beta x0**beta)."""
-    best, best_l = 1, -math.inf
-    for i in range(1, _GRID):
-        beta = beta_max * i / (_GRID - 1)
-        s = math.exp(log_c + math.log(beta) + beta * math.log(x0))
-        h = _stretched_shape(log_x, beta)
-        lk = _derivs(s, h, e, _stretched_k(log_points, weights, beta))[0]
+    """max over beta in [BETA_MIN_LOG, beta_max] of l with c fixed, searched in log beta (a
+    large c has its best beta near alpha/c, far below any linear grid)."""
+    top = math.log(beta_max)
+    n = 4 * _GRID
+    best, best_l = 0, -math.inf
+    for i in range(n):
+        lk = _c_fixed(log_c, _LOG_BETA_MIN + (top - _LOG_BETA_MIN) * i / (n - 1), x0, log_x, e,
+                      log_points, weights)
         if lk > best_l:
             best, best_l = i, lk
-    lo = beta_max * max(best - 1, 0) / (_GRID - 1)
-    hi = beta_max * min(best + 1, _GRID - 1) / (_GRID - 1)
+    lo = _LOG_BETA_MIN + (top - _LOG_BETA_MIN) * max(best - 1, 0) / (n - 1)
+    hi = _LOG_BETA_MIN + (top - _LOG_BETA_MIN) * min(best + 1, n - 1) / (n - 1)
+    u1 = hi - _INV_PHI * (hi - lo)
+    u2 = lo + _INV_PHI * (hi - lo)
+    l1 = _c_fixed(log_c, u1, x0, log_x, e, log_points, weights)
+    l2 = _c_fixed(log_c, u2, x0, log_x, e, log_points, weights)
     for _ in range(_GOLDEN):
-        b1 = hi - _INV_PHI * (hi - lo)
-        b2 = lo + _INV_PHI * (hi - lo)
-        ls = np.empty(2)
-        for m, beta in enumerate((b1, b2)):
-            if beta <= 0.0:
-                ls[m] = -math.inf
-                continue
-            s = math.exp(log_c + math.log(beta) + beta * math.log(x0))
-            ls[m] = _derivs(s, _stretched_shape(log_x, beta), e,
-                            _stretched_k(log_points, weights, beta))[0]
-        if ls[0] >= ls[1]:
-            hi = b2
+        if l1 >= l2:
+            hi, u2, l2 = u2, u1, l1
+            u1 = hi - _INV_PHI * (hi - lo)
+            l1 = _c_fixed(log_c, u1, x0, log_x, e, log_points, weights)
         else:
-            lo = b1
-        best_l = max(best_l, ls[0], ls[1])
-    return best_l
+            lo, u1, l1 = u1, u2, l2
+            u2 = lo + _INV_PHI * (hi - lo)
+            l2 = _c_fixed(log_c, u2, x0, log_x, e, log_points, weights)
+    return max(best_l, l1, l2)
 
 
 # ---------------------------------------------------------------- fits
