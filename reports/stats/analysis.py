@@ -90,7 +90,7 @@ def _half_range(v):
 def analyse(curve):
     """Result dict of one curve (the ``bouncer fit --json`` object, less ``source``)."""
     a0, b0 = usable_range(curve)
-    bounds, splits = rg.segment(curve, a0, b0)
+    bounds, splits, late_split_p = rg.segment(curve, a0, b0)
     regime_list = []
     for lo, hi in zip(bounds[:-1], bounds[1:], strict=True):
         fits = fit_all(window_of(curve, lo, hi), intervals=False)
@@ -122,6 +122,7 @@ def analyse(curve):
         "at_risk_in_window": window.at_risk,
         "regimes": regime_list,
         "crossovers": rg.crossover_entries(curve, splits),
+        "late_regime_split_p": late_split_p,
         "systematic": systematic(curve, a, b, a0, b0),
         "_fits": fits,
     }
