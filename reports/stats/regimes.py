@@ -12,9 +12,10 @@ the p-value is Bonferroni-corrected over the M candidate crossovers:
 
 Conservative, hence valid at level LEVEL. The split is made where p < LEVEL, at the x_c of
 largest l_two; the most significant split of all segments is made first, until no segment
-splits or there are MAX_REGIMES; then the p-value of the split left in the last regime is
-reported, so that a late regime that is still heterogeneous shows. A regime has at least
-MIN_BINS bins and MIN_ESCAPES escapes.
+splits or there are MAX_REGIMES. Then the last regime alone is split further while its best
+split is significant: the late-time law is the headline, so its window must be homogeneous at
+LEVEL however many earlier regimes the cap merged. A regime has at least MIN_BINS bins and
+MIN_ESCAPES escapes.
 The crossover's 95% range is {x_c: 2 (max l_two - l_two(x_c)) <= 3.841} over the candidates
 (an approximate profile set: x_c is a discrete, non-regular parameter).
 """
@@ -32,7 +33,7 @@ from reports.stats.selection import LEVEL
 
 MIN_BINS = 5
 MIN_ESCAPES = 20
-MAX_REGIMES = 5
+MAX_REGIMES = 6
 
 
 def stretched_loglik(curve, a, b):
@@ -74,8 +75,7 @@ def best_split(curve, a, b, whole=None):
 
 def segment(curve, a, b):
     """Regime boundaries [a, c1, ..., b] (bin indices), the accepted ``Split``s, and the p-value
-    of the best split left in the last regime (None without candidates): below LEVEL when the
-    cap MAX_REGIMES stopped the segmentation before the late regime was homogeneous."""
+    of the best split left in the last regime (None without candidates; >= LEVEL otherwise)."""
     bounds, splits = [a, b], []
     pending = {(a, b): best_split(curve, a, b)}
     while len(bounds) - 1 < MAX_REGIMES:
@@ -89,6 +89,10 @@ def segment(curve, a, b):
         for lo, hi in ((s.a, s.c), (s.c, s.b)):
             pending[(lo, hi)] = best_split(curve, lo, hi)
     last = pending.get((bounds[-2], bounds[-1]))
+    while last is not None and last.p < LEVEL:  # refine the late regime past the cap
+        bounds = sorted([*bounds, last.c])
+        splits.append(last)
+        last = best_split(curve, last.c, last.b)
     return bounds, sorted(splits, key=lambda s: s.c), (last.p if last is not None else None)
 
 
