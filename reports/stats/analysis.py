@@ -4,7 +4,8 @@
    are conditioned away) to the earlier of the upper boundary of the last bin with an escape of
    this curve and the first bin holding a horizon censoring bound (``histogram``).
 2. Regimes by binary segmentation (``regimes``); each regime's law by the rule of
-   ``selection``. The late-time regime is the window of the headline fit: its three laws with
+   ``selection``, with that law's parameters (the stretched law's when inconclusive). The
+   late-time regime is the window of the headline fit: its three laws with
    profile 95% intervals, the tests, and ``best``.
 3. Systematic uncertainty: every parameter's half-range over the family of windows whose start
    is the window start or the boundary nearest a factor 10**(+-1/4) from it (clipped to the
@@ -94,13 +95,17 @@ def analyse(curve):
     regime_list = []
     for lo, hi in zip(bounds[:-1], bounds[1:], strict=True):
         fits = fit_all(window_of(curve, lo, hi), intervals=False)
-        regime_list.append({"law": choose(fits)[0], "from": float(curve.x[lo]),
-                            "to": float(curve.x[hi])})
+        law = choose(fits)[0]
+        shown = "stretched_exponential" if law == INCONCLUSIVE else law
+        regime_list.append({"law": law, "from": float(curve.x[lo]), "to": float(curve.x[hi]),
+                            "params": dict(fits[shown].params),
+                            "escapes": int(curve.escapes[lo:hi].sum())})
     a, b = bounds[-2], bounds[-1]
     window = window_of(curve, a, b)
     fits = fit_all(window)
     best, tests = choose(fits)
-    regime_list[-1]["law"] = best
+    regime_list[-1].update(law=best, params=dict(
+        fits["stretched_exponential" if best == INCONCLUSIVE else best].params))
     models = {}
     for law, f in fits.items():
         entry = {}
