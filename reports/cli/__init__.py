@@ -8,6 +8,7 @@
                   [--n-star N] [--particles N] [--seed S] [--verify-samples N] [--out DIR]
                   [--threads K] [--scheduler ADDRESS] [--force] [--quiet]
     bouncer plot RUN_DIR [--out FILE] [--fit MODEL --window LO HI [--clock C] [--curve NAME]]
+    bouncer fit PATH... [--clock collisions|time] [--json] [--out DIR]
     bouncer verify RUN_DIR
     bouncer check MODULE:FUNCTION [--step MODULE:FUNCTION] [--suite NAME]
     bouncer bench [--collisions N] [--repeats R] [--particles N]
@@ -18,10 +19,10 @@
 import argparse
 import sys
 
-from reports.cli import bench, check, demo, plot, report, run, scenes, sweep, verify
+from reports.cli import bench, check, demo, fit, plot, report, run, scenes, sweep, verify
 from reports.runs.rundir import RunFailed
 
-SUBCOMMANDS = (demo, scenes, run, sweep, plot, verify, report, check, bench)
+SUBCOMMANDS = (demo, scenes, run, sweep, plot, fit, verify, report, check, bench)
 
 
 def build_parser():
