@@ -19,7 +19,10 @@ Algorithm (precision ``wdps`` digits, raised on failure up to ``max_dps``):
    ``iv``) is proved positive for ``0 <= s <= h``; then ``d(hi) < 0``. If instead
    ``d(hi) > 0`` the candidate was a near-tangency that does not touch: the boxes continue past
    it and the search resumes. If the sign of ``d(hi)`` or the positivity of a box cannot be
-   decided, the whole computation restarts at higher precision.
+   decided, the whole computation restarts at higher precision. Where ``v**2 > 4|eps|`` the
+   proved part jumps over ``(t_-, t_+)``, on which ``d >= t*(v - t/2) - 2|eps| > 0``.
+   A search that needs more than ``_MAX_STEPS`` candidate steps (a flight over very many plate
+   periods, e.g. ``v = 1e154, eps = 1e300``) raises ``ValueError`` instead of running for hours.
 
 The certificate does not rely on the correctness of the candidate search: a wrong candidate
 only makes the box or sign checks fail, which raises the precision and finally raises
@@ -42,7 +45,8 @@ from .errors import UndecidableCollision
 from .gap import iv_gap, iv_gap_prime, iv_gap_second, mp_gap, mp_gap_prime
 from .phase import reduce_phase
 
-_MAX_STEPS = 200_000
+_MAX_STEPS = 100_000  # candidate steps per search: beyond it, ValueError (out of budget)
+_MAX_BOXES = 20_000  # Taylor boxes per flight (a few seconds): beyond it, ValueError
 _MAX_BISECTIONS = 4_000  # halvings of the concave bracket: enough for 1e-1000 relative width
 _GUARD_DPS = 10
 
@@ -280,12 +284,20 @@ def certify_candidate(phi, v, eps, lo_, hi_, dps: int = 50) -> bool:
 
 
 def _general(ctx: _Context, w0_lo):
+    """``|eps| > 1``: see the module docstring, item 3. Two analytic facts skip work:
+    ``d > 0`` on ``(0, 2*w0/(1+|eps|))``, and ``d(t) >= t*(v - t/2) - 2*|eps| > 0`` strictly
+    between ``t_- = v - sqrt(v**2 - 4|eps|)`` and ``t_+ = v + sqrt(v**2 - 4|eps|)`` (when
+    ``v**2 > 4|eps|``): once the proved part reaches ``t_-`` it jumps to ``t_+``, so a fast
+    particle over a strong plate is not followed period by period."""
     curv = 1 + abs(ctx.eps)  # bound on |d''|
     free = w0_lo / curv  # d > 0 on (0, free] analytically: free < 2*w0/(1+|eps|)
+    window = _positive_window(ctx)
     search_from = free
     boxes = 0
     scale = mp.mpf(10) ** (-ctx.dps)
-    while True:
+    for _ in range(_MAX_STEPS):
+        if window is not None and window[0] <= free < window[1]:
+            free = search_from = window[1]  # (free, window[1]] lies inside (t_-, t_+)
         c = _candidate(ctx, curv, search_from)
         if c < search_from:  # the search only moves forward: a candidate behind it is refused
             raise _Undecided(f"candidate tau={mp.nstr(c, 20)} is behind the proved part")
@@ -303,6 +315,8 @@ def _general(ctx: _Context, w0_lo):
             # a near-tangency that does not touch: prove the gap positive across it, go on
             boxes += _prove_positive(ctx, left, right)
             free = search_from = right
+            if boxes > _MAX_BOXES:  # one near-tangency per plate period: a budget in total
+                raise _over_budget(ctx, f"{_MAX_BOXES} proof boxes", right)
             continue
         size = max(abs(lo(d_right)), abs(hi(d_right)))
         raise _Undecided(
@@ -310,6 +324,7 @@ def _general(ctx: _Context, w0_lo):
             "graze or not",
             ctx.needed(c),
         )
+    raise _over_budget(ctx, f"{_MAX_STEPS} near-tangencies", search_from)  # not reached
 
 
 def _candidate(ctx: _Context, curv, t):
@@ -327,7 +342,29 @@ def _candidate(ctx: _Context, curv, t):
         t += s
         if s <= t * tol:
             return t
-    raise _Undecided(f"candidate search did not converge in {_MAX_STEPS} steps near tau={t}")
+    raise _over_budget(ctx, f"{_MAX_STEPS} lower-bound steps", t)
+
+
+def _over_budget(ctx: _Context, what: str, t) -> ValueError:
+    return ValueError(
+        f"flight beyond verify's search budget: {what} reached "
+        f"tau={mp.nstr(t, 8)} with the gap still positive (phi={mp.nstr(ctx.phi_exact, 8)}, "
+        f"v={mp.nstr(ctx.v, 8)}, eps={mp.nstr(ctx.eps, 8)}): too many plate periods to cross "
+        "one by one"
+    )
+
+
+def _positive_window(ctx: _Context):
+    """``(hi(t_-), lo(t_+)*(1 - 2**(4-prec)))`` from ``iv``, or None if ``v**2 <= 4|eps|``:
+    ``d > 0`` on this interval (see :func:`_general`)."""
+    i_v, i_e = ctx.iv_v, abs(ctx.ieps)
+    disc = i_v * i_v - 4 * i_e
+    if not lo(disc) > 0 or not lo(i_v) > 0:
+        return None
+    root = iv.sqrt(disc)
+    t_minus, t_plus = hi(4 * i_e / (i_v + root)), lo(i_v + root)  # t_- without cancellation
+    t_plus *= 1 - mp.mpf(2) ** (4 - mp.prec)  # strictly below t_+
+    return (t_minus, t_plus) if t_minus < t_plus else None
 
 
 def _prove_positive(ctx: _Context, a, end):
@@ -355,6 +392,8 @@ def _prove_positive(ctx: _Context, a, end):
             box_end = min(a + cap, end)
             q = lo(iv_gap_second(iphi, ieps, iv.mpf([a, box_end])))
             boxes += 1
+            if boxes > _MAX_BOXES:
+                raise _over_budget(ctx, f"{_MAX_BOXES} proof boxes", a)
             h_root = _first_zero(d_a, p_a, q)
             new_a = box_end if h_root is None else min(box_end, a + h_root * shrink)
             h = hi(iv.mpf(new_a) - ia)
