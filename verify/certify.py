@@ -389,13 +389,15 @@ def _prove_positive(ctx: _Context, a, end):
             raise _Undecided(_unresolved(a, d_iv, p_iv), ctx.needed(a))
         cap = min(2 * h_prev, end - a)
         while True:
-            box_end = min(a + cap, end)
+            box_end = end if cap >= end - a else a + cap  # end may carry more bits than a
             q = lo(iv_gap_second(iphi, ieps, iv.mpf([a, box_end])))
             boxes += 1
             if boxes > _MAX_BOXES:
                 raise _over_budget(ctx, f"{_MAX_BOXES} proof boxes", a)
             h_root = _first_zero(d_a, p_a, q)
             new_a = box_end if h_root is None else min(box_end, a + h_root * shrink)
+            if new_a <= a:  # the step rounds away at this precision: no progress possible
+                raise _Undecided(_unresolved(a, d_iv, p_iv), ctx.needed(a))
             h = hi(iv.mpf(new_a) - ia)
             if _taylor_lower(d_a, p_a, q, h) > 0:
                 h_prev = new_a - a
