@@ -1,12 +1,41 @@
-"""Validation of inputs; every real is taken as the exact binary value it holds."""
+"""Validation of inputs: ONE validator for every public verify function.
+
+Every real is taken as the exact binary value it holds (a float64 converts to ``mpf`` without
+rounding). The rules, each failure a ``ValueError`` that names the bad value:
+
+* ``phi``, ``v``, ``eps`` (and ``tau``, ``clearance``, ...): finite real numbers; ``bool`` and
+  ``str`` are rejected, not converted;
+* a departure needs ``w0 = d'(0) = v + eps*sin(phi) > 0`` (DESIGN fact 1), rejected when
+  ``w0 <= 0`` is proved in interval arithmetic; a ``w0`` too close to 0 to decide here passes
+  and is decided (or reported undecidable) by the certificate;
+* a time ``tau`` passed with a state must be ``> 0``;
+* ``dps`` (digits) is an int ``>= 15`` (a bool is not an int here).
+"""
 
 from __future__ import annotations
 
 import numbers
+from typing import NamedTuple
 
 import mpmath
-from mpmath import mp
+from mpmath import iv, mp
 from mpmath.ctx_mp_python import _mpf as _mpf_base
+
+from ._precision import hi, working_dps
+from .phase import reduce_phase
+
+MIN_DPS = 15
+_W0_CHECK_DPS = 30  # w0 is checked at this many digits (after an exact phase reduction)
+
+
+class State(NamedTuple):
+    """Validated inputs as exact ``mpf`` (``tau`` is None where none was passed)."""
+
+    phi: mpmath.mpf
+    v: mpmath.mpf
+    eps: mpmath.mpf
+    tau: mpmath.mpf | None
+    dps: int | None
 
 
 def exact_real(name: str, x) -> mpmath.mpf:
@@ -16,7 +45,7 @@ def exact_real(name: str, x) -> mpmath.mpf:
     elif isinstance(x, _mpf_base):  # a lazy constant such as mp.pi: freeze it at caller precision
         val = mp.mpf(x)
     elif isinstance(x, bool) or not isinstance(x, numbers.Real):
-        raise ValueError(f"{name} must be a real number, got {x!r}")
+        raise ValueError(f"{name} must be a real number, got {name}={x!r}")
     elif isinstance(x, numbers.Integral):
         n = int(x)
         with mp.workprec(max(53, n.bit_length() + 2)):
@@ -32,7 +61,39 @@ def exact_real(name: str, x) -> mpmath.mpf:
 def check_dps(dps, name: str = "dps") -> int:
     """Return ``dps`` as an int >= 15, else raise ``ValueError`` naming it."""
     if isinstance(dps, bool) or not isinstance(dps, numbers.Integral):
-        raise ValueError(f"{name} must be an integer >= 15, got {name}={dps!r}")
-    if dps < 15:
-        raise ValueError(f"{name} must be >= 15, got {name}={dps!r}")
+        raise ValueError(f"{name} must be an integer >= {MIN_DPS}, got {name}={dps!r}")
+    if dps < MIN_DPS:
+        raise ValueError(f"{name} must be >= {MIN_DPS}, got {name}={dps!r}")
     return int(dps)
+
+
+_NO_TAU = object()
+
+
+def check_state(phi, v, eps, *, tau=_NO_TAU, dps=None, names=("phi", "v", "eps")) -> State:
+    """Validate a departure ``(phi, v, eps)``, optionally a time ``tau`` and digits ``dps``.
+
+    ``names`` are the argument names used in the messages (``("phi0", "v0", "eps")`` for
+    :func:`verify.orbit`). See the module docstring for the rules.
+    """
+    phi_, v_, eps_ = (exact_real(n, x) for n, x in zip(names, (phi, v, eps), strict=True))
+    dps_ = None if dps is None else check_dps(dps)
+    w0_hi = _w0_upper(phi_, v_, eps_)
+    if w0_hi <= 0:
+        raise ValueError(
+            f"no departure: w0 = v + eps*sin(phi) = {mp.nstr(w0_hi, 8)} <= 0 "
+            f"({names[0]}={phi!r}, {names[1]}={v!r}, {names[2]}={eps!r})"
+        )
+    tau_ = None
+    if tau is not _NO_TAU:
+        tau_ = exact_real("tau", tau)
+        if tau_ <= 0:
+            raise ValueError(f"tau must be > 0, got tau={tau!r}")
+    return State(phi_, v_, eps_, tau_, dps_)
+
+
+def _w0_upper(phi, v, eps) -> mpmath.mpf:
+    """Upper end of an interval enclosure of ``w0 = v + eps*sin(phi)``."""
+    with working_dps(_W0_CHECK_DPS) as prec:
+        w0 = iv.mpf(v) + iv.mpf(eps) * iv.sin(reduce_phase(phi, prec).enclosure)
+        return hi(w0)

@@ -5,9 +5,10 @@ from __future__ import annotations
 import mpmath
 from mpmath import mp
 
-from ._inputs import check_dps, exact_real
+from ._inputs import check_state
 from ._precision import working_dps
 from .certify import certify_flight
+from .phase import reduce_phase
 
 
 def step(phi, v, eps, dps: int = 50) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
@@ -17,14 +18,13 @@ def step(phi, v, eps, dps: int = 50) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf
         v_in = v - tau,  u = -eps*sin(phi + tau),  v1 = 2*u - v_in
 
     Computed from the enclosure midpoint at the certificate's working precision, rounded to
-    ``dps`` digits.
+    ``dps`` digits. A huge phase is reduced exactly first (:mod:`verify.phase`).
     """
-    dps = check_dps(dps)
+    phi, v, eps, _, dps = check_state(phi, v, eps, dps=dps)
     cert = certify_flight(phi, v, eps, dps)
-    phi, v, eps = exact_real("phi", phi), exact_real("v", v), exact_real("eps", eps)
-    with working_dps(cert.dps_used):
+    with working_dps(cert.dps_used) as prec:
         tau = (cert.enclosure[0] + cert.enclosure[1]) / 2
-        arg = phi + tau
+        arg = reduce_phase(phi, prec).value + tau
         v1 = -2 * eps * mp.sin(arg) - (v - tau)
         phi1 = _reduce(arg)
     with working_dps(dps):

@@ -5,7 +5,8 @@ from __future__ import annotations
 import mpmath
 from mpmath import mp
 
-from ._inputs import exact_real
+from ._inputs import check_state
+from .phase import reduce_phase
 
 
 def condition_number(phi, v, eps, tau) -> mpmath.mpf:
@@ -19,12 +20,14 @@ def condition_number(phi, v, eps, tau) -> mpmath.mpf:
     an error ``e`` in ``d`` moves the root by ``e/|d'(tau)|``. For small ``w0`` (a short flight,
     ``tau ~ 2*w0/(1 - eps*cos(phi))``, ``|d'(tau)| ~ w0``) it reduces to
     ``~ (|v| + |eps|*(1 + |phi|)) / w0``. Infinite at a graze (``d'(tau) = 0``).
+
+    Inputs are validated by :func:`verify._inputs.check_state` (a departure, ``tau > 0``).
     """
-    phi, v = exact_real("phi", phi), exact_real("v", v)
-    eps, tau = exact_real("eps", eps), exact_real("tau", tau)
+    phi, v, eps, tau, _ = check_state(phi, v, eps, tau=tau)
     with mp.workprec(max(mp.prec, 64)):
         num = abs(v) + tau + abs(eps) * (1 + abs(phi) + tau)
-        den = abs(v - tau + eps * mp.sin(phi + tau))
+        reduced = reduce_phase(phi, mp.prec).value
+        den = abs(v - tau + eps * mp.sin(reduced + tau))
         if den == 0:
             return mp.inf
         return num / den

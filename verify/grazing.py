@@ -48,6 +48,8 @@ def grazing_contact(eps, psi, T, clearance, dps: int = 50) -> GrazingContact:
     dps = check_dps(dps)
     eps, psi = exact_real("eps", eps), exact_real("psi", psi)
     t, c = exact_real("T", T), exact_real("clearance", clearance)
+    if t <= 0:
+        raise ValueError(f"T (the contact time guess) must be > 0, got T={T!r}")
     with working_dps(dps + 20):
         if not eps * mp.cos(psi) > 1:
             raise ValueError(f"a graze from above needs eps*cos(psi) > 1, got eps={eps}, psi={psi}")

@@ -7,6 +7,19 @@ The near-grazing entries were made with ``verify.grazing_contact(eps, psi, T0, c
 50 digits and rounded to float64, which moves the clearance by ~T*1e-16: the "0" entries are
 graze-or-miss at a clearance of order 1e-16, which float64 cannot decide (``contact`` is the
 time of the tangency, ``clearance`` the nominal minimum gap).
+
+Every entry is labelled with its class ``kind`` (see ``KINDS``) and what a solver must do,
+``expect``: ``"flight"`` (return the certified flight time) or ``"ValueError"`` (float64 cannot
+hold the flight: ``tau``, ``v**2`` or ``tau*v`` overflow, so a float64 integrator must raise a
+``ValueError`` saying so; verify, whose mpmath exponents are unbounded, certifies these flights).
+``HARD_CASES`` holds the ``"flight"`` entries, ``OVERFLOW_CASES`` the ``"ValueError"`` ones,
+``ALL_CASES`` both.
+
+Classes added for issue 12: ``eps->1`` (eps = 1 -+ 1e-12, 1 -+ 1e-6 and 1 exactly: concavity
+degenerates at 1), ``near-triple-root`` (``phi = -x, v = x``: for ``|eps| <= 1`` the exact
+flight time is ``2x``, and ``d'(2x) = eps*sin(x) - x ~ -x**3/6`` at eps = 1, DESIGN fact 11),
+``huge-phase`` (``|phi|`` = 1e12 .. 1e300: reduction modulo 2*pi needs ~|phi|/2**53 more bits
+than the phase holds), ``overflow``.
 """
 
 import math
@@ -21,20 +34,23 @@ class HardCase(NamedTuple):
     reason: str
     contact: float | None = None
     clearance: float | None = None
+    kind: str = ""
+    expect: str = "flight"
 
 
 PI = math.pi
 TWO_PI = 2.0 * math.pi
 
 
-def _w0(w0, phi, eps, tag):
-    v = w0 - eps * math.sin(phi)
+def _w0(w0, phi, eps, tag, kind="small-w0"):
+    v = w0 - eps * math.sin(phi)  # libm's sin reduces huge phases exactly (to < 1 ulp)
     return HardCase(
         f"w0={w0:g}-eps={eps:g}{tag}",
         phi,
         v,
         eps,
         f"tiny departure speed w0 ~ {w0:g} (kappa ~ v/w0): cancellation in d",
+        kind=kind,
     )
 
 
@@ -48,28 +64,42 @@ def _graze(phi, v, eps, psi, t_contact, clearance):
         " (verify.grazing_contact)",
         contact=t_contact,
         clearance=float(clearance),
+        kind="graze",
     )
 
 
-def _case(phi, v, eps, reason, case_id):
-    return HardCase(case_id, phi, v, eps, reason)
+def _case(phi, v, eps, reason, case_id, kind, expect="flight"):
+    return HardCase(case_id, phi, v, eps, reason, kind=kind, expect=expect)
+
+
+def _triple(x, eps, tag):
+    return _case(-x, x, eps, f"phi = -x, v = x, x = {x:g}: flight 2x, d'(2x) = eps*sin(x) - x "
+                 f"(near-triple root at eps = {tag})", f"triple-x={x:g}-eps={tag}",
+                 "near-triple-root")
+
+
+_EPS_NEAR_ONE = ((1.0 - 1e-12, "1-1e-12"), (1.0 - 1e-6, "1-1e-6"), (1.0, "1"),
+                 (1.0 + 1e-6, "1+1e-6"), (1.0 + 1e-12, "1+1e-12"))
 
 
 HARD_CASES = (
     # departure speed w0 from 1e-3 down to 1e-12
     *[_w0(w0, 4.0, 0.6, "") for w0 in (1e-3, 1e-6, 1e-9, 1e-12)],
     *[_w0(w0, 4.0, 3.0, "") for w0 in (1e-3, 1e-6, 1e-9, 1e-12)],
-    _w0(1e-6, 4.0, 0.999999, ""),
+    _w0(1e-6, 4.0, 0.999999, "", kind="eps->1"),
     _w0(1e-9, 4.0, 1e-8, ""),
     _w0(1e-6, 5.0, 100.0, ""),
     # large velocities: tau ~ 2v, the Holmes limit, t*(v - t/2) cancels near the root
-    _case(1.0, 1e3, 0.6, "v = 1e3: tau ~ 2e3, cancellation in t*(v - t/2)", "v=1e3-eps=0.6"),
-    _case(1.0, 1e6, 0.6, "v = 1e6: tau ~ 2e6, gap_error ~ 1e-3 in absolute terms", "v=1e6-eps=0.6"),
-    _case(4.0, 1e6, 100.0, "v = 1e6 at eps = 100: large plate term", "v=1e6-eps=100"),
-    _case(0.5, 1e5, 3.0, "v = 1e5 at eps = 3", "v=1e5-eps=3"),
+    _case(1.0, 1e3, 0.6, "v = 1e3: tau ~ 2e3, cancellation in t*(v - t/2)", "v=1e3-eps=0.6",
+          "large-v"),
+    _case(1.0, 1e6, 0.6, "v = 1e6: tau ~ 2e6, gap_error ~ 1e-3 in absolute terms", "v=1e6-eps=0.6",
+          "large-v"),
+    _case(4.0, 1e6, 100.0, "v = 1e6 at eps = 100: large plate term", "v=1e6-eps=100", "large-v"),
+    _case(0.5, 1e5, 3.0, "v = 1e5 at eps = 3", "v=1e5-eps=3", "large-v"),
     # the eps range, at one generic state
     *[
-        _case(4.0, 3.0, eps, f"eps = {eps!r}: {why}", f"eps={eps!r}")
+        _case(4.0, 3.0, eps, f"eps = {eps!r}: {why}", f"eps={eps!r}",
+              "eps->1" if 0.99 < eps < 1.01 else "eps-range")
         for eps, why in (
             (1e-8, "plate almost still: tau ~ 2v"),
             (0.2429, "the seed: last spanning invariant curves break (K = 4*eps ~ 0.971)"),
@@ -80,12 +110,14 @@ HARD_CASES = (
             (3.0, "several roots possible"),
         )
     ],
-    _case(1.0, 3.0, 100.0, "eps = 100: plate amplitude >> flight height", "eps=100"),
-    _case(4.0, 80.0, 100.0, "eps = 100, departure on the falling plate", "eps=100-phi=4"),
-    _case(4.0, 3.0, -0.6, "negative eps (the pi-shifted model)", "eps=-0.6"),
+    _case(1.0, 3.0, 100.0, "eps = 100: plate amplitude >> flight height", "eps=100", "eps-range"),
+    _case(4.0, 80.0, 100.0, "eps = 100, departure on the falling plate", "eps=100-phi=4",
+          "eps-range"),
+    _case(4.0, 3.0, -0.6, "negative eps (the pi-shifted model)", "eps=-0.6", "eps-range"),
     # phases at and next to 0 and pi (and the top end of [0, 2*pi))
     *[
-        _case(phi, 3.0, eps, f"phase {name} at eps = {eps}", f"phi={name}-eps={eps:g}")
+        _case(phi, 3.0, eps, f"phase {name} at eps = {eps}", f"phi={name}-eps={eps:g}",
+              "special-phase")
         for eps in (0.6, 3.0)
         for phi, name in (
             (0.0, "0"),
@@ -100,7 +132,8 @@ HARD_CASES = (
     ],
     # unreduced phases
     *[
-        _case(phi, 3.0, eps, f"unreduced phase {phi!r} at eps = {eps}", f"phi={phi!r}-eps={eps:g}")
+        _case(phi, 3.0, eps, f"unreduced phase {phi!r} at eps = {eps}",
+              f"phi={phi!r}-eps={eps:g}", "unreduced-phase")
         for eps in (0.6, 3.0)
         for phi in (1e6 + 0.3, -50.0)
     ],
@@ -112,6 +145,7 @@ HARD_CASES = (
         1.05,
         "small negative phase, short flight past a near-graze (clearance -1e-6, eps = 1.05)",
         "negative-phase-short-graze",
+        "graze",
     ),
     # near-grazing pairs for eps > 1 (generated by verify.grazing_contact, see the docstring)
     _graze(-2.4762056588386616, 2.3329253488466524, 1.5, 0.3, 2.776205658838662, "1e-2"),
@@ -138,4 +172,32 @@ HARD_CASES = (
     _graze(-0.8181620686458191, 0.8366983325203865, 1.1, -0.2, 0.6181620686458191, "0"),
     _graze(-0.8181620656888612, 0.8366983295634286, 1.1, -0.2, 0.6181620656888612, "-1e-10"),
     _graze(-0.8181324958596152, 0.8366687597341825, 1.1, -0.2, 0.6181324958596152, "-1e-6"),
+    # eps -> 1 from both sides: at a generic state and on a short flight (-0.01, 0.01)
+    *[_case(4.0, 3.0, eps, f"eps = {tag} at a generic state", f"eps={tag}", "eps->1")
+      for eps, tag in _EPS_NEAR_ONE if tag in ("1-1e-12", "1+1e-12")],
+    *[_case(-0.01, 0.01, eps, f"eps = {tag}, short flight phi = -0.01, v = 0.01 (w0 ~ 1.7e-7)",
+            f"short-eps={tag}", "eps->1") for eps, tag in _EPS_NEAR_ONE],
+    # near-triple roots: phi = -x, v = x (exact flight 2x for |eps| <= 1)
+    *[_triple(x, eps, tag) for x in (1e-6, 1e-4, 1e-2, 1.0)
+      for eps, tag in ((1.0, "1"), (1.0 - 1e-6, "1-1e-6"))],
+    # huge phases: reduction modulo 2*pi with precision growing with the exponent of phi
+    *[_case(phi, 3.0, eps, f"huge phase {phi:g} at eps = {eps}", f"phi={phi:g}-eps={eps:g}",
+            "huge-phase") for eps in (0.6, 3.0) for phi in (1e12, 1e17, 1e300, -1e300)],
+    _w0(1e-8, 1e12, 0.6, "-phi=1e12", kind="huge-phase"),
 )
+
+# float64 overflow: tau ~ 2e308 > DBL_MAX, v**2 = inf, eps*... terms near DBL_MAX
+OVERFLOW_CASES = (
+    _case(1.0, 1e308, 0.6, "v = 1e308: tau ~ 2e308 overflows float64", "v=1e308", "overflow",
+          "ValueError"),
+    _case(0.5, 3.0, 1e300, "eps = 1e300: eps*sin and v1 ~ 1e300, d'' ~ 1e300", "eps=1e300",
+          "overflow", "ValueError"),
+    _case(1.0, 1e308, 1e300, "v = 1e308 and eps = 1e300", "v=1e308-eps=1e300", "overflow",
+          "ValueError"),
+    _case(1.0, 1e200, 0.6, "v = 1e200: v**2 and tau*v overflow float64", "v=1e200", "overflow",
+          "ValueError"),
+)
+
+ALL_CASES = HARD_CASES + OVERFLOW_CASES
+
+KINDS = tuple(sorted({case.kind for case in ALL_CASES}))

@@ -5,9 +5,10 @@ from __future__ import annotations
 import mpmath
 from mpmath import mp
 
-from ._inputs import check_dps, exact_real
+from ._inputs import check_state
 from ._precision import working_dps
 from .certify import certify_flight
+from .phase import reduce_phase
 
 
 def jacobian(phi, v, eps, dps: int = 50) -> mpmath.matrix:
@@ -24,10 +25,10 @@ def jacobian(phi, v, eps, dps: int = 50) -> mpmath.matrix:
     At the fixed point ``(0, pi*m)`` this is ``[[1, 2], [-2*eps, 1 - 4*eps]]``.
     Undefined at a graze (``d' = 0``): raises ``ZeroDivisionError``.
     """
-    dps = check_dps(dps)
+    phi, v, eps, _, dps = check_state(phi, v, eps, dps=dps)
     cert = certify_flight(phi, v, eps, dps)
-    phi, v, eps = exact_real("phi", phi), exact_real("v", v), exact_real("eps", eps)
-    with working_dps(cert.dps_used):
+    with working_dps(cert.dps_used) as prec:
+        phi = reduce_phase(phi, prec).value
         tau = (cert.enclosure[0] + cert.enclosure[1]) / 2
         arg = phi + tau
         slope = v - tau + eps * mp.sin(arg)

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import mpmath
 from mpmath import mp
 
-from ._inputs import check_dps, exact_real
+from ._inputs import check_state
 from ._precision import working_dps
 from .collision import step
 
@@ -31,11 +31,9 @@ def orbit(phi0, v0, eps, n: int, dps: int = 50) -> Orbit:
 
     Each step is certified for its (rounded to ``dps`` digits) input state.
     """
-    dps = check_dps(dps)
+    phi, v, _, _, dps = check_state(phi0, v0, eps, dps=dps, names=("phi0", "v0", "eps"))
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 0:
         raise ValueError(f"n must be a non-negative integer, got n={n!r}")
-    phi, v = exact_real("phi0", phi0), exact_real("v0", v0)
-    exact_real("eps", eps)
     phis, vs, ts = [phi], [v], [mp.zero]
     t = mp.zero
     for _ in range(int(n)):

@@ -36,9 +36,11 @@ __all__ = [
     "exact_w0",
     "fixed_points",
     "hard_cases",
+    "huge_phases",
     "large_velocities",
     "near_fixed_point",
     "near_grazing",
+    "near_triple_root",
 ]
 
 TWO_PI = 2.0 * math.pi
@@ -325,3 +327,55 @@ def large_velocities(v=(30.0, 1e6), eps=(0.0, 10.0)):
         return (phi, v_, eps_) if _is_departure(phi, v_, eps_) else None
 
     return _case().filter(lambda case: case is not None)
+
+
+@st.composite
+def _triple(draw, eps_s, x_s):
+    eps, x = draw(eps_s), draw(x_s)
+    return (-x, x, eps) if _is_departure(-x, x, eps) else None
+
+
+def near_triple_root(eps=(1.0 - 1e-6, 1.0), *, x=(1e-8, 10.0)):
+    """Departures ``(-x, x, eps)``: the family of DESIGN fact 11, the hardest well-posed flights.
+
+    ``d(2x) = eps*(cos(x) - cos(x)) + 2x*(x - x) = 0`` holds exactly for the float inputs, so
+    for ``|eps| <= 1`` (d concave, one positive root) the exact flight time is ``2*x``. With
+    ``d'(2x) = eps*sin(x) - x`` (``~ -x**3/6`` at eps = 1) the root is a near-triple root for
+    small ``x`` and eps near 1 (kappa ~ 6/x**2). ``x`` is drawn log-uniformly from the ``x``
+    range (default ``[1e-8, 10]``), eps from the ``eps`` range (default ``[1 - 1e-6, 1]``).
+    For eps > 1 only draws with ``w0 = x - eps*sin(x) > 0`` are kept, and ``2x`` is a root
+    but not necessarily the first.
+    """
+    if isinstance(x, tuple):
+        lo, hi = (float(b) for b in x)
+        if not (0 < lo <= hi and math.isfinite(hi)):
+            raise ValueError(f"x range must satisfy 0 < lo <= hi < inf, got x={x!r}")
+        x_s = _log_uniform(lo, hi)
+    else:
+        x_s = _floats(x, "x", positive=True)
+    return _triple(_floats(eps, "eps"), x_s).filter(lambda case: case is not None)
+
+
+@st.composite
+def _huge_phase(draw, eps_s, exponents, w0_s):
+    sign = draw(st.sampled_from((-1.0, 1.0)))
+    exponent = draw(st.integers(*exponents))
+    phi = sign * draw(st.floats(1.0, 10.0, exclude_max=True)) * 10.0 ** exponent
+    eps, w0 = draw(eps_s), draw(w0_s)
+    with mp.workdps(_W0_DPS):  # mpmath reduces huge phases exactly (libm does too)
+        v = float(w0 - mp.mpf(eps) * mp.sin(mp.mpf(phi)))
+    return (phi, v, eps) if _is_departure(phi, v, eps) else None
+
+
+def huge_phases(eps=(0.0, 10.0), *, exponent=(12, 307), w0=(1e-3, 30.0)):
+    """Departures with huge unreduced phases ``|phi| = m*10**k``, ``k`` in ``exponent``
+    (default 12..307, both signs): reducing them modulo 2*pi needs about ``k*log2(10)`` more
+    bits than the phase holds. ``v`` is set from the exact ``sin(phi)`` so that ``w0`` lies in
+    the ``w0`` range (up to the rounding of ``v``)."""
+    lo, hi = exponent
+    if not (isinstance(lo, int) and isinstance(hi, int) and 0 <= lo <= hi <= 307):
+        raise ValueError(f"exponent must be a pair of ints 0 <= lo <= hi <= 307, "
+                         f"got exponent={exponent!r}")
+    return _huge_phase(_floats(eps, "eps"), (lo, hi), _speeds(w0)).filter(
+        lambda case: case is not None
+    )

@@ -140,3 +140,28 @@ def test_exact_w0_is_exact_for_floats():
     with mp.workdps(60):
         expected = mp.mpf(v) + mp.mpf(eps) * mp.sin(mp.mpf(phi))
     assert vs.exact_w0(phi, v, eps) == pytest.approx(expected, rel=1e-30)
+
+
+def test_near_triple_root_family():
+    cases = _draws(vs.near_triple_root(), n=100)
+    for phi, v, eps in cases:
+        _valid((phi, v, eps))
+        assert phi == -v and 1e-8 <= v <= 10.0 and 1.0 - 1e-6 <= eps <= 1.0
+    assert min(c[1] for c in cases) < 1e-6 and max(c[1] for c in cases) > 1.0  # decades reached
+    above = _draws(vs.near_triple_root(eps=(1.0, 1.0 + 1e-6)), n=50)
+    assert all(vs.exact_w0(*c) > 0 for c in above)  # eps > 1: only departures kept
+    with pytest.raises(ValueError):
+        vs.near_triple_root(x=(0.0, 1.0))
+
+
+def test_huge_phases_reach_every_exponent_and_w0_range():
+    cases = _draws(vs.huge_phases(eps=0.6, exponent=(12, 307)), n=100)
+    for phi, v, eps in cases:
+        _valid((phi, v, eps))
+        assert 1e12 <= abs(phi) < 1e308
+        assert 1e-3 * (1 - 1e-9) <= float(vs.exact_w0(phi, v, eps)) <= 30.0 * (1 + 1e-9)
+    exponents = [math.floor(math.log10(abs(c[0]))) for c in cases]
+    assert min(exponents) < 50 and max(exponents) > 250
+    assert any(c[0] < 0 for c in cases) and any(c[0] > 0 for c in cases)
+    with pytest.raises(ValueError):
+        vs.huge_phases(exponent=(12, 400))
