@@ -183,7 +183,7 @@ def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
 
 # the verify modules behind verify.step and verify.condition_number (what a chunk calls)
 _VERIFY_SOURCES = ("_inputs", "_precision", "certify", "collision", "conditioning", "errors",
-                   "gap")
+                   "gap", "phase")
 
 
 def _code_digest():
