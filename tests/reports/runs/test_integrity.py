@@ -347,7 +347,13 @@ def test_plan_is_lazy_and_finished_is_compact():
     assert Finished.from_json(fin.to_json()) == fin
 
 
-def test_absurd_size_is_refused_with_time_and_disk(tmp_path, capsys):
+def test_absurd_size_is_refused_with_time_and_disk(tmp_path, capsys, monkeypatch):
+    from reports.runs import driver
+
+    def never(out):
+        raise AssertionError(f"an absurd run reached its directory {out}")
+
+    monkeypatch.setattr(driver, "RunLock", never)  # refused before any file or any work
     assert main(["run", "paper-escape", "--particles", "1e15", "--out",
                  str(tmp_path / "r")]) == 2
     err = one_line_error(capsys)
