@@ -1,6 +1,7 @@
 """Trusted ensemble runs: the driver around ``fastpath.ensemble`` with ``verify`` checks.
 
-The run is a fixed list of chunks (experiment e, chunk k) of at most ``scene.chunk_size`` starts.
+The run is a fixed sequence of chunks (experiment e, chunk k) of at most ``scene.chunk_size``
+starts.
 Chunk (e, k) draws its starts, its verification picks and their collision indices from
 ``numpy.random.SeedSequence(seed, spawn_key=(e, k))`` only, so a result depends on
 (scene, seed, particles) and not on threads, chunk order or interruptions; counts are integers,
@@ -14,7 +15,12 @@ summed exactly. After each chunk:
    tau_fast - tau_ref > 16*kappa*u*tau_ref means the fast path jumped past the first collision
    (an overstep): the run stops with status ``failed``;
 3. merged counts and the finished chunks are checkpointed atomically, with the manifest
-   (status ``partial``). ``resume`` skips finished chunks; the end result is identical.
+   (status ``partial``, the SHA-256 of the checkpoint), SIGINT held back until both are written.
+   ``resume`` skips finished chunks, after checking the checkpoint's digest and invariants
+   (``reports.runs.integrity``); the end result is identical.
+
+One process writes a run directory (``reports.runs.lock``). The complete manifest records the
+SHA-256 of every output; ``bouncer verify`` (``reports.runs.recheck``) audits them.
 
 Steps 1 and 2 are ``run_chunk(scene, seed, curve, chunk, particles)``, a pure function of its
 arguments returning a ``ChunkResult`` (counts, the verified sample rows, overstepped rows, or a
