@@ -134,6 +134,15 @@ def test_deleted_file_is_caught(run_dir, capsys, name):
     assert code == 1 and f"{name}: missing" in out
 
 
+def test_without_checkpoint_counts_still_rederive_the_curves(run_dir, capsys):
+    """A run kept without its checkpoint: counts.csv alone is checked and re-derived."""
+    (run_dir / "checkpoint.npz").unlink()
+    edit_csv(run_dir / "counts.csv", lambda rows: rows[3].__setitem__(4, str(int(rows[3][4]) + 1)))
+    code, out = audit(run_dir, capsys)
+    assert code == 1 and "+ 0 stuck = 201, but 200 particles were run" in out
+    assert "survival.csv:" in out
+
+
 def test_deleted_sample_rows_are_caught(run_dir, capsys):
     edit_csv(run_dir / "sample.csv", lambda rows: rows.__delitem__(slice(2, None)))
     code, out = audit(run_dir, capsys)
