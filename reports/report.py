@@ -22,7 +22,10 @@ import math
 import os
 import platform
 import subprocess
+import sys
+import threading
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 from reports.paper.figures import paper_figures_section
@@ -111,9 +114,37 @@ def _included_run(out_dir, run_dir, echo):
     ])
 
 
+@contextmanager
+def stage_progress(label, enabled=True):
+    """A progress line on stderr for one report stage: its elapsed time, refreshed every second
+    by a background thread (the stages report no fraction done; runs inside add their own bar)."""
+    if not enabled:
+        yield
+        return
+    from tqdm import tqdm
+
+    bar = tqdm(desc=label, bar_format="{desc}: {elapsed}", file=sys.stderr, leave=True)
+    stop = threading.Event()
+
+    def tick():
+        while not stop.wait(1.0):
+            bar.refresh()
+
+    ticker = threading.Thread(target=tick, daemon=True)
+    ticker.start()
+    try:
+        yield
+    finally:
+        stop.set()
+        ticker.join()
+        bar.refresh()
+        bar.close()
+
+
 def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), include_runs=(),
-                 echo=print):
-    """Compute every section and write ``out_dir/report.md``; returns its path."""
+                 echo=print, progress=True):
+    """Compute every section and write ``out_dir/report.md``; returns its path. ``progress``:
+    a progress line per stage on stderr."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
@@ -121,7 +152,8 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
 
     def timed(label, make):
         t0 = time.perf_counter()
-        text = make()
+        with stage_progress(f"report: {label}", progress):
+            text = make()
         timings.append((label, time.perf_counter() - t0))
         return text
 

@@ -1,4 +1,5 @@
-"""The ``bouncer`` command. Exit status: 0 ok, 1 failure, 2 bad input (one-line message).
+"""The ``bouncer`` command. Exit status: 0 ok, 1 failure, 2 bad input or a filesystem fault
+(one-line message naming the path), 130 interrupted (Ctrl-C; a run says how to resume).
 
     bouncer demo [--eps E] [--collisions N] [--sample S] [--seed S]
     bouncer scenes
@@ -20,7 +21,7 @@ import argparse
 import sys
 
 from reports.cli import bench, check, demo, fit, plot, report, run, scenes, sweep, verify
-from reports.runs.rundir import RunFailed
+from reports.runs.rundir import RunFailed, RunInterrupted, os_error_text
 
 SUBCOMMANDS = (demo, scenes, run, sweep, plot, fit, verify, report, check, bench)
 
@@ -45,5 +46,16 @@ def main(argv=None):
     except RunFailed as err:
         print(f"bouncer: run failed: {err}", file=sys.stderr)
         return 1
+    except OSError as err:
+        print(f"bouncer: error: {os_error_text(err)}", file=sys.stderr)
+        return 2
+    except RunInterrupted as err:
+        resume = getattr(args, "resume_command", None)
+        hint = f"; continue with: {resume(err)}" if resume else ""
+        print(f"bouncer: {err}{hint}", file=sys.stderr)
+        return 130
+    except KeyboardInterrupt:
+        print("bouncer: interrupted", file=sys.stderr)
+        return 130
 
 

@@ -1,6 +1,7 @@
 """``bouncer run SCENE_OR_FILE``: a trusted ensemble run of a scene."""
 
 import resource
+import shlex
 
 from reports.cli.threads import threads_option
 from reports.runs.driver import run
@@ -8,6 +9,7 @@ from reports.runs.scenes import load_scene
 
 
 def _run(args):
+    args.resume_command = _resume_command(args)
     scene = load_scene(args.scene)
     threads = threads_option(args)
     out = args.out or f"runs/{scene.name}"
@@ -29,11 +31,37 @@ def _run(args):
     return 0
 
 
+def count(text):
+    """An integer given as 1000000 or 1e6 (an exact integer); ValueError otherwise."""
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        value = float(text)
+    except ValueError:
+        raise ValueError(f"--particles must be an integer, got {text!r}") from None
+    if not value.is_integer():
+        raise ValueError(f"--particles must be an integer, got {text!r}")
+    return int(value)
+
+
+def _resume_command(args):
+    def command(err):
+        parts = ["bouncer", "run", args.scene, "--out", str(err.out), "--resume"]
+        for flag in ("particles", "seed", "scheduler"):
+            if getattr(args, flag) is not None:
+                parts += [f"--{flag}", str(getattr(args, flag))]
+        return shlex.join(parts)
+    return command
+
+
 def add_parser(subparsers):
     run = subparsers.add_parser(
         "run", help="a trusted ensemble run of a scene (built-in name or TOML)")
     run.add_argument("scene", metavar="SCENE_OR_FILE")
-    run.add_argument("--particles", type=int, help="starts per curve (default: the scene's)")
+    run.add_argument("--particles", type=count,
+                     help="starts per curve, e.g. 1000000 or 1e6 (default: the scene's)")
     run.add_argument("--seed", type=int, help="seed (default: the scene's)")
     run.add_argument("--out", help="run directory (default: runs/SCENE_NAME)")
     run.add_argument("--threads", type=int, help="numba threads (results do not depend on it)")
@@ -42,4 +70,4 @@ def add_parser(subparsers):
     run.add_argument("--quiet", action="store_true", help="no progress bar")
     run.add_argument("--scheduler", metavar="ADDRESS",
                      help="Dask scheduler (tcp://host:8786): run the chunks on that cluster")
-    run.set_defaults(func=_run)
+    run.set_defaults(func=_run, resume_command=None)

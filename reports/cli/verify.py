@@ -1,16 +1,19 @@
-"""``bouncer verify RUN_DIR``: recompute a run's verification sample."""
+"""``bouncer verify RUN_DIR``: audit a run (hashes, invariants, re-derived curves) and recompute
+its verification sample; exit 1 on any discrepancy."""
 
 from reports.runs.recheck import recheck
 
 
 def _verify(args):
-    ok, lines = recheck(args.run_dir)
+    ok, lines = recheck(args.run_dir, progress=not args.quiet)
     for line in lines:
         print(line)
     return 0 if ok else 1
 
 
 def add_parser(subparsers):
-    recheck = subparsers.add_parser("verify", help="recompute a run's verification sample")
+    recheck = subparsers.add_parser(
+        "verify", help="audit a run and recompute its verification sample")
     recheck.add_argument("run_dir", metavar="RUN_DIR")
+    recheck.add_argument("--quiet", action="store_true", help="no progress bar")
     recheck.set_defaults(func=_verify)

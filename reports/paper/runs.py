@@ -50,7 +50,7 @@ def ensure_run(name, runs_dir, particles, echo=say_nothing):
         raise ValueError(f"{out} exists and holds no run; not touching it")
     echo(f"running {name} with {particles} particles per curve into {out}")
     t0 = time.perf_counter()
-    man = run(scene, out, particles=particles, resume=resume, force=force, progress=False)
+    man = run(scene, out, particles=particles, resume=resume, force=force, progress=True)
     echo(f"  {name}: {man['collisions']:.3g} collisions in {time.perf_counter() - t0:.1f} s, "
          f"verification: {man['verification']['sampled']} sampled, worst "
          f"{man['verification']['worst_error']:.2g} kappa*u")

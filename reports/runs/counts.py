@@ -9,14 +9,22 @@ bookkeeping of the checkpoint (finished chunks, verified sample rows, elapsed ti
     portrait[p, q]                   phase-space visits (phase-space scenes only)
 
 Merging (``Tally.merge``) is keyed by the chunk index (curve, chunk): a chunk already merged is
-ignored, counts are integer sums, and the sample rows and the list of finished chunks are kept
-sorted by index, so the merged state is a function of the *set* of finished chunks only.
+ignored, counts are integer sums, and the sample rows are kept sorted by index, so the merged
+state is a function of the *set* of finished chunks only. That set is held compactly
+(``Finished``: per curve the length of the finished prefix 0..p-1, plus the few chunks that
+finished out of order), so memory does not grow with the number of chunks.
+
+The checkpoint (``Tally.save``) embeds a SHA-256 digest of its arrays and bookkeeping;
+``Tally.load`` refuses (``CheckpointError``) a file that is unreadable, truncated or whose digest
+does not match its content.
 """
 
 from __future__ import annotations
 
 import bisect
+import hashlib
 import json
+import zipfile
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -65,11 +73,78 @@ def _sample_key(row):
     return (int(row[0]), int(row[1]), int(row[2]))
 
 
+class CheckpointError(ValueError):
+    """A checkpoint that cannot be trusted (unreadable, edited, inconsistent): exit status 2."""
+
+
+@dataclass
+class Finished:
+    """The set of finished chunks (e, k): k < prefix[e], or (e, k) in ``extra`` (chunks that
+    finished before an earlier one of their curve; Dask completes out of order)."""
+
+    prefix: list
+    extra: set = field(default_factory=set)
+
+    @classmethod
+    def none(cls, curves):
+        return cls([0] * curves)
+
+    def __contains__(self, key):
+        e, k = key
+        return k < self.prefix[e] or (e, k) in self.extra
+
+    def __len__(self):
+        return sum(self.prefix) + len(self.extra)
+
+    def add(self, key):
+        """Mark (e, k) finished; False if it was already."""
+        if key in self:
+            return False
+        e, k = key
+        self.extra.add((e, k))
+        while (e, self.prefix[e]) in self.extra:
+            self.extra.remove((e, self.prefix[e]))
+            self.prefix[e] += 1
+        return True
+
+    def particles_done(self, plan, e):
+        """Starts of experiment e in its finished chunks."""
+        return plan.prefix_particles(self.prefix[e]) + sum(
+            plan.chunk_particles(k) for ee, k in self.extra if ee == e)
+
+    def to_json(self):
+        return {"prefix": list(self.prefix), "extra": sorted([e, k] for e, k in self.extra)}
+
+    @classmethod
+    def from_json(cls, obj):
+        if isinstance(obj, list):  # checkpoints of earlier versions: the list of (e, k)
+            curves = 1 + max((e for e, _ in obj), default=0)
+            out = cls.none(curves)
+            for e, k in obj:
+                out.add((int(e), int(k)))
+            return out
+        return cls([int(p) for p in obj["prefix"]], {(int(e), int(k)) for e, k in obj["extra"]})
+
+
+_ARRAYS = ("esc_n", "esc_t", "cens_n", "cens_t", "portrait")
+
+
+def _digest(arrays, meta_json):
+    """SHA-256 over each array's name, dtype, shape and bytes, then the bookkeeping JSON."""
+    h = hashlib.sha256()
+    for name in _ARRAYS:
+        a = np.ascontiguousarray(arrays[name])
+        h.update(f"{name}|{a.dtype.str}|{a.shape}|".encode())
+        h.update(a.tobytes())
+    h.update(meta_json.encode())
+    return h.hexdigest()
+
+
 @dataclass
 class Tally(Counts):
     """The run's merged counts (one row per experiment) and the checkpoint's bookkeeping."""
 
-    finished: list = field(default_factory=list)
+    finished: Finished = field(default_factory=lambda: Finished.none(0))
     samples: list = field(default_factory=list)
     elapsed: float = 0.0
     started: str = ""
@@ -77,36 +152,47 @@ class Tally(Counts):
     @classmethod
     def empty(cls, plan):
         holes = max([len(x.hole_lo) for x in plan.experiments] + [1])
-        return cls.zeros(plan, holes, experiments=len(plan.experiments), started=now())
+        return cls.zeros(plan, holes, experiments=len(plan.experiments), started=now(),
+                         finished=Finished.none(len(plan.experiments)))
 
     def save(self, path):
-        meta = {"collisions": self.collisions, "settled": self.settled,
-                "finished": self.finished, "samples": self.samples, "elapsed": self.elapsed,
-                "started": self.started}
-        rundir.save_npz_atomic(path, esc_n=self.esc_n, esc_t=self.esc_t, cens_n=self.cens_n,
-                               cens_t=self.cens_t, portrait=self.portrait,
-                               meta=np.array(json.dumps(meta)))
+        """Write the checkpoint atomically; returns the SHA-256 of the file's bytes."""
+        meta = json.dumps({"collisions": self.collisions, "settled": self.settled,
+                           "finished": self.finished.to_json(), "samples": self.samples,
+                           "elapsed": self.elapsed, "started": self.started})
+        arrays = {name: getattr(self, name) for name in _ARRAYS}
+        return rundir.save_npz_atomic(path, **arrays, meta=np.array(meta),
+                                      digest=np.array(_digest(arrays, meta)))
 
     @classmethod
     def load(cls, path):
-        with np.load(path) as z:
-            meta = json.loads(str(z["meta"]))
-            return cls(z["esc_n"], z["esc_t"], z["cens_n"], z["cens_t"], z["portrait"],
-                       meta["collisions"], meta["settled"],
-                       sorted(tuple(c) for c in meta["finished"]),
-                       sorted(meta["samples"], key=_sample_key), meta["elapsed"],
-                       meta["started"])
+        """The checkpoint at ``path``; CheckpointError if it is unreadable or fails its digest."""
+        try:
+            with np.load(path) as z:
+                arrays = {name: z[name] for name in _ARRAYS}
+                meta_json, digest = str(z["meta"]), str(z["digest"])
+            meta = json.loads(meta_json)
+            if _digest(arrays, meta_json) != digest:
+                raise CheckpointError(f"checkpoint {path} fails its content hash (edited or"
+                                      " corrupted)")
+            return cls(*(arrays[name] for name in _ARRAYS), int(meta["collisions"]),
+                       int(meta["settled"]), Finished.from_json(meta["finished"]),
+                       sorted(meta["samples"], key=_sample_key), float(meta["elapsed"]),
+                       str(meta["started"]))
+        except CheckpointError:
+            raise
+        except (OSError, EOFError, zipfile.BadZipFile, KeyError, TypeError, ValueError) as err:
+            raise CheckpointError(f"checkpoint {path} is unreadable ({type(err).__name__}:"
+                                  f" {err})") from None
 
     def merge(self, result, kind):
         """Add a finished chunk's ``ChunkResult``; False (and nothing changes) if its index
         (curve, chunk) is merged already. Keyed and sorted by index, so any completion order
         gives the same state."""
-        key = (result.curve, result.chunk)
-        at = bisect.bisect_left(self.finished, key)
-        if at < len(self.finished) and self.finished[at] == key:
+        if (result.curve, result.chunk) in self.finished:
             return False
         self.add(result.counts, at=result.curve, portrait=kind == "phase-space")
         for row in result.rows:
             bisect.insort(self.samples, list(row), key=_sample_key)
-        self.finished.insert(at, key)
+        self.finished.add((result.curve, result.chunk))
         return True

@@ -1,6 +1,7 @@
 """Trusted ensemble runs: the driver around ``fastpath.ensemble`` with ``verify`` checks.
 
-The run is a fixed list of chunks (experiment e, chunk k) of at most ``scene.chunk_size`` starts.
+The run is a fixed sequence of chunks (experiment e, chunk k) of at most ``scene.chunk_size``
+starts.
 Chunk (e, k) draws its starts, its verification picks and their collision indices from
 ``numpy.random.SeedSequence(seed, spawn_key=(e, k))`` only, so a result depends on
 (scene, seed, particles) and not on threads, chunk order or interruptions; counts are integers,
@@ -14,7 +15,12 @@ summed exactly. After each chunk:
    tau_fast - tau_ref > 16*kappa*u*tau_ref means the fast path jumped past the first collision
    (an overstep): the run stops with status ``failed``;
 3. merged counts and the finished chunks are checkpointed atomically, with the manifest
-   (status ``partial``). ``resume`` skips finished chunks; the end result is identical.
+   (status ``partial``, the SHA-256 of the checkpoint), SIGINT held back until both are written.
+   ``resume`` skips finished chunks, after checking the checkpoint's digest and invariants
+   (``reports.runs.integrity``); the end result is identical.
+
+One process writes a run directory (``reports.runs.lock``). The complete manifest records the
+SHA-256 of every output; ``bouncer verify`` (``reports.runs.recheck``) audits them.
 
 Steps 1 and 2 are ``run_chunk(scene, seed, curve, chunk, particles)``, a pure function of its
 arguments returning a ``ChunkResult`` (counts, the verified sample rows, overstepped rows, or a
@@ -27,6 +33,7 @@ function of the *set* of finished chunks only, whatever order they finish in.
 
 from __future__ import annotations
 
+import io
 import sys
 import time
 from contextlib import closing
@@ -36,12 +43,15 @@ import numpy as np
 
 from reports.runs import cluster, rundir
 from reports.runs.chunk import OVERSTEP_TOLERANCE, VERIFY_DPS, check_result
-from reports.runs.counts import Tally
+from reports.runs.counts import CheckpointError, Tally
 from reports.runs.executor import Executor
-from reports.runs.plan import COLLISION_DECADES, TIME_DECADES, TIME_FIRST, make_plan
+from reports.runs.integrity import tally_problems
+from reports.runs.lock import RunLock
+from reports.runs.plan import COLLISION_DECADES, TIME_DECADES, TIME_FIRST, check_size, make_plan
 from reports.runs.provenance import git, now, versions
-from reports.runs.rundir import RunFailed
+from reports.runs.rundir import CHECKPOINT, RunFailed, RunInterrupted
 from reports.runs.scenes import parse_scene
+from reports.runs.signals import deferred_interrupt
 from reports.runs.survival import survival_curve, wilson
 
 
@@ -69,14 +79,47 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
     tasks to that cluster (``reports.runs.cluster``). The result is bit-identical either way, and a
     run started one way resumes the other way without recomputing finished chunks.
 
-    Raises ValueError for bad input (exit 2) and RunFailed when a check fails (exit 1).
+    Raises ValueError for bad input (exit 2; ``RunBusy`` when another process holds the
+    directory's lock, ``CheckpointError`` for a checkpoint that fails its hash or invariants),
+    RunFailed when a check fails (exit 1) and RunInterrupted on Ctrl-C (the checkpoint is
+    consistent: resume it).
     """
     plan = make_plan(scene, particles, seed)
+    check_size(plan)
     out = Path(out)
     if scheduler is not None:
         cluster.check_available()
+    rundir.check_out(out, resume, force)  # refuse before creating anything
+    with RunLock(out):
+        return _run_locked(plan, out, resume, force, progress, threads, scheduler)
+
+
+def _resume_tally(plan, out, old):
+    """The checkpoint of a partial run, refused (CheckpointError) if it fails its content hash
+    or its invariants."""
+    ckpt = out / CHECKPOINT
+    advice = "; it cannot be resumed: start the run again with --force"
+    if not ckpt.is_file():
+        if old.get("chunks_done"):
+            raise CheckpointError(f"checkpoint {ckpt} is missing but the manifest records"
+                                  f" {old['chunks_done']} finished chunks{advice}")
+        return Tally.empty(plan)
+    try:
+        tally = Tally.load(ckpt)
+    except CheckpointError as err:
+        raise CheckpointError(f"{err}{advice}") from None
+    problems = tally_problems(plan, tally)
+    if problems:
+        more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
+        raise CheckpointError(f"checkpoint {ckpt} fails its invariants: {problems[0]}{more}"
+                              f"{advice}")
+    return tally
+
+
+def _run_locked(plan, out, resume, force, progress, threads, scheduler):
+    scene = plan.scene
     resuming = rundir.prepare(out, resume, force)
-    ckpt = out / "checkpoint.npz"
+    ckpt = out / CHECKPOINT
     if resuming:
         old = rundir.read_json(out / rundir.MANIFEST)
         stored = parse_scene((out / "scene.toml").read_text(encoding="utf-8"), "stored scene")
@@ -86,65 +129,69 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
                              " same scene, --particles and --seed")
         if old["status"] == "complete":
             return old
-        tally = Tally.load(ckpt) if ckpt.is_file() else Tally.empty(plan)
+        tally = _resume_tally(plan, out, old)
     else:
         rundir.write_atomic(out / "scene.toml", scene.source)
         tally = Tally.empty(plan)
-    done = set(tally.finished)
-    todo = [c for c in plan.chunks if c not in done]
-    session = {"scheduler": None, "workers": None, "worker_threads": None,
-               "chunks_computed": 0}
-    _manifest(out, plan, tally, "partial", threads, session=session)
-    total = plan.particles * len(plan.experiments)
-    bar = _progress(plan, total - sum(plan.chunk_particles(k) for _, k in todo), total, progress)
-    jobs = [((e, k), (scene, plan.seed, e, k, plan.particles, threads)) for e, k in todo]
+    ctx = {"threads": threads, "hashes": {"scene.toml": rundir.sha256_file(out / "scene.toml")},
+           "provenance": {"versions": versions(), "git": git()},
+           "session": {"scheduler": None, "workers": None, "worker_threads": None,
+                       "chunks_computed": 0}}
+    session = ctx["session"]
+    if ckpt.is_file():
+        ctx["hashes"][CHECKPOINT] = rundir.sha256_file(ckpt)
+    _manifest(out, plan, tally, "partial", ctx)
+    done = sum(tally.finished.particles_done(plan, e) for e in range(len(plan.experiments)))
+    bar = _progress(plan, done, plan.particles_total, progress)
+    jobs = (((e, k), (scene, plan.seed, e, k, plan.particles, threads))
+            for e, k in plan.chunks if (e, k) not in tally.finished)
     try:
         with Executor(scheduler, session) as execute, closing(execute(jobs)) as results:
             last = time.perf_counter()
             for _, result in results:
-                check_result(result)
-                if not tally.merge(result, scene.kind):
-                    continue
-                session["chunks_computed"] += 1
-                now = time.perf_counter()
-                tally.elapsed += now - last
-                last = now
-                if result.bad:
-                    _fail(out, plan, tally, threads, result.bad, session)
-                tally.save(ckpt)
-                _manifest(out, plan, tally, "partial", threads, session=session)
+                with deferred_interrupt():  # merge, checkpoint and manifest: all or nothing
+                    check_result(result)
+                    if not tally.merge(result, scene.kind):
+                        continue
+                    session["chunks_computed"] += 1
+                    now = time.perf_counter()
+                    tally.elapsed += now - last
+                    last = now
+                    if result.bad:
+                        _fail(out, plan, tally, ctx, result.bad)
+                    ctx["hashes"][CHECKPOINT] = tally.save(ckpt)
+                    _manifest(out, plan, tally, "partial", ctx)
                 if bar is not None:
                     bar.update(plan.chunk_particles(result.chunk))
                     bar.set_postfix_str(f"{tally.collisions / max(tally.elapsed, 1e-9):.3g}"
                                         " coll/s", refresh=False)
+        if len(tally.finished) != plan.n_chunks:  # only if an executor drops a task
+            raise RunFailed(f"{plan.n_chunks - len(tally.finished)} chunk(s) never came back")
+        with deferred_interrupt():
+            ctx["hashes"].update(write_results(out, plan, tally))
+            return _manifest(out, plan, tally, "complete", ctx)
     except RunFailed as err:
         if not getattr(err, "recorded", False):
-            _manifest(out, plan, tally, "failed", threads, failure=str(err), session=session)
+            _manifest(out, plan, tally, "failed", ctx, failure=str(err))
         raise
+    except KeyboardInterrupt:
+        raise RunInterrupted(out, len(tally.finished), plan.n_chunks) from None
+    except OSError as err:
+        raise ValueError(f"{rundir.os_error_text(err)}; the checkpoint holds the chunks finished"
+                         " before: fix this and continue with --resume") from None
     finally:
         if bar is not None:
             bar.close()
-    finished = set(tally.finished)
-    missing = [c for c in plan.chunks if c not in finished]
-    if missing:  # cannot happen unless an executor drops a task: never write a short result
-        raise RunFailed(f"{len(missing)} chunk(s) never came back, first {missing[0]}")
-    write_results(out, plan, tally)
-    return _manifest(out, plan, tally, "complete", threads, session=session)
 
 
-
-
-
-
-def _fail(out, plan, tally, threads, bad, session=None):
+def _fail(out, plan, tally, ctx, bad):
     row = dict(zip(rundir.SAMPLE_COLUMNS, bad[0], strict=True))
     msg = (f"OVERSTEP: {len(bad)} sampled collision(s) where the fast flight time exceeds"
            f" verify's first root by more than {OVERSTEP_TOLERANCE:g}*kappa*u, first: {row}")
     ver = summary(tally)
     ver["overstepped"] = len(bad)
-    _manifest(out, plan, tally, "failed", threads, failure=msg, verification=ver,
-              session=session)
-    write_results(out, plan, tally)
+    ctx["hashes"].update(write_results(out, plan, tally))
+    _manifest(out, plan, tally, "failed", ctx, failure=msg, verification=ver)
     err = RunFailed(msg)
     err.recorded = True
     raise err
@@ -160,18 +207,17 @@ def _progress(plan, initial, total, enabled):
 
 
 
-
-
-
-def _manifest(out, plan, tally, status, threads, failure=None, verification=None, session=None):
+def _manifest(out, plan, tally, status, ctx, failure=None, verification=None):
+    """Write and return the manifest; ``ctx``: threads, session, provenance and the SHA-256 of
+    the files written so far (``hashes``)."""
     sc = plan.scene
     curves = {}
     for e, exp in enumerate(plan.experiments):
         clock = "esc_n" if "collisions" in sc.clocks else "esc_t"
         esc = getattr(tally, clock)[e]
         cens = tally.cens_n[e] if clock == "esc_n" else tally.cens_t[e]
-        done = sum(plan.chunk_particles(k) for ee, k in tally.finished if ee == e)
-        curves[exp.name] = {"particles_done": done, "censored": int(cens.sum()),
+        done = tally.finished.particles_done(plan, e)
+        curves[exp.name] = {"particles_done": done, "censored": int(cens.sum()), "stuck": 0,
                             "escaped": {c: int(esc[j].sum()) for j, c in enumerate(exp.curves)}}
     manifest = {
         "status": status,
@@ -181,12 +227,11 @@ def _manifest(out, plan, tally, status, threads, failure=None, verification=None
         "particles": plan.particles,
         "particles_total": plan.particles * len(plan.experiments),
         "chunk_size": sc.chunk_size,
-        "chunks": len(plan.chunks),
+        "chunks": plan.n_chunks,
         "chunks_done": len(tally.finished),
-        "threads": threads,
-        "session": session,
-        "versions": versions(),
-        "git": git(),
+        "threads": ctx["threads"],
+        "session": ctx["session"],
+        **ctx["provenance"],
         "started": tally.started,
         "updated": now(),
         "finished": now() if status == "complete" else None,
@@ -200,11 +245,15 @@ def _manifest(out, plan, tally, status, threads, failure=None, verification=None
                  "time": {"first": TIME_FIRST, "decades": TIME_DECADES,
                           "per_decade": sc.bins_per_decade, "below_first": [0.0, TIME_FIRST]}},
         "survival_band": "95% Wilson score interval",
+        "hashes": dict(sorted(ctx["hashes"].items())),
     }
     if failure:
         manifest["failure"] = failure
     rundir.write_json(out / rundir.MANIFEST, manifest)
     return manifest
+
+
+COUNTS_COLUMNS = ("experiment", "clock", "outcome", "lower_edge", "count")
 
 
 def survival_rows(plan, tally):
@@ -227,27 +276,40 @@ def survival_rows(plan, tally):
     return rows
 
 
-def write_results(out, plan, tally):
-    """survival.csv, counts.csv (or portrait.npy) and sample.csv from the merged tally."""
+def result_files(plan, tally):
+    """{name: text or bytes} of survival.csv, counts.csv (or portrait.npy) and sample.csv."""
     sc = plan.scene
+    files = {}
     if sc.kind == "phase-space":
-        rundir.save_npy_atomic(out / "portrait.npy", tally.portrait)
+        buf = io.BytesIO()
+        np.save(buf, tally.portrait)
+        files["portrait.npy"] = buf.getvalue()
     else:
-        rundir.write_csv(out / "survival.csv", ["curve", "clock", "x", "p", "p_lo", "p_hi"],
-                         survival_rows(plan, tally))
-        rows = []
-        for e, exp in enumerate(plan.experiments):
-            for clock in sc.clocks:
-                edges = plan.n_edges if clock == "collisions" else plan.t_edges
-                esc = tally.esc_n[e] if clock == "collisions" else tally.esc_t[e]
-                cens = tally.cens_n[e] if clock == "collisions" else tally.cens_t[e]
-                outcomes = [(c, esc[j]) for j, c in enumerate(exp.curves)] + [("censored", cens)]
-                for name, counts in outcomes:
-                    for b in np.flatnonzero(counts):
-                        rows.append([exp.name, clock, name, repr(float(edges[b])),
-                                     int(counts[b])])
-        rundir.write_csv(out / "counts.csv",
-                         ["experiment", "clock", "outcome", "lower_edge", "count"], rows)
+        files["survival.csv"] = rundir.csv_text(["curve", "clock", "x", "p", "p_lo", "p_hi"],
+                                                survival_rows(plan, tally))
+        files["counts.csv"] = rundir.csv_text(COUNTS_COLUMNS, counts_rows(plan, tally))
     samples = sorted(tally.samples, key=lambda r: (r[0], r[1], r[2]))
-    rundir.write_csv(out / "sample.csv", rundir.SAMPLE_COLUMNS,
-                     [[*map(int, r[:4]), *map(repr, map(float, r[4:]))] for r in samples])
+    files["sample.csv"] = rundir.csv_text(
+        rundir.SAMPLE_COLUMNS, [[*map(int, r[:4]), *map(repr, map(float, r[4:]))] for r in samples])
+    return files
+
+
+def counts_rows(plan, tally):
+    """Rows experiment,clock,outcome,lower_edge,count of counts.csv: the non-zero bins."""
+    rows = []
+    for e, exp in enumerate(plan.experiments):
+        for clock in plan.scene.clocks:
+            edges = plan.n_edges if clock == "collisions" else plan.t_edges
+            esc = tally.esc_n[e] if clock == "collisions" else tally.esc_t[e]
+            cens = tally.cens_n[e] if clock == "collisions" else tally.cens_t[e]
+            outcomes = [(c, esc[j]) for j, c in enumerate(exp.curves)] + [("censored", cens)]
+            for name, counts in outcomes:
+                for b in np.flatnonzero(counts):
+                    rows.append([exp.name, clock, name, repr(float(edges[b])), int(counts[b])])
+    return rows
+
+
+def write_results(out, plan, tally):
+    """Write ``result_files`` atomically; returns {name: SHA-256}."""
+    return {name: rundir.write_atomic(out / name, data)
+            for name, data in result_files(plan, tally).items()}

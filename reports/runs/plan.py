@@ -1,9 +1,17 @@
 """The plan of a run: its chunks, their starts and verification picks, and the histogram bins.
 
-The run is a fixed list of chunks (experiment e, chunk k) of at most ``scene.chunk_size`` starts.
-Chunk (e, k) draws its starts, its verification picks and their collision indices from
+The run is a fixed sequence of chunks (experiment e, chunk k) of at most ``scene.chunk_size``
+starts, generated lazily (``Plan.chunks`` is an iterator: memory does not grow with the particle
+count). Chunk (e, k) draws its starts, its verification picks and their collision indices from
 ``numpy.random.SeedSequence(seed, spawn_key=(e, k))`` only, so a result depends on
 (scene, seed, particles) and not on threads, chunk order or interruptions.
+
+Every chunk carries verification picks, except in runs of more than ``MAX_SAMPLED_CHUNKS``
+chunks: there only the chunks whose global index e*chunks_per_experiment + k is a multiple of
+``sample_stride`` do, so the verification sample (held in memory and in the checkpoint) stays
+bounded. The picks are drawn after the starts, so the counts do not depend on the stride.
+
+``estimate`` gives the time and disk a run needs; ``check_size`` refuses absurd sizes.
 """
 
 from __future__ import annotations
@@ -33,6 +41,22 @@ TIME_FIRST, TIME_DECADES = 0.1, 9  # time bins: [0, 0.1), then 0.1 .. 1e8
 SAMPLE_DEPTH = 10**6  # sampled collision indices are log-uniform in [1, min(horizon, this)]
 
 
+MAX_SAMPLED_CHUNKS = 2**14  # more chunks than this: only every sample_stride-th one is sampled
+
+
+# Assumed throughput for estimates: the paper-scale run of paper-escape (10^8 particles per curve,
+# 6e8 in all, 1558 s on 2 cores, 28.8 collisions per particle on average;
+# reports/report/paper-scale/paper-escape-1e8/manifest.json). Scene-dependent: a longer horizon
+# or a smaller hole costs more per particle.
+PARTICLES_PER_S = 6e8 / 1558.12
+
+
+MAX_RUN_S = 365.25 * 86400  # refuse runs estimated above one year of that machine's time
+
+
+SAMPLE_ROW_BYTES = 500  # one verified sample row: ~250 B in sample.csv, as much in the checkpoint
+
+
 @dataclass
 class Plan:
     """What a run computes: the scene with its particle count and seed, chunks and bins."""
@@ -45,15 +69,37 @@ class Plan:
     samples_per_chunk: int
     n_edges: np.ndarray
     t_edges: np.ndarray
+    sample_stride: int = 1
 
     @property
     def chunks(self):
-        return [(e, k) for e in range(len(self.experiments))
-                for k in range(self.chunks_per_experiment)]
+        """Iterator over every chunk (e, k) in the fixed order (not a list: see module doc)."""
+        return ((e, k) for e in range(len(self.experiments))
+                for k in range(self.chunks_per_experiment))
+
+    @property
+    def n_chunks(self):
+        return self.chunks_per_experiment * len(self.experiments)
+
+    @property
+    def particles_total(self):
+        return self.particles * len(self.experiments)
 
     def chunk_particles(self, k):
         size = self.scene.chunk_size
         return min(size, self.particles - k * size)
+
+    def prefix_particles(self, count):
+        """Starts in chunks 0 .. count-1 of one experiment."""
+        return min(count * self.scene.chunk_size, self.particles)
+
+    def sampled(self, e, k):
+        """Whether chunk (e, k) carries verification picks."""
+        return (e * self.chunks_per_experiment + k) % self.sample_stride == 0
+
+    @property
+    def sampled_chunks(self):
+        return -(-self.n_chunks // self.sample_stride)
 
 
 def make_plan(scene, particles=None, seed=None):
@@ -68,12 +114,34 @@ def make_plan(scene, particles=None, seed=None):
     per_exp = math.ceil(particles / scene.chunk_size)
     total_chunks = per_exp * len(experiments)
     total = particles * len(experiments)
+    stride = math.ceil(total_chunks / MAX_SAMPLED_CHUNKS)
+    sampled_chunks = math.ceil(total_chunks / stride)
     # at least scene.verify_samples a run, scaled down for tiny runs (but never to none)
     wanted = min(scene.verify_samples, max(1, total // 10))
-    samples = max(1, math.ceil(wanted / total_chunks))
+    samples = max(1, math.ceil(wanted / sampled_chunks))
     n_edges = log_edges(1.0, COLLISION_DECADES, scene.bins_per_decade, integer=True)
     t_edges = np.concatenate([[0.0], log_edges(TIME_FIRST, TIME_DECADES, scene.bins_per_decade)])
-    return Plan(scene, particles, seed, experiments, per_exp, samples, n_edges, t_edges)
+    return Plan(scene, particles, seed, experiments, per_exp, samples, n_edges, t_edges, stride)
+
+
+def estimate(plan):
+    """(seconds, bytes) a run needs: seconds = particles / PARTICLES_PER_S (2 cores, a
+    paper-escape-like scene), bytes = the verification sample twice (sample.csv, checkpoint)
+    plus 1 MB of histograms and manifest."""
+    seconds = plan.particles_total / PARTICLES_PER_S
+    rows = min(plan.sampled_chunks * plan.samples_per_chunk, plan.particles_total)
+    return seconds, rows * SAMPLE_ROW_BYTES + 10**6
+
+
+def check_size(plan):
+    """ValueError for a run estimated above ``MAX_RUN_S``, with its estimated time and disk."""
+    seconds, disk = estimate(plan)
+    if seconds > MAX_RUN_S:
+        raise ValueError(
+            f"--particles {plan.particles}: {plan.particles_total:.3g} particles in all would take"
+            f" about {seconds / MAX_RUN_S:.3g} years here ({PARTICLES_PER_S:.3g} particles/s, the"
+            f" paper-scale paper-escape run on 2 cores) and {disk / 1e6:.3g} MB of disk; the limit"
+            f" is {MAX_RUN_S * PARTICLES_PER_S:.2g} particles in all (one year): use fewer")
 
 
 def chunk_starts(plan, e, k):
@@ -83,7 +151,7 @@ def chunk_starts(plan, e, k):
     rng = np.random.default_rng(np.random.SeedSequence(plan.seed, spawn_key=(e, k)))
     phi = rng.uniform(exp.phi[0], exp.phi[1], m)
     v = rng.uniform(exp.v[0], exp.v[1], m)
-    s = min(plan.samples_per_chunk, m)
+    s = min(plan.samples_per_chunk, m) if plan.sampled(e, k) else 0
     picks = rng.choice(m, size=s, replace=False)
     depth = min(plan.scene.max_collisions or SAMPLE_DEPTH, SAMPLE_DEPTH)
     targets = np.floor(depth ** rng.random(s)).astype(np.int64)

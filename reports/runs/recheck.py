@@ -1,21 +1,41 @@
-"""``bouncer verify RUN_DIR``: recompute a finished run's verification sample.
+"""``bouncer verify RUN_DIR``: audit a run directory and recompute its verification sample.
 
-For every row of ``sample.csv`` (a pre-collision state (phi, v) and the fast result):
+Discrepancies are reported by file and line; any one fails the audit (exit status 1):
 
-* ``fastpath.step(phi, v, eps)`` must give the stored (phi1, v1, tau) bit for bit (the run is
-  reproducible on this machine and version);
-* ``verify.step`` recomputes tau_ref; the error |tau - tau_ref| / (tau_ref*kappa*u) is compared
-  with the run's, and tau - tau_ref > 16*kappa*u*tau_ref (an overstep) fails the check.
+1. hashes: every file named in the manifest's ``hashes`` (outputs, scene, checkpoint) has that
+   SHA-256;
+2. the checkpoint passes its own digest and the invariants of ``reports.runs.integrity``, and
+   holds every chunk of the plan;
+3. counts.csv equals the counts.csv written from the checkpoint; survival.csv equals the one
+   re-derived from counts.csv by the run's own writer (byte for byte), lies in [0, 1] and does not
+   rise; per curve escapes + censored + stuck = particles (portrait.npy for phase-space scenes);
+4. sample.csv equals the checkpoint's sample; the manifest's figures (collisions, chunks,
+   escaped and censored per curve, sampled, uncertain settled, worst error) agree with the
+   checkpoint and the sample;
+5. for every row of sample.csv (a pre-collision state (phi, v) and the fast result):
+   ``fastpath.step(phi, v, eps)`` gives the stored (phi1, v1, tau) bit for bit, and
+   ``verify.step`` gives the stored tau_ref and error again; an overstep
+   tau - tau_ref > 16*kappa*u*tau_ref fails the check.
 """
 
 from __future__ import annotations
 
+import json
+import sys
 from pathlib import Path
+
+import numpy as np
 
 import fastpath
 from reports.runs import rundir
 from reports.runs.chunk import OVERSTEP_TOLERANCE, check_sample
+from reports.runs.counts import CheckpointError, Tally
+from reports.runs.driver import result_files, survival_rows
+from reports.runs.integrity import curve_problems, parse_counts, survival_problems, tally_problems
+from reports.runs.plan import make_plan
 from reports.runs.scenes import parse_scene
+
+SHOWN = 5  # discrepancies shown per check; the count of all of them is reported
 
 
 def load_run(run_dir):
@@ -23,43 +43,186 @@ def load_run(run_dir):
     run_dir = Path(run_dir)
     if not (run_dir / rundir.MANIFEST).is_file() or not (run_dir / "scene.toml").is_file():
         raise ValueError(f"{run_dir} is not a run directory (no manifest.json and scene.toml)")
-    manifest = rundir.read_json(run_dir / rundir.MANIFEST)
-    scene = parse_scene((run_dir / "scene.toml").read_text(encoding="utf-8"), "stored scene")
-    return manifest, scene
+    try:
+        manifest = rundir.read_json(run_dir / rundir.MANIFEST)
+        text = (run_dir / "scene.toml").read_text(encoding="utf-8")
+    except (UnicodeDecodeError, json.JSONDecodeError) as err:
+        raise ValueError(f"{run_dir}: manifest.json or scene.toml is unreadable: {err}") from None
+    return manifest, parse_scene(text, f"{run_dir / 'scene.toml'}")
 
 
-def recheck(run_dir):
-    """Recompute the sample; returns (ok, report lines)."""
+def _text(path):
+    try:
+        return path.read_bytes().decode("utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+
+
+def _compare(name, expected, found, what):
+    """Line-by-line differences of two texts: ["name:LINE: ..."]."""
+    exp, got = expected.splitlines(), found.splitlines()
+    out = [f"{name}:{i}: {what} has {e!r}, the file {g!r}"
+           for i, (e, g) in enumerate(zip(exp, got, strict=False), start=1) if e != g]
+    if len(exp) != len(got):
+        out.append(f"{name}: {len(got)} lines, {what} has {len(exp)}")
+    return out
+
+
+def _hashes(run_dir, manifest, expected):
+    recorded = manifest.get("hashes")
+    if not recorded:
+        return ["manifest.json: no content hashes (a run of an earlier version): its files"
+                " cannot be checked against it"]
+    out = [f"manifest.json: no hash recorded for {name}" for name in expected
+           if name not in recorded]
+    for name, digest in recorded.items():
+        path = run_dir / name
+        if not path.is_file():
+            out.append(f"{name}: missing (the manifest records its hash)")
+        elif rundir.sha256_file(path) != digest:
+            out.append(f"{name}: SHA-256 differs from the manifest's (edited or corrupted)")
+    return out
+
+
+def _outputs(run_dir, plan, tally):
+    """Steps 3 and 4 of the module docstring for the files that hold counts and the sample;
+    without a usable checkpoint (``tally`` None) only what counts.csv alone allows."""
+    out = []
+    written = result_files(plan, tally) if tally is not None else {}
+    if plan.scene.kind == "phase-space":
+        path = run_dir / "portrait.npy"
+        if tally is not None and (not path.is_file()
+                                  or path.read_bytes() != written["portrait.npy"]):
+            out.append("portrait.npy: differs from the checkpoint's portrait (or is missing)")
+    else:
+        counts_text, survival_text = _text(run_dir / "counts.csv"), _text(run_dir / "survival.csv")
+        if counts_text is None or survival_text is None:
+            return out + ["counts.csv or survival.csv is missing or not UTF-8 text"]
+        if tally is not None:
+            out += _compare("counts.csv", written["counts.csv"], counts_text, "the checkpoint")
+        counts, stuck, problems, first = parse_counts(plan, counts_text)
+        out += problems
+        done = [plan.particles] * len(plan.experiments)
+        out += [f"counts.csv:{first.get((e, clock), '?')}: {msg}"
+                for e, clock, msg in curve_problems(plan, counts, done, stuck)]
+        with np.errstate(invalid="ignore"):  # inconsistent counts give p > 1: reported below
+            derived = rundir.csv_text(["curve", "clock", "x", "p", "p_lo", "p_hi"],
+                                      survival_rows(plan, counts))
+        out += _compare("survival.csv", derived, survival_text, "the curve from counts.csv")
+        out += survival_problems(survival_text)
+    sample_text = _text(run_dir / "sample.csv")
+    if sample_text is None:
+        out.append("sample.csv is missing or not UTF-8 text")
+    elif tally is not None:
+        out += _compare("sample.csv", written["sample.csv"], sample_text, "the checkpoint")
+    return out
+
+
+def _manifest_figures(manifest, plan, tally, worst):
+    """Step 4: the manifest's figures against the checkpoint and the recomputed worst error."""
+    ver = manifest.get("verification", {})
+    pairs = [("collisions", manifest.get("collisions"), tally.collisions),
+             ("chunks_done", manifest.get("chunks_done"), len(tally.finished)),
+             ("chunks", manifest.get("chunks"), plan.n_chunks),
+             ("particles_total", manifest.get("particles_total"), plan.particles_total),
+             ("verification.sampled", ver.get("sampled"), len(tally.samples)),
+             ("verification.uncertain_settled", ver.get("uncertain_settled"), tally.settled),
+             ("verification.worst_error", ver.get("worst_error"), worst)]
+    for e, exp in enumerate(plan.experiments):
+        if plan.scene.kind == "phase-space":
+            break
+        clock = "collisions" if "collisions" in plan.scene.clocks else "time"
+        esc = tally.esc_n[e] if clock == "collisions" else tally.esc_t[e]
+        cens = tally.cens_n[e] if clock == "collisions" else tally.cens_t[e]
+        curve = manifest.get("curves", {}).get(exp.name, {})
+        pairs.append((f"curves.{exp.name}.censored", curve.get("censored"), int(cens.sum())))
+        for j, c in enumerate(exp.curves):
+            pairs.append((f"curves.{exp.name}.escaped.{c}", curve.get("escaped", {}).get(c),
+                          int(esc[j].sum())))
+    return [f"manifest.json: {key} is {got!r}, the checkpoint and sample give {want!r}"
+            for key, got, want in pairs if got != want]
+
+
+def _sample(run_dir, scene, progress):
+    """Step 5: (rows, worst recomputed error, overstepped lines, discrepancies)."""
+    rows = rundir.read_csv(run_dir / "sample.csv") if (run_dir / "sample.csv").is_file() else []
+    worst, overstepped, out = 0.0, [], []
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=len(rows), desc="verify sample", unit="collision", file=sys.stderr)
+    for line, row in enumerate(rows, start=2):
+        try:
+            phi, v = float(row["phi"]), float(row["v"])
+            stored = (float(row["phi1"]), float(row["v1"]), float(row["tau"]))
+            tau_ref, error = float(row["tau_ref"]), float(row["error"])
+        except (KeyError, TypeError, ValueError):
+            out.append(f"sample.csv:{line}: not a sample row")
+            continue
+        if tuple(fastpath.step(phi, v, scene.eps)) != stored:
+            out.append(f"sample.csv:{line}: fastpath.step gives {fastpath.step(phi, v, scene.eps)}"
+                       f", the file {stored} (not reproduced bit for bit)")
+        ref, err, overstep = check_sample(phi, v, stored[2], scene.eps)
+        worst = max(worst, err)
+        if (ref, err) != (tau_ref, error):
+            out.append(f"sample.csv:{line}: verify gives tau_ref {ref!r}, error {err!r}; the file"
+                       f" {tau_ref!r}, {error!r}")
+        if overstep:
+            overstepped.append(line)
+            out.append(f"sample.csv:{line}: OVERSTEP: tau exceeds verify's first root by more"
+                       f" than {OVERSTEP_TOLERANCE:g}*kappa*u")
+        if bar is not None:
+            bar.update()
+    if bar is not None:
+        bar.close()
+    return rows, worst, overstepped, out
+
+
+def recheck(run_dir, progress=False):
+    """Audit the run directory (module docstring); returns (ok, report lines)."""
     run_dir = Path(run_dir)
     manifest, scene = load_run(run_dir)
-    if not (run_dir / "sample.csv").is_file():
-        raise ValueError(f"{run_dir} has no sample.csv (status {manifest['status']})")
-    rows = rundir.read_csv(run_dir / "sample.csv")
-    worst, mismatched, overstepped = 0.0, [], []
-    for row in rows:
-        phi, v = float(row["phi"]), float(row["v"])
-        stored = (float(row["phi1"]), float(row["v1"]), float(row["tau"]))
-        if tuple(fastpath.step(phi, v, scene.eps)) != stored:
-            mismatched.append(row)
-        _, error, overstep = check_sample(phi, v, stored[2], scene.eps)
-        worst = max(worst, error)
-        if overstep:
-            overstepped.append(row)
-    recorded = manifest["verification"]["worst_error"]
-    lines = [
-        f"run {run_dir}: scene {scene.name}, status {manifest['status']}",
+    status = manifest.get("status")
+    lines = [f"run {run_dir}: scene {scene.name}, status {status}"]
+    if not (run_dir / "sample.csv").is_file() and status != "complete":
+        raise ValueError(f"{run_dir} has no sample.csv (status {status}): nothing to verify yet")
+    plan = make_plan(scene, manifest.get("particles"), manifest.get("seed"))
+    outputs = (["portrait.npy"] if scene.kind == "phase-space" else ["survival.csv", "counts.csv"])
+    problems = _hashes(run_dir, manifest, ["scene.toml", "sample.csv", rundir.CHECKPOINT,
+                                           *outputs])
+    try:
+        tally = Tally.load(run_dir / rundir.CHECKPOINT)
+    except CheckpointError as err:
+        tally = None
+        problems.append(str(err))
+    if tally is not None:
+        invariants = tally_problems(plan, tally)
+        problems += [f"{rundir.CHECKPOINT}: {msg}" for msg in invariants]
+        if invariants:
+            tally = None
+        elif len(tally.finished) != plan.n_chunks:
+            problems.append(f"{rundir.CHECKPOINT}: {len(tally.finished)} of {plan.n_chunks}"
+                            " chunks finished")
+    problems += _outputs(run_dir, plan, tally)
+    rows, worst, overstepped, sample_problems = _sample(run_dir, scene, progress)
+    problems += sample_problems
+    if tally is not None:
+        problems += _manifest_figures(manifest, plan, tally, worst)
+    if status != "complete":
+        problems.append(f"manifest.json: the run is not complete (status {status})")
+    recorded = manifest.get("verification", {}).get("worst_error", float("nan"))
+    lines += [
         f"{len(rows)} sampled collisions recomputed by verify: worst error {worst:.3g} kappa*u"
         f" (recorded {recorded:.3g}), {len(overstepped)} overstepped"
         f" (tolerance {OVERSTEP_TOLERANCE:g} kappa*u)",
-        f"fastpath reproduces {len(rows) - len(mismatched)} of {len(rows)} stored results"
-        " bit for bit",
+        "checked: content hashes, checkpoint invariants, counts.csv and survival.csv re-derived,"
+        " sample.csv, the manifest's figures",
     ]
-    for row in overstepped[:5]:
-        lines.append(f"OVERSTEP: {dict(row)}")
-    for row in mismatched[:5]:
-        lines.append(f"NOT REPRODUCED: {dict(row)}")
-    ok = not overstepped and not mismatched and manifest["status"] == "complete"
-    if manifest["status"] != "complete":
-        lines.append(f"the run is not complete (status {manifest['status']})")
-    lines.append("OK" if ok else "FAILED")
-    return ok, lines
+    for problem in problems[:SHOWN * 4]:
+        lines.append(problem)
+    if len(problems) > SHOWN * 4:
+        lines.append(f"... and {len(problems) - SHOWN * 4} more")
+    lines.append("OK" if not problems else f"FAILED: {len(problems)} discrepancies")
+    return not problems, lines
+

@@ -8,11 +8,15 @@
     portrait.npy     phase-space histogram counts[phi_bin, v_bin]     (phase-space scenes)
     sample.csv       the verification sample, recomputed by ``bouncer verify``
     checkpoint.npz   merged counts and the finished chunks (``--resume``)
+    .bouncer.lock    the writer's lock, .bouncer.lock.json its holder (``reports.runs.lock``)
+
+``manifest.json`` records the SHA-256 of every other file under ``hashes``.
 """
 
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import json
 import os
@@ -22,18 +26,48 @@ from pathlib import Path
 import numpy as np
 
 MANIFEST = "manifest.json"
+CHECKPOINT = "checkpoint.npz"
 
 
 class RunFailed(Exception):
     """The run could not be trusted (an overstep, an unsettled collision): exit status 1."""
 
 
+class RunInterrupted(Exception):
+    """Ctrl-C: the checkpoint holds ``done`` of ``total`` chunks of the run in ``out``."""
+
+    def __init__(self, out, done, total):
+        super().__init__(f"interrupted: {done} of {total} chunks are checkpointed in {out}")
+        self.out, self.done, self.total = out, done, total
+
+
+def os_error_text(err):
+    """One line for an OSError, naming its path(s): "PATH: Permission denied"."""
+    paths = [str(p) for p in (err.filename, err.filename2) if p is not None]
+    what = err.strerror or type(err).__name__
+    return f"{' -> '.join(paths)}: {what}" if paths else f"{what}: {err}"
+
+
 SAMPLE_COLUMNS = ("experiment", "chunk", "particle", "n", "phi", "v", "phi1", "v1", "tau",
                   "tau_ref", "error")
 
 
+def sha256_bytes(data):
+    """SHA-256 (hex) of text (as UTF-8) or bytes: what ``write_atomic`` writes."""
+    return hashlib.sha256(data.encode() if isinstance(data, str) else data).hexdigest()
+
+
+def sha256_file(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
 def write_atomic(path, data):
-    """Write text or bytes to ``path`` via a temporary file in the same folder + os.replace."""
+    """Write text or bytes to ``path`` via a temporary file in the same folder + os.replace;
+    returns the SHA-256 of what was written."""
     path = Path(path)
     tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
     mode = "wb" if isinstance(data, bytes) else "w"
@@ -42,6 +76,7 @@ def write_atomic(path, data):
         f.flush()
         os.fsync(f.fileno())
     os.replace(tmp, path)
+    return sha256_bytes(data)
 
 
 def write_json(path, obj):
@@ -53,12 +88,16 @@ def read_json(path):
         return json.load(f)
 
 
-def write_csv(path, header, rows):
+def csv_text(header, rows):
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
     writer.writerow(header)
     writer.writerows(rows)
-    write_atomic(path, buf.getvalue())
+    return buf.getvalue()
+
+
+def write_csv(path, header, rows):
+    return write_atomic(path, csv_text(header, rows))
 
 
 def read_csv(path):
@@ -69,35 +108,55 @@ def read_csv(path):
 def save_npz_atomic(path, **arrays):
     buf = io.BytesIO()
     np.savez(buf, **arrays)
-    write_atomic(path, buf.getvalue())
+    return write_atomic(path, buf.getvalue())
 
 
 def save_npy_atomic(path, array):
     buf = io.BytesIO()
     np.save(buf, array)
-    write_atomic(path, buf.getvalue())
+    return write_atomic(path, buf.getvalue())
 
 
-def prepare(out, resume, force):
-    """Check the run directory: returns True when resuming an existing run.
+LOCK_FILES = (".bouncer.lock", ".bouncer.lock.json")  # reports.runs.lock: kept by --force
+
+
+def _entries(out):
+    return [p for p in out.iterdir() if p.name not in LOCK_FILES]
+
+
+def check_out(out, resume, force):
+    """Check the run directory without touching it: returns True when resuming a run.
 
     A directory that exists and is not empty is used only with ``resume`` (it must hold a run)
     or replaced with ``force`` (only if it holds a run: never deletes other folders).
-    Raises ValueError otherwise.
+    Raises ValueError otherwise, and for a path that is a file.
     """
     out = Path(out)
-    exists = out.exists() and (not out.is_dir() or any(out.iterdir()))
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"--out {out} is a file, not a directory")
+    exists = out.is_dir() and bool(_entries(out))
     is_run = (out / MANIFEST).is_file()
     if resume:
         if not is_run:
             raise ValueError(f"--resume: {out} holds no run (no {MANIFEST})")
         return True
-    if exists:
-        if not force:
-            raise ValueError(f"run directory {out} exists; use --resume to continue it or"
-                             " --force to overwrite it")
-        if not is_run:
-            raise ValueError(f"--force: {out} exists and is not a run directory; not deleting it")
-        shutil.rmtree(out)
-    out.mkdir(parents=True, exist_ok=True)
+    if exists and not force:
+        raise ValueError(f"run directory {out} exists; use --resume to continue it or"
+                         " --force to overwrite it")
+    if exists and not is_run:
+        raise ValueError(f"--force: {out} exists and is not a run directory; not deleting it")
     return False
+
+
+def prepare(out, resume, force):
+    """``check_out``, then create the directory, or empty it (but for its lock) with ``force``."""
+    out = Path(out)
+    resuming = check_out(out, resume, force)
+    if not resuming and out.is_dir():
+        for path in _entries(out):
+            if path.is_dir() and not path.is_symlink():
+                shutil.rmtree(path)
+            else:
+                path.unlink()
+    out.mkdir(parents=True, exist_ok=True)
+    return resuming

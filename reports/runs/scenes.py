@@ -134,7 +134,11 @@ def load_scene(name_or_path) -> Scene:
     if not path.is_file():
         names = ", ".join(builtin)
         raise ValueError(f"no scene {key!r}: not a built-in ({names}) and not a file")
-    return parse_scene(path.read_text(encoding="utf-8"), origin=str(path))
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise ValueError(f"scene file {path} is not UTF-8 text (is it a TOML file?)") from None
+    return parse_scene(text, origin=str(path))
 
 
 def parse_scene(text: str, origin: str = "scene") -> Scene:

@@ -39,6 +39,7 @@ import numpy as np
 from reports.runs import cluster, rundir
 from reports.runs.chunk import check_result
 from reports.runs.executor import Executor
+from reports.runs.lock import RunLock
 from reports.runs.plan import make_plan
 from reports.runs.provenance import git, now, versions
 from reports.runs.rundir import RunFailed
@@ -172,7 +173,15 @@ def sweep(base: Scene, out, grid=None, n_star=N_STAR, particles=PARTICLES, seed=
     if scheduler is not None:
         cluster.check_available()
     out = Path(out)
-    rundir.prepare(out, False, force)
+    rundir.check_out(out, False, force)  # refuse before creating anything
+    with RunLock(out):
+        rundir.prepare(out, False, force)
+        return _sweep_locked(base, out, axes, values, points, live, n_star, particles, threads,
+                             scheduler, progress)
+
+
+def _sweep_locked(base, out, axes, values, points, live, n_star, particles, threads, scheduler,
+                  progress):
     plans = {i: make_plan(points[i]["scene"]) for i in live}
     jobs = [((i, k), (points[i]["scene"], base.seed, 0, k, particles, threads))
             for i in live for k in range(plans[i].chunks_per_experiment)]

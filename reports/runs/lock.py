@@ -1,0 +1,66 @@
+"""One writer per run directory: an OS file lock (``filelock``) with the holder written beside it.
+
+``RunLock(out)`` creates ``out`` if needed and takes ``out/.bouncer.lock`` without waiting. The
+holder's pid, host, start time and command line go into ``out/.bouncer.lock.json`` so that a second
+``bouncer run`` (``--resume`` or ``--force`` included) is refused with a message naming it. The OS
+releases the lock when its process dies (even by kill -9), so a stale sidecar never blocks a run:
+the next holder overwrites it.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import socket
+import sys
+from pathlib import Path
+
+from filelock import FileLock, Timeout
+
+from reports.runs.provenance import now
+
+LOCK_NAME = ".bouncer.lock"
+HOLDER_NAME = ".bouncer.lock.json"
+
+
+class RunBusy(ValueError):
+    """Another process writes this run directory: exit status 2."""
+
+
+def holder(out):
+    """The recorded holder of ``out``'s lock as a phrase (or "another process")."""
+    try:
+        info = json.loads((Path(out) / HOLDER_NAME).read_text(encoding="utf-8"))
+        return (f"pid {info['pid']} on {info['host']} since {info['started']}"
+                f" ({info['command']})")
+    except (OSError, ValueError, KeyError, TypeError):
+        return "another process"
+
+
+class RunLock:
+    """Context manager: the lock of run directory ``out`` for the duration of the block."""
+
+    def __init__(self, out):
+        self.out = Path(out)
+        self.lock = None
+
+    def __enter__(self):
+        self.out.mkdir(parents=True, exist_ok=True)
+        self.lock = FileLock(self.out / LOCK_NAME, timeout=0)
+        try:
+            self.lock.acquire()
+        except Timeout:
+            raise RunBusy(f"{self.out} is being written by {holder(self.out)}; wait for it to"
+                          " finish or stop it, then use --resume") from None
+        info = {"pid": os.getpid(), "host": socket.gethostname(), "started": now(),
+                "command": " ".join(["bouncer", *sys.argv[1:]])}
+        (self.out / HOLDER_NAME).write_text(json.dumps(info) + "\n", encoding="utf-8")
+        return self
+
+    def __exit__(self, *exc):
+        try:
+            (self.out / HOLDER_NAME).unlink(missing_ok=True)
+        except OSError:
+            pass  # a directory made read-only mid-run: the lock itself still goes
+        self.lock.release()
+        return False
