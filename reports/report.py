@@ -12,12 +12,15 @@ Sections, each computed in this run (nothing is copied in by hand):
 4. physics checks against published results (``reports.paper.physics_checks``);
 5. optionally, finished runs given with ``--include-run`` (e.g. the paper-scale escape run).
 
-Figures are written as PNG and PDF next to ``report.md``; files are replaced atomically.
+Figures are written as PNG and PDF next to ``report.md``, the seed's claims with their verdicts
+to ``report.json`` (the claims of ``report.md`` are rendered from it); files are replaced
+atomically.
 """
 
 from __future__ import annotations
 
 import datetime
+import json
 import math
 import os
 import platform
@@ -28,6 +31,7 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
+from reports.paper.claims import claims_markdown, write_report_json
 from reports.paper.figures import paper_figures_section
 from reports.paper.physics_checks import physics_checks_section
 from reports.precision.bench import orbit_table, time_orbits
@@ -161,8 +165,10 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
     parts.append(timed("speed", lambda: _speed_section(quick, echo)))
     parts.append(timed("work-precision and hard cases",
                        lambda: _precision_sections(out_dir, quick, compare, echo)))
-    parts.append(timed("seed's figures", lambda: paper_figures_section(
-        out_dir, particles=particles, quick=quick, echo=echo, runs_dir=out_dir / "runs")))
+    paper_md, claims = timed("seed's figures", lambda: paper_figures_section(
+        out_dir, particles=particles, quick=quick, echo=echo, runs_dir=out_dir / "runs",
+        include_runs=include_runs))
+    parts.append(paper_md)
     parts.append(timed("physics checks",
                        lambda: physics_checks_section(out_dir, quick=quick, echo=echo)))
     for run_dir in include_runs:
@@ -172,7 +178,16 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
     rows = "\n".join(f"| {label} | {seconds:.0f} |" for label, seconds in timings)
     parts.append("## How long this report took\n\n| section | seconds |\n|---|---|\n"
                  f"{rows}\n| total | {total:.0f} |\n")
+    write_report_json(out_dir / "report.json", claims, built=_now_utc(),
+                      particles_per_curve=particles, quick=quick)
+    stored = json.loads((out_dir / "report.json").read_text(encoding="utf-8"))["claims"]
+    parts.insert(1, "## The seed's claims: verdicts\n\nRendered from `report.json` (every claim "
+                 "with its evidence, uncertainties, rule and run).\n\n" + claims_markdown(stored))
     path = out_dir / "report.md"
     rundir.write_atomic(path, "\n".join(parts))
     echo(f"report written to {path} in {total:.0f} s")
     return path
+
+
+def _now_utc():
+    return f"{datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC"

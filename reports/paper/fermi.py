@@ -12,6 +12,7 @@ import numpy as np
 
 from fastpath.moments import moments
 from reports.paper.check import Check, agree
+from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim
 from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit, verify_sample
 
 # Fermi acceleration ensemble (eps = 0.6, the seed's escape start box)
@@ -103,3 +104,50 @@ def fermi_checks(fermi):
               f"{fermi.t_window[1]:.3g} (all particles reach it); {common}",
               agree(fermi.beta_t, fermi.beta_t_err, 1 / 3)),
     ]
+
+
+WINDOW_SHIFT_DECADES = 0.25
+EXPONENT_GAP = 0.5 - 1 / 3  # the two published exponents the check must tell apart
+
+
+def _window_family(x, y, window):
+    """Slopes over the window with its start moved 10**(+-1/4) and its end pulled in by
+    10**(1/4) (as ``reports.stats.analysis.systematic``): their half-range."""
+    lo, hi = window
+    f = 10 ** WINDOW_SHIFT_DECADES
+    slopes = [_window_slope(x, y, a, b)[0] for a in (lo / f, lo, lo * f) for b in (hi / f, hi)]
+    slopes = [s for s in slopes if math.isfinite(s)]
+    return 0.5 * (max(slopes) - min(slopes)) if slopes else math.nan
+
+
+def fermi_claims(fermi):
+    """Claims ``fermi-n`` (<v> ~ n^(1/2)) and ``fermi-t`` (<v> ~ t^(1/3)).
+
+    Rule: U = 1.96 sigma (bootstrap over particle blocks) + the window family's half-range.
+    confirmed: |beta - expected| <= U and U <= (1/2 - 1/3)/2 (the measurement tells the two
+    published exponents apart); refuted: |beta - expected| > U; inconclusive otherwise.
+    """
+    out = []
+    for key, beta, err, expected, x, y, window, unit in (
+            ("n", fermi.beta_n, fermi.beta_n_err, 0.5, fermi.n, fermi.mean_v_n, fermi.n_window,
+             "n (collisions)"),
+            ("t", fermi.beta_t, fermi.beta_t_err, 1 / 3, fermi.t, fermi.mean_v_t,
+             fermi.t_window, "t")):
+        sys = _window_family(x, y, window)
+        u = 1.96 * err + sys
+        off = abs(beta - expected)
+        verdict = (INCONCLUSIVE if not math.isfinite(u) else REFUTED if off > u else
+                   CONFIRMED if u <= EXPONENT_GAP / 2 else INCONCLUSIVE)
+        out.append(Claim(
+            id=f"fermi-{key}", figure="fermi",
+            seed_says=f"Fermi acceleration: <v> grows as {unit.split()[0]}^"
+                      f"{'1/2' if key == 'n' else '1/3'} (the seed's Section 3 argument)",
+            verdict=verdict,
+            evidence=f"slope of log<v> against log {unit} over [{window[0]:g}, {window[1]:.3g}]"
+                     f" = {beta:.4f} +- {err:.4f} (bootstrap over 64 particle blocks, "
+                     f"{fermi.particles} particles) +- {sys:.3f} (window family); "
+                     f"|beta - {expected:.4g}| = {off:.4f} against U = {u:.3f}.",
+            particles_per_curve=fermi.particles,
+            statistical={"beta": beta, "sigma": err}, systematic={"beta": sys}, run=None,
+            rule="|beta - expected| <= 1.96 sigma + systematic, resolving 1/2 from 1/3"))
+    return out

@@ -1,4 +1,22 @@
-"""Seed Fig. 3: transport P_ij(t) for hole widths 0.1, 0.4, 1, 2.2.
+"""Seed Fig. 3: transport P_ij(t) for hole widths 0.1, 0.4, 1, 2.2, and its claims.
+
+The seed (Section 4): "a very strong P_11(t) for hole sizes h = 0.4 and h = 1 ... a hole that is
+too small (h = 0.1) does not effectively trap these orbits, and one that is too large (h = 2.2)
+allows all orbits to escape within a finite time". One claim per width, ``fig3-h=H``: P_11
+dominates at late times (yes for 0.4 and 1, no for 0.1 and 2.2).
+
+Statistical criterion (continuous time, entry hole 1). Late time t_q: the last time at which
+P_11 + P_12 >= q, q = max(1e-3, 100/N) (the survivors of the first 99.9% of the decay). Of the
+k = N (P_11 + P_12)(t_q) particles still inside then, k_11 leave by hole 1: the reflected share
+f = k_11 / k with its 95% Wilson interval. The share's trend: the k particles split at t_2, the
+last time with P_11 + P_12 >= max(q/10, 20/N), into those leaving in [t_q, t_2) and those still
+inside at t_2; a one-sided two-proportion z-test (level 0.05) compares their reflected shares.
+
+    dominates           lower 95% bound of f > 1/2, and the share does not fall significantly
+    does not dominate   upper 95% bound of f < 1/2, or the share falls significantly
+    undecided           otherwise (f compatible with 1/2, or no survivors at t_q)
+
+confirmed: the seed's answer; refuted: the other answer; inconclusive: undecided.
 """
 
 from __future__ import annotations
@@ -6,58 +24,74 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import numpy as np
+from scipy.stats import norm
 
-from reports.paper.fig2_escape import LATE_Q, MIN_SURVIVORS
+from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim
 from reports.paper.runs import read_manifest, run_summary
-from reports.paper.sampling import fmt
-from reports.paper.style import band, caption, pyplot, save_figure, yes_no
-from reports.runs.survival import read_survival
+from reports.paper.style import band, caption, pyplot, save_figure
+from reports.runs.survival import read_survival, wilson
 
 SEED_P11_DOMINATES = {"0.1": False, "0.4": True, "1": True, "2.2": False}  # seed Section 4
-DOMINANCE = 10.0
-
-
-TAIL_DECADE = 10.0
+LATE_Q = 1e-3
+MIN_SURVIVORS = 100
+TREND_SURVIVORS = 20
+LEVEL = 0.05
 
 
 def transport_curve(data, name, clock):
-    if (name, clock) not in data:
-        return None
-    return data[name, clock]
+    return data.get((name, clock))
+
+
+def _counts_at(x, p, t, n):
+    """N P(t) on the curve's grid (0 past its last point)."""
+    hit = [i for i, xi in enumerate(x) if xi <= t]
+    return round(p[hit[-1]] * n) if hit and hit[-1] < len(p) else 0
 
 
 def transport_dominance(data, h, particles, clock="time"):
-    """P_11 vs P_12 at late times for width h: dict (see the module docstring)."""
+    """The late-time reflected share and its trend for width h (module docstring), or None."""
     c11 = transport_curve(data, f"h={h}/P11", clock)
     c12 = transport_curve(data, f"h={h}/P12", clock)
     if c11 is None or c12 is None:
         return None
-    x11, p11 = c11[0], c11[1]
-    x12, p12 = c12[0], c12[1]
-    grid = x11 if len(x11) >= len(x12) else x12
-    a = np.zeros(len(grid))
-    b = np.zeros(len(grid))
-    a[:len(p11)] = p11
-    b[:len(p12)] = p12
-    total = a + b
+    grid = sorted(set(c11[0]) | set(c12[0]))
+
+    def inside(t):
+        return (_counts_at(c11[0], c11[1], t, particles),
+                _counts_at(c12[0], c12[1], t, particles))
+
     q = max(LATE_Q, MIN_SURVIVORS / particles)
-    hit = np.flatnonzero(total >= q)
-    if not len(hit):
+    late = [t for t in grid if sum(inside(t)) >= q * particles]
+    if not late:
         return None
-    k = hit[-1]
-    k11, k12 = round(a[k] * particles), round(b[k] * particles)
-    ratio = k11 / k12 if k12 else math.inf
-    ratio_err = ratio * math.sqrt(1 / max(k11, 1) + 1 / k12) if k12 else math.nan
-    lower = k11 / 3.0 if not k12 else None  # 95% lower bound when no P12 survivor is left
-    last11 = float(x11[p11 > 0][-1]) if (p11 > 0).any() else 0.0
-    last12 = float(x12[p12 > 0][-1]) if (p12 > 0).any() else 0.0
-    t_q = float(grid[k])
-    tail = max(last11, last12) >= TAIL_DECADE * t_q
-    dominates = bool(tail and ratio >= DOMINANCE)
-    return {"h": h, "q": q, "t_q": t_q, "P11": float(a[k]), "P12": float(b[k]), "k11": k11,
-            "k12": k12, "ratio": ratio, "ratio_err": ratio_err, "ratio_lower": lower,
-            "last11": last11, "last12": last12, "tail": tail, "dominates": dominates}
+    t_q = late[-1]
+    k11, k12 = inside(t_q)
+    k = k11 + k12
+    f = k11 / k
+    lo, hi = (float(v) for v in wilson(k11, k))
+    floor = max(q / 10, TREND_SURVIVORS / particles) * particles
+    later = [t for t in grid if t > t_q and sum(inside(t)) >= floor]
+    trend_z, trend_p, t_2 = math.nan, math.nan, None
+    if later:
+        t_2 = later[-1]
+        s11, s12 = inside(t_2)
+        m11, m12 = k11 - s11, k12 - s12  # left in [t_q, t_2)
+        if s11 + s12 and m11 + m12:
+            f_mid, f_late = m11 / (m11 + m12), s11 / (s11 + s12)
+            pool = k11 / k
+            se = math.sqrt(pool * (1 - pool) * (1 / (m11 + m12) + 1 / (s11 + s12)))
+            trend_z = (f_late - f_mid) / se if se > 0 else 0.0
+            trend_p = float(norm.cdf(trend_z))  # one-sided: small when the share falls
+    falls = math.isfinite(trend_p) and trend_p < LEVEL
+    if lo > 0.5 and not falls:
+        dominates = True
+    elif hi < 0.5 or falls:
+        dominates = False
+    else:
+        dominates = None
+    return {"h": h, "q": q, "t_q": t_q, "k11": k11, "k12": k12, "share": f,
+            "share_ci95": [lo, hi], "t_2": t_2, "trend_z": trend_z, "trend_p": trend_p,
+            "dominates": dominates}
 
 
 def hole_widths(data):
@@ -81,11 +115,10 @@ def figure_transport(run_dir, out_dir):
         results.append(dom)
         if dom:
             ax.axvline(dom["t_q"], color="grey", ls=":", lw=1)
-            ratio = (f"> {dom['ratio_lower']:.3g}" if dom["ratio_lower"] is not None
-                     else f"= {dom['ratio']:.3g}")
+            lo, hi = dom["share_ci95"]
             ax.text(0.03, 0.04, f"at t_q = {dom['t_q']:.3g} (P11+P12 = {dom['q']:.0e}):\n"
-                                f"P11/P12 {ratio}; last escapes t = {dom['last11']:.3g} (11), "
-                                f"{dom['last12']:.3g} (12)", transform=ax.transAxes, fontsize=7,
+                                f"share leaving by hole 1 = {dom['share']:.3f} "
+                                f"[{lo:.3f}, {hi:.3f}]", transform=ax.transAxes, fontsize=7,
                     bbox={"fc": "white", "ec": "none", "alpha": 0.8})
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -103,44 +136,43 @@ def figure_transport(run_dir, out_dir):
     return save_figure(fig, out_dir, "paper_fig3_transport"), results
 
 
-def transport_markdown(results, run_dir, image):
-    lines = [
-        "### Fig. 3: transport (seed Section 4)",
-        "",
-        f"![Fig. 3: transport P_ij(t)]({image})",
-        "",
-        f"Run: {run_summary(run_dir)} (per entry hole and width).",
-        "",
-        "Seed's claim: a very strong P_11(t) (reflection through the hole over the islands) at "
-        "late times for h = 0.4 and h = 1; a hole that is too small (h = 0.1) does not trap the "
-        "orbits near the small islands, one that is too large (h = 2.2) lets every orbit escape "
-        "within a finite time.",
-        "",
-        f"Computed: t_q is the time where P_11 + P_12 has fallen to q; R = P_11/P_12 there "
-        f"(+- from the survivor counts; a lower bound k11/3 when no P_12 survivor is left). "
-        f"\"P_11 dominates\" = R >= {DOMINANCE:g} and the hole-1 tail lasts at least a decade "
-        f"beyond t_q.",
-        "",
-        "| h | q | t_q | P_11(t_q) | P_12(t_q) | R = P_11/P_12 | last escape 1->1 | last escape "
-        "1->2 | long tail | P_11 dominates | seed says | matches |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
-    ]
-    matches = []
+def transport_claims(results, run_dir, particles):
+    run = Path(run_dir).name
+    claims = []
     for r in results:
-        if r is None:
+        if r is None or r["h"] not in SEED_P11_DOMINATES:
             continue
-        seed = SEED_P11_DOMINATES.get(r["h"])
-        ok = None if seed is None else r["dominates"] == seed
-        matches.append(ok)
-        ratio = (f"> {r['ratio_lower']:.3g}" if r["ratio_lower"] is not None
-                 else fmt(r["ratio"], r["ratio_err"]))
-        lines.append(f"| {r['h']} | {r['q']:.0e} | {r['t_q']:.3g} | {r['P11']:.3g} | "
-                     f"{r['P12']:.3g} | {ratio} | {r['last11']:.3g} | {r['last12']:.3g} | "
-                     f"{yes_no(r['tail'])} | {yes_no(r['dominates'])} | {yes_no(seed)} | "
-                     f"{yes_no(ok)} |")
-    known = [m for m in matches if m is not None]
-    verdict = ("**confirmed**" if known and all(known) and len(known) == len(SEED_P11_DOMINATES)
-               else "**not confirmed**" if known and not all(known) else "**partly checked**")
-    lines += ["", f"P_11 dominating at late times for h = 0.4 and 1 but not 0.1 and 2.2: {verdict}"
-                  f" ({sum(known)} of {len(known)} widths as the seed says).", ""]
-    return "\n".join(lines)
+        seed = SEED_P11_DOMINATES[r["h"]]
+        verdict = (INCONCLUSIVE if r["dominates"] is None else
+                   CONFIRMED if r["dominates"] == seed else REFUTED)
+        lo, hi = r["share_ci95"]
+        trend = ("no later point with enough survivors" if r["t_2"] is None else
+                 f"share trend to t_2 = {r['t_2']:.3g}: z = {r['trend_z']:.2f} "
+                 f"(one-sided p of a fall = {r['trend_p']:.2g})")
+        answer = {True: "dominates", False: "does not dominate", None: "undecided"}
+        evidence = (f"At t_q = {r['t_q']:.3g} (P_11 + P_12 = {r['q']:.0e}): {r['k11']:,} of "
+                    f"{r['k11'] + r['k12']:,} survivors leave by hole 1, share f = "
+                    f"{r['share']:.3f} [{lo:.3f}, {hi:.3f}]; {trend}; P_11 "
+                    f"{answer[r['dominates']]}.")
+        claims.append(Claim(
+            id=f"fig3-h={r['h']}", figure="3",
+            seed_says=f"P_11 {'dominates' if seed else 'does not dominate'} at late times "
+                      f"for h = {r['h']}",
+            verdict=verdict, evidence=evidence, particles_per_curve=particles,
+            statistical={"share": r["share"], "share_ci95": [lo, hi], "trend_z": r["trend_z"],
+                         "trend_p": r["trend_p"]},
+            systematic={"note": "q fixed by the rule; no window family"}, run=run,
+            rule="Wilson bound of the late reflected share against 1/2, one-sided trend test "
+                 "(reports/paper/fig3_transport.py)"))
+    return claims
+
+
+def transport_markdown(run_dir, image, claims_text):
+    return "\n".join([
+        "### Fig. 3: transport (seed Section 4)", "",
+        f"![Fig. 3: transport P_ij(t)]({image})", "",
+        f"Run: {run_summary(run_dir)} (per entry hole and width).", "",
+        "Dominance criterion (module docstring of `reports/paper/fig3_transport.py`): the share "
+        "f of the late survivors (P_11 + P_12 down to q) that leave by hole 1, with its 95% "
+        "Wilson interval against 1/2, and a one-sided test that the share does not fall later.",
+        "", claims_text, ""])

@@ -1,26 +1,20 @@
 """The seed's figures from trusted runs, with the seed's claims checked on them.
 
-``paper_figures_section(out_dir, particles=None, quick=False, echo=None, runs_dir=None)`` runs
-(or reuses complete run directories in ``runs_dir``, default ``out_dir/runs``) the built-in
-scenes paper-phase-space, paper-escape and paper-transport through ``reports.runs.driver.run``,
-draws
+``paper_figures_section(out_dir, particles=None, quick=False, echo=None, runs_dir=None,
+include_runs=())`` runs (or reuses complete run directories in ``runs_dir``, default
+``out_dir/runs``) the built-in scenes paper-phase-space, paper-escape and paper-transport
+through ``reports.runs.driver.run`` (or takes the larger included paper-scale runs), draws
 
-    paper_fig1_phase_space   phase space at eps = 0.6                         (seed Fig. 1)
-    paper_fig2_escape        P(n) log-linear and log-log, P(t) against sqrt(t) (seed Fig. 2)
-    paper_fig3_transport     P_ij(t) for h = 0.1, 0.4, 1, 2.2                 (seed Fig. 3)
-    paper_fig4_h1            h = 1, discrete vs continuous, stretched fits     (seed Fig. 4)
+    paper_fig1_phase_space   phase space at eps = 0.6                               (seed Fig. 1)
+    paper_fig2_escape        2x2: discrete/continuous time, log-linear/log-log      (seed Fig. 2)
+    paper_fig3_transport     P_ij(t) for h = 0.1, 0.4, 1, 2.2                       (seed Fig. 3)
+    paper_fig4_h1            h = 1, 2x2: discrete/continuous, log-linear/log-log    (seed Fig. 4)
     paper_fermi              <v> against n and t at eps = 0.6, log-log
 
-as PNG and PDF in ``out_dir``, and returns Markdown that states, for each figure, what the seed
-claims and whether the data show it. The verdicts are computed:
-
-* Fig. 2: on the late discrete-time decay (100/N <= P <= 0.01) an exponential and a power law
-  are fitted (``reports.stats.least_squares.fit_survival``); the better chi^2/dof names the decay.
-* Fig. 3: at the time t_q where the survival of entry hole 1, P_11 + P_12, has fallen to q
-  (1e-3, or 100/N if larger), R = P_11/P_12; P_11 "dominates at late times" when R >= 10 and the
-  hole-1 tail goes on for at least a decade in time beyond t_q (the last escape is >= 10 t_q).
-* Fig. 4: stretched exponential and power law fitted to P_11's tail, chi^2/dof compared.
-* Fermi: the slopes of log<v> against log n and log t (``reports.paper.fermi``).
+as PNG and PDF in ``out_dir``, and returns the Markdown and the seed's claims (``claims.Claim``),
+each with its verdict, uncertainties and the rule that produced it (in the docstrings of
+``fig2_escape``, ``fig3_transport``, ``fig4_h1`` and ``fermi.fermi_claims``). Survival laws are
+fitted by maximum likelihood on the binned, censored counts (``reports.stats``).
 
 Every figure states its particle count, horizon and the run's verification summary.
 """
@@ -30,28 +24,33 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from reports.paper.fermi import fermi_ensemble
+from reports.paper.claims import claims_json, claims_markdown
+from reports.paper.fermi import fermi_claims, fermi_ensemble
 from reports.paper.fermi_figure import fermi_markdown, figure_fermi
 from reports.paper.fig1_phase_space import figure_phase_space, phase_space_markdown
-from reports.paper.fig2_escape import escape_markdown, figure_escape
-from reports.paper.fig3_transport import figure_transport, transport_markdown
-from reports.paper.fig4_h1 import figure_h1, h1_markdown
+from reports.paper.fig2_escape import escape_analysis, escape_claims, escape_markdown, figure_escape
+from reports.paper.fig3_transport import figure_transport, transport_claims, transport_markdown
+from reports.paper.fig4_h1 import figure_h1, h1_analysis, h1_claims, h1_markdown
 from reports.paper.runs import (
     DEFAULT_PARTICLES,
     PHASE_SPACE_QUICK,
     QUICK_PARTICLES,
     ensure_run,
+    largest_run,
+    read_manifest,
     say_nothing,
 )
 from reports.runs.scenes import load_scene
 
 
 def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
-                          runs_dir=None) -> str:
-    """Run or reuse the seed's scenes, write the figures (PNG + PDF) into ``out_dir`` and return
-    Markdown (image links relative to ``out_dir``). ``particles``: per escape curve and per
-    transport entry hole (default 10**6; quick 2000); the phase-space scene keeps its own count
-    (4000 orbits; quick 200)."""
+                          runs_dir=None, include_runs=()):
+    """Run or reuse the seed's scenes, write the figures (PNG + PDF) into ``out_dir``; returns
+    (Markdown with image links relative to ``out_dir``, the claims). ``particles``: per escape
+    curve and per transport entry hole (default 10**6; quick 2000); the phase-space scene keeps
+    its own count (4000 orbits; quick 200). A complete run of paper-escape or paper-transport
+    among ``include_runs`` with more particles replaces the default-scale run for that figure
+    and its claims (the paper-scale runs)."""
     echo = echo or say_nothing
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -61,30 +60,51 @@ def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
     t0 = time.perf_counter()
     ps_particles = PHASE_SPACE_QUICK if quick else load_scene("paper-phase-space").particles
     ps_run = ensure_run("paper-phase-space", runs_dir, ps_particles, echo)
-    esc_run = ensure_run("paper-escape", runs_dir, n, echo)
-    tr_run = ensure_run("paper-transport", runs_dir, n, echo)
+    runs = {}
+    for scene in ("paper-escape", "paper-transport"):
+        runs[scene] = ensure_run(scene, runs_dir, n, echo)
+        bigger = largest_run(scene, [runs[scene], *include_runs])
+        if bigger is not None and bigger != runs[scene]:
+            echo(f"paper figures: {scene} verdicts from the included run {bigger}")
+            runs[scene] = bigger
+    esc_run, tr_run = runs["paper-escape"], runs["paper-transport"]
     echo("paper figures: Fermi acceleration ensemble")
     fermi = fermi_ensemble(bool(quick))
-    echo("paper figures: drawing")
+    echo("paper figures: survival-law inference (escape)")
+    esc = escape_analysis(esc_run)
+    echo("paper figures: survival-law inference (transport, h = 1)")
+    h1 = h1_analysis(tr_run)
+    echo("paper figures: claims and drawing")
+    esc_claims = escape_claims(esc, esc_run)
+    tr_particles = read_manifest(tr_run)["particles"]
     figure_phase_space(ps_run, out_dir)
-    _, esc = figure_escape(esc_run, out_dir)
+    figure_escape(esc_run, out_dir, esc)
     _, dominance = figure_transport(tr_run, out_dir)
-    _, h1 = figure_h1(tr_run, out_dir)
+    tr_claims = transport_claims(dominance, tr_run, tr_particles)
+    figure_h1(tr_run, out_dir, h1)
+    h1c = h1_claims(h1, tr_run)
     figure_fermi(fermi, out_dir)
+    fc = fermi_claims(fermi)
     seconds = time.perf_counter() - t0
+
+    def table(claims):
+        return claims_markdown(claims_json(claims))
+
     md = [
         "## The seed's figures from trusted runs",
         "",
-        "Every curve comes from a `bouncer run` of a built-in scene (runs in "
-        f"`{runs_dir.name}/`), with its verification summary. The seed used 10^8 starts per "
-        f"curve; these use {n:,}, so the tails end near P ~ 1/N = {1 / n:.0e}.",
+        "Every curve comes from a `bouncer run` of a built-in scene, with its verification "
+        f"summary. The seed used 10^8 starts per curve; Fig. 2 uses "
+        f"{read_manifest(esc_run)['particles']:,} (`{esc_run.name}`), Figs. 3-4 "
+        f"{tr_particles:,} (`{tr_run.name}`). Every claim below is also in `report.json`.",
         "",
         phase_space_markdown(ps_run, "paper_fig1_phase_space.png"),
-        escape_markdown(esc, esc_run, "paper_fig2_escape.png"),
-        transport_markdown(dominance, tr_run, "paper_fig3_transport.png"),
-        h1_markdown(h1, "paper_fig4_h1.png"),
+        escape_markdown(esc_run, "paper_fig2_escape.png", table(esc_claims)),
+        transport_markdown(tr_run, "paper_fig3_transport.png", table(tr_claims)),
+        h1_markdown("paper_fig4_h1.png", table(h1c)),
         fermi_markdown(fermi, "paper_fermi.png"),
+        table(fc),
         f"(paper figures: {seconds:.0f} s)",
         "",
     ]
-    return "\n".join(md)
+    return "\n".join(md), esc_claims + tr_claims + h1c + fc

@@ -71,3 +71,19 @@ def run_summary(run_dir):
 
 def read_manifest(run_dir):
     return rundir.read_json(Path(run_dir) / rundir.MANIFEST)
+
+
+def largest_run(scene_name, candidates):
+    """The complete run of built-in scene ``scene_name`` with the most particles per curve among
+    the run directories ``candidates``, or None."""
+    best = None
+    for path in candidates:
+        man_path = Path(path) / rundir.MANIFEST
+        if not man_path.is_file():
+            continue
+        man = rundir.read_json(man_path)
+        if man.get("status") != "complete" or man.get("scene", {}).get("name") != scene_name:
+            continue
+        if best is None or man["particles"] > best[0]:
+            best = (man["particles"], Path(path))
+    return None if best is None else best[1]

@@ -1,0 +1,77 @@
+"""One regime of an analysed curve in detail, for the report's claims and figures.
+
+``analysis.analyse`` finds the regimes of a curve (where the decay changes law) and fits the
+late one with intervals. The claims of the seed are also about other regimes, so here any
+regime [x_from, x_to] is refitted with 95% profile intervals, its law chosen by the rule of
+``selection`` (with Vuong's exponential-vs-power-law test kept, the seed's dichotomy), its
+systematic half-ranges taken over the window family of ``analysis.systematic``, and its weight
+measured as the fall of the empirical all-cause survival across it,
+
+    drop = ln S(x_from) - ln S(x_to),    S(x_k) = 1 - (escapes, competing escapes and horizon
+                                                         censorings in bins before k) / N.
+
+The *bulk* regime is the one holding the most escapes of the curve (where most particles leave);
+the *late* regime is the last one (``analyse``'s headline fit).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from reports.stats.analysis import fit_all, systematic, usable_range
+from reports.stats.likelihood import window_of
+from reports.stats.selection import choose
+
+
+def all_cause_survival(curve):
+    """S at every boundary x_k (module docstring)."""
+    gone = curve.escapes + curve.competing + curve.censored
+    return 1.0 - np.concatenate([[0], np.cumsum(gone)]) / curve.particles
+
+
+def bins_of(curve, x_from, x_to):
+    """Bin indices (a, b) of the boundaries x_from, x_to of a regime."""
+    a = int(np.searchsorted(curve.x, x_from))
+    b = int(np.searchsorted(curve.x, x_to))
+    if curve.x[a] != x_from or curve.x[b] != x_to:
+        raise ValueError(f"[{x_from:g}, {x_to:g}] is not on the bin grid of {curve.curve}")
+    return a, b
+
+
+def drop(curve, regime):
+    """ln S(x_from) - ln S(x_to) of a regime (inf if nobody survives past x_to: the last)."""
+    s = all_cause_survival(curve)
+    a, b = bins_of(curve, regime["from"], regime["to"])
+    return math.log(s[a]) - math.log(s[b]) if s[b] > 0 else math.inf
+
+
+def bulk_regime(result):
+    """The regime of ``result["regimes"]`` holding the most escapes."""
+    return max(result["regimes"], key=lambda r: r["escapes"])
+
+
+def regime_detail(curve, regime):
+    """Fits with 95% intervals, the chosen law and tests, systematics and drop of one regime."""
+    a, b = bins_of(curve, regime["from"], regime["to"])
+    fits = fit_all(window_of(curve, a, b), intervals=True)
+    best, tests = choose(fits)
+    a0, b0 = usable_range(curve)
+    return {"from": regime["from"], "to": regime["to"], "best": best, "tests": tests,
+            "fits": fits, "systematic": systematic(curve, a, b, a0, b0),
+            "escapes": int(curve.escapes[a:b].sum()), "drop": drop(curve, regime)}
+
+
+def fitted_curve(curve, regime, law, points=60):
+    """(x, S(x)) of ``law`` fitted on the regime, anchored at the empirical S(x_from)."""
+    a, b = bins_of(curve, regime["from"], regime["to"])
+    fit = fit_all(window_of(curve, a, b), intervals=False)[law]
+    x = np.geomspace(curve.x[a], curve.x[b], points)
+    return x, all_cause_survival(curve)[a] * np.exp(fit.log_survival(x))
+
+
+def half_width(ci):
+    """Half the width of a (lo, hi) interval (inf if an end is not finite)."""
+    lo, hi = ci
+    return 0.5 * (hi - lo) if math.isfinite(lo) and math.isfinite(hi) else math.inf
