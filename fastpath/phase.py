@@ -15,7 +15,8 @@ where F(j) = frac(2**j / (2*pi)) is tabulated as six 26-bit pieces (``_TURNS``, 
 A 27-bit integer times a 26-bit piece has at most 53 bits: every product is exact, and so is its
 fractional part. The first two pieces give the turns to 2**-52 exactly; the rest, all positive,
 are added with relative rounding only. The tail left off is < 2**53 * 2**-156 = 2**-103 turns. The
-turns r in [0, 1) (or [-1/2, 1/2) for a centred phase) are then multiplied by 2*pi in double-double arithmetic (Dekker's product).
+turns r in [0, 1) (or [-1/2, 1/2) for a centred phase) are then multiplied by 2*pi in
+double-double arithmetic (Dekker's product).
 """
 
 import math

@@ -109,9 +109,10 @@ def judge(family, phi, v, eps, exact):
             exact = verify.flight_time(phi, v, eps, dps=REF_DPS)
         except verify.UndecidableCollision:
             return status, iterations, None, None  # graze-or-miss: nothing to hold it to
-    with mp.workdps(REF_DPS):
+    with mp.workdps(400):  # 1e308 / (2*pi) has 308 digits before the point
         # kappa at the exactly reduced phase: fastpath must reduce any phase exactly
         reduced = mp.mpf(phi) % (2 * mp.pi) if abs(phi) > 2 * math.pi else mp.mpf(phi)
+    with mp.workdps(REF_DPS):
         kappa = verify.condition_number(reduced, v, eps, exact)
         units = float(abs(mp.mpf(tau) - mp.mpf(exact)) / (kappa * U * mp.mpf(exact)))
     if not units <= K:
