@@ -1,4 +1,7 @@
-"""Input checks shared by the public wrappers: finite float64 values of compatible shapes."""
+"""Input checks shared by the public wrappers: finite float64 values of compatible shapes.
+
+As in ``verify``: a real number (bools and strings are not), or an array of integers or floats.
+"""
 
 import numbers
 
@@ -13,6 +16,7 @@ def float_inputs(**named):
     """
     arrays = {}
     for name, value in named.items():
+        _check_kind(name, value)
         try:
             arr = np.asarray(value, dtype=np.float64)
         except (TypeError, ValueError):
@@ -33,6 +37,41 @@ def float_inputs(**named):
         raise ValueError(f"input shapes do not broadcast: {shapes}") from None
     all_scalar = all(a.ndim == 0 for a in arrays.values())
     return [np.ascontiguousarray(a).ravel() for a in shaped], shaped[0].shape, all_scalar
+
+
+def _check_kind(name, value):
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        raise ValueError(f"{name} must be a real number, got {value!r}")
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind not in "iuf":
+            raise ValueError(f"{name} must be an array of real numbers, got dtype {value.dtype}")
+    elif not isinstance(value, numbers.Real):
+        kinds = {type(x) for x in np.ravel(np.asarray(value, dtype=object))}
+        if not all(issubclass(k, numbers.Real) and not issubclass(k, (bool, np.bool_))
+                   for k in kinds):
+            raise ValueError(f"{name} must be a real number or array of them, got {value!r}")
+
+
+def scalar_inputs(**named):
+    """The inputs as Python floats if every one is a real scalar, else None (use float_inputs).
+
+    Raises ValueError naming a scalar that is not a finite real number.
+    """
+    out = []
+    for name, value in named.items():
+        if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(
+            value, (bool, np.bool_)
+        ):
+            try:
+                x = float(value)
+            except OverflowError:
+                raise ValueError(f"{name} must be finite, got {value!r}") from None
+            if not np.isfinite(x):
+                raise ValueError(f"{name} must be finite, got {x!r}")
+            out.append(x)
+        else:
+            return None
+    return out
 
 
 def count(name, value, minimum=0):

@@ -27,12 +27,14 @@ O(|eps|*h**4) at a distance h, so h shrinks quadratically instead of the global 
 (eps just above 1: the global bound a ~ 2 dwarfs the dip's curvature <= eps - 1, and steps of
 ~sqrt(2*d/a) took up to 20,000 iterations).
 
-Root formulas are chosen by the sign of r_k so that they never subtract nearly equal numbers
-(``first_root``). The iteration stops when the gap is within its rounding error of zero; a final
-Newton correction (``polish``) then moves onto the crossing: the stop can be up to ~12 kappa*u
-early, the polish leaves only the gap's actual rounding. It is taken only where the slope
-d1 < 0 beyond its error; where d is convex over the step the tangent lies below d and its root
-is not beyond the crossing, where it is concave the overshoot is at most s**2*a/(2|d1|) for a
+Rounding: the models use d_k, r_k and c_k lowered by their error bounds (``gap_error``,
+``rate_error``), so they bound the exact gap from below; a discriminant within its rounding of zero
+counts as a root. Root formulas are chosen by the sign of r_k so that they never subtract nearly
+equal numbers (``first_root``). The iteration stops when the gap is within its rounding error of
+zero; a final Newton correction (``polish``) then moves onto the crossing: the stop can be up to
+~12 kappa*u early, the polish leaves only the gap's actual rounding. It is taken only where the
+slope d1 < 0 beyond its error; where d is convex over the step the tangent lies below d and its
+root is not beyond the crossing, where it is concave the overshoot is at most s**2*a/(2|d1|) for a
 step s itself at rounding level (|d| <= E). No second root lies that close (``may_be_graze``).
 
 For |eps| > 1 the gap can be convex (d2 <= |eps| - 1 =: b), and a zero gap with a small slope may
@@ -74,10 +76,14 @@ def lower_bound_step(d, r, a):
 
 @jit
 def first_root(d, r, k):
-    """Smallest positive root of d + r*s + k*s**2/2 (d > 0), inf if none; cancellation-free."""
+    """Smallest positive root of d + r*s + k*s**2/2 (d > 0), inf if none; cancellation-free.
+
+    A discriminant within its rounding error of zero counts as zero (a root: the shorter step).
+    """
     disc = r * r - 2.0 * k * d
-    if disc < 0.0 or (r >= 0.0 and k >= 0.0):
+    if disc < -4.0 * UNIT_ROUNDOFF * (r * r + 2.0 * abs(k) * d) or (r >= 0.0 and k >= 0.0):
         return math.inf
+    disc = max(disc, 0.0)
     if r < 0.0:
         return 2.0 * d / (math.sqrt(disc) - r)
     return (r + math.sqrt(disc)) / -k
@@ -105,6 +111,13 @@ def phase_error_of(phi_given, phi_centred):
     if phi_centred == phi_given:
         return 0.0
     return 2.0 * UNIT_ROUNDOFF * abs(phi_centred)
+
+
+@jit
+def departure_of(phi, v, eps):
+    """(w0, bound): w0 = v + eps*sin(phi) as the flight kernels compute it, with its error bound."""
+    centred = centre_phase(phi)
+    return departure(centred, math.sin(centred), v, eps, phase_error_of(phi, centred))
 
 
 @jit
@@ -177,12 +190,13 @@ def lower_bound_flight(phi, v, eps, w0):
             if may_be_graze(phi, eps, t, r, d_err):
                 return t, k, UNCERTAIN
             return polish(phi, v, eps, t, d, r), k, CONVERGED
+        # the models take the worst values within rounding: d, d' and d'' lowered by their bounds
         theta = phi + t
-        t_next = t + certified_step(
-            d, r, -1.0 + eps * math.cos(theta), -eps * math.sin(theta), eps
-        )
-        if t_next == t:  # the root is within one ulp of t
-            return t, k, CONVERGED
+        curvature = -1.0 + eps * math.cos(theta) - 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
+        r_low = r - rate_error(phi, v, eps, t)
+        t_next = t + certified_step(d - d_err, r_low, curvature, -eps * math.sin(theta), eps)
+        if t_next == t:  # the root is within rounding of t: d <= d_err + |r|*ulp(t)
+            return polish(phi, v, eps, t, d, r), k, CONVERGED
         t = t_next
     return t, ITERATION_LIMIT, MAX_ITERATIONS
 

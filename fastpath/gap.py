@@ -54,9 +54,9 @@ def departure(phi, sin_phi, v, eps, phase_error):
     """(w0, bound) with w0 = fl(v + eps*sin_phi) and |w0 - (v + eps*sin(phi_exact))| <= bound.
 
     phase_error bounds |phi - phi_exact| (0 for a phase used as given; the reduction's error
-    otherwise). The sine, the product and the sum each round by <= u of their size; the
-    sine's absolute error is also allowed u (a rotated sine near 0 is not relatively exact).
+    otherwise) plus any absolute error of sin_phi beyond libm's (a sine carried by rotation).
+    The sine, the product and the sum each round by <= u of their size.
     """
     w0 = v + eps * sin_phi
-    bound = UNIT_ROUNDOFF * (2.0 * abs(w0) + 3.0 * abs(eps) * (abs(sin_phi) + 1.0))
+    bound = 2.0 * UNIT_ROUNDOFF * abs(w0) + 3.0 * UNIT_ROUNDOFF * abs(eps * sin_phi)
     return w0, bound + abs(eps) * phase_error
