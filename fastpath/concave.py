@@ -57,7 +57,7 @@ def bracket(v, w0, w0_error, eps):
     """Certified (lo, hi) for the root (module docstring), rounded outwards."""
     a = 1.0 + abs(eps)
     lo = 2.0 * max(w0 - w0_error, 0.0) / a * (1.0 - 4.0 * UNIT_ROUNDOFF)
-    root = math.sqrt(v * v + 4.0 * abs(eps))
+    root = math.hypot(v, 2.0 * math.sqrt(abs(eps)))  # sqrt(v**2 + 4|eps|), no under/overflow
     hi = v + root if v >= 0.0 else 4.0 * abs(eps) / (root - v)
     if abs(eps) < 1.0:
         hi = min(hi, 2.0 * (w0 + w0_error) / (1.0 - abs(eps)))
