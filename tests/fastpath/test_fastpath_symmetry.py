@@ -47,7 +47,11 @@ def test_reversibility(phi, w0, eps):
     rev = fastpath.flight(phi_r, v_r, eps)
     if rev.status != fastpath.FlightStatus.CONVERGED:
         assert_flight_ok(phi_r, v_r, eps)  # UNCERTAIN must be a justified near-graze
-        return
+    else:
+        _check_reversed(phi, v, eps, phi1, tau, phi_r, v_r, rev)
+
+
+def _check_reversed(phi, v, eps, phi1, tau, phi_r, v_r, rev):
     w0_exact = float(exact_w0(phi, v, eps))
     dv = float(tau_tolerance(phi, v, eps, tau)) + math.ulp(abs(tau - v))
     dphi = phi1_tolerance(phi, v, eps, tau)
