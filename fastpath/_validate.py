@@ -3,6 +3,7 @@
 As in ``verify``: a real number (bools and strings are not), or an array of integers or floats.
 """
 
+import math
 import numbers
 
 import numpy as np
@@ -59,18 +60,18 @@ def scalar_inputs(**named):
     """
     out = []
     for name, value in named.items():
-        if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(
-            value, (bool, np.bool_)
+        kind = type(value)
+        if kind is not float and (
+            kind is bool or not isinstance(value, (float, int, np.floating, np.integer))
         ):
-            try:
-                x = float(value)
-            except OverflowError:
-                raise ValueError(f"{name} must be finite, got {value!r}") from None
-            if not np.isfinite(x):
-                raise ValueError(f"{name} must be finite, got {x!r}")
-            out.append(x)
-        else:
-            return None
+            return None  # float_inputs judges it (bools and strings raise there)
+        try:
+            x = float(value)
+        except OverflowError:
+            raise ValueError(f"{name} must be finite, got {value!r}") from None
+        if not math.isfinite(x):
+            raise ValueError(f"{name} must be finite, got {x!r}")
+        out.append(x)
     return out
 
 

@@ -57,20 +57,27 @@ def bracket(v, w0, w0_error, eps):
     """Certified (lo, hi) for the root (module docstring), rounded outwards."""
     a = 1.0 + abs(eps)
     lo = 2.0 * max(w0 - w0_error, 0.0) / a * (1.0 - 4.0 * UNIT_ROUNDOFF)
-    root = math.hypot(v, 2.0 * math.sqrt(abs(eps)))  # sqrt(v**2 + 4|eps|), no under/overflow
-    hi = v + root if v >= 0.0 else 4.0 * abs(eps) / (root - v)
+    hi = math.inf
     if abs(eps) < 1.0:
-        hi = min(hi, 2.0 * (w0 + w0_error) / (1.0 - abs(eps)))
+        hi = 2.0 * (w0 + w0_error) / (1.0 - abs(eps))
+    if abs(eps) >= 0.5:  # where the bound above is loose (both are valid for every |eps| <= 1)
+        if 1e-150 < abs(v) < 1e150:
+            root = math.sqrt(v * v + 4.0 * abs(eps))
+        else:  # v**2 would underflow or overflow
+            root = math.hypot(v, 2.0 * math.sqrt(abs(eps)))
+        hi = min(hi, v + root if v >= 0.0 else 4.0 * abs(eps) / (root - v))
     return lo, hi * (1.0 + 4.0 * UNIT_ROUNDOFF)
 
 
 @jit
-def classify(d, d1, d_err, d1_err):
+def classify(phi, v, eps, t, d, d1):
     """Where t lies relative to the root, from d(t) and d'(t) with their error bounds."""
+    d_err = gap_error(phi, v, eps, t)
     if d > d_err:
         return _BEFORE
     if d < -d_err:
         return _AFTER
+    d1_err = rate_error(phi, v, eps, t)
     if d1 < -d1_err:
         return _AT_ROOT
     if d1 > d1_err:
@@ -129,7 +136,10 @@ def _finish(t, d, d1, s, c, angle, lo, hi, evaluations, where):
         tau = min(max(t - d / d1, lo), hi)
     else:  # the bracket closed to adjacent floats around the root
         tau = lo
-    s, c = rotate(s, c, angle, tau - t)
+    h = tau - t
+    if abs(h) < 1e-8:  # first order: the neglected h**2/2 is below u/2
+        return tau, s + c * h, c - s * h, evaluations, CONVERGED
+    s, c = rotate(s, c, angle, h)
     return tau, s, c, evaluations, CONVERGED
 
 
@@ -144,7 +154,7 @@ def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
         d1 = -v - delta + eps * s
         if not abs(d) < math.inf:
             return math.nan, math.nan, math.nan, evaluations, OVERFLOW
-        where = classify(d, d1, gap_error(phi, v, eps, t), rate_error(phi, v, eps, t))
+        where = classify(phi, v, eps, t, d, d1)
         if where >= _AT_ROOT:
             return _finish(t, d, d1, s, c, theta0 + theta0_error + delta, lo, hi, evaluations,
                            where)
@@ -174,7 +184,7 @@ def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi):
         d1 = v - t + eps * s
         if not abs(d) < math.inf:
             return math.nan, math.nan, math.nan, evaluations, OVERFLOW
-        where = classify(d, d1, gap_error(phi, v, eps, t), rate_error(phi, v, eps, t))
+        where = classify(phi, v, eps, t, d, d1)
         if where >= _AT_ROOT:
             return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, where)
         t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, where, lo, hi)
