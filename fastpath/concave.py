@@ -60,7 +60,7 @@ def bracket(v, w0, w0_error, eps):
     hi = math.inf
     if abs(eps) < 1.0:
         hi = 2.0 * (w0 + w0_error) / (1.0 - abs(eps))
-    if abs(eps) >= 0.5:  # where the bound above is loose (both are valid for every |eps| <= 1)
+    if not hi <= 2.0 * abs(v) + 2.0:  # the bound below is <= 2|v| + 2: it can only help here
         if 1e-150 < abs(v) < 1e150:
             root = math.sqrt(v * v + 4.0 * abs(eps))
         else:  # v**2 would underflow or overflow
