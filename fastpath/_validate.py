@@ -1,5 +1,9 @@
-"""Input checks shared by the public wrappers: finite float64 values of compatible shapes."""
+"""Input checks shared by the public wrappers: finite float64 values of compatible shapes.
 
+As in ``verify``: a real number (bools and strings are not), or an array of integers or floats.
+"""
+
+import math
 import numbers
 
 import numpy as np
@@ -13,6 +17,7 @@ def float_inputs(**named):
     """
     arrays = {}
     for name, value in named.items():
+        _check_kind(name, value)
         try:
             arr = np.asarray(value, dtype=np.float64)
         except (TypeError, ValueError):
@@ -33,6 +38,41 @@ def float_inputs(**named):
         raise ValueError(f"input shapes do not broadcast: {shapes}") from None
     all_scalar = all(a.ndim == 0 for a in arrays.values())
     return [np.ascontiguousarray(a).ravel() for a in shaped], shaped[0].shape, all_scalar
+
+
+def _check_kind(name, value):
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        raise ValueError(f"{name} must be a real number, got {value!r}")
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind not in "iuf":
+            raise ValueError(f"{name} must be an array of real numbers, got dtype {value.dtype}")
+    elif not isinstance(value, numbers.Real):
+        kinds = {type(x) for x in np.ravel(np.asarray(value, dtype=object))}
+        if not all(issubclass(k, numbers.Real) and not issubclass(k, (bool, np.bool_))
+                   for k in kinds):
+            raise ValueError(f"{name} must be a real number or array of them, got {value!r}")
+
+
+def scalar_inputs(**named):
+    """The inputs as Python floats if every one is a real scalar, else None (use float_inputs).
+
+    Raises ValueError naming a scalar that is not a finite real number.
+    """
+    out = []
+    for name, value in named.items():
+        kind = type(value)
+        if kind is not float and (
+            kind is bool or not isinstance(value, (float, int, np.floating, np.integer))
+        ):
+            return None  # float_inputs judges it (bools and strings raise there)
+        try:
+            x = float(value)
+        except OverflowError:
+            raise ValueError(f"{name} must be finite, got {value!r}") from None
+        if not math.isfinite(x):
+            raise ValueError(f"{name} must be finite, got {x!r}")
+        out.append(x)
+    return out
 
 
 def count(name, value, minimum=0):

@@ -5,10 +5,18 @@ from dataclasses import dataclass
 import numpy as np
 from numba import prange
 
-from fastpath._jit import parallel_jit
-from fastpath._validate import count, float_inputs
+from fastpath._jit import jit, parallel_jit
+from fastpath._validate import count, float_inputs, scalar_inputs
 from fastpath.collision import collide
-from fastpath.flight import CONVERGED, METHODS, NOT_DEPARTING, solve_flight
+from fastpath.flight import (
+    CONVERGED,
+    METHODS,
+    NOT_DEPARTING,
+    OVERFLOW,
+    UNCERTAIN,
+    departure_of,
+    solve_flight,
+)
 from fastpath.holmes import holmes_collide
 from fastpath.orbit import exact_orbit, holmes_orbit
 from fastpath.status import FlightStatus, UncertainCollision
@@ -53,9 +61,23 @@ def _steps(phi, v, eps, phi1, v1, tau, status):
 
 
 @parallel_jit
-def _holmes_steps(phi, v, eps, phi1, v1):
+def _holmes_steps(phi, v, eps, phi1, v1, status):
     for i in prange(len(phi)):
+        status[i] = departure_status(phi[i], v[i], eps[i])
         phi1[i], v1[i] = holmes_collide(phi[i], v[i], eps[i])
+
+
+@jit
+def departure_status(phi, v, eps):
+    """CONVERGED for a certain departure, NOT_DEPARTING, UNCERTAIN (w0 within rounding of 0)."""
+    w0, bound = departure_of(phi, v, eps)
+    if not abs(w0) < np.inf:
+        return OVERFLOW
+    if not w0 > -bound:
+        return NOT_DEPARTING
+    if not w0 > bound:
+        return UNCERTAIN
+    return CONVERGED
 
 
 def _shaped(shape, scalar, *arrays):
@@ -70,20 +92,31 @@ def _raise_on_status(status, phi, v, eps):
     def state(i):
         return f"phi={float(phi[i])!r}, v={float(v[i])!r}, eps={float(eps[i])!r} (element {i})"
 
+    def w0_text(i):
+        w0, bound = departure_of(float(phi[i]), float(v[i]), float(eps[i]))
+        return f"w0 = v + eps*sin(phi) computed as {w0!r} with rounding error <= {bound:.3g}"
+
+    status = np.asarray(status)
+    overflow = status == OVERFLOW
+    if overflow.any():
+        i = int(np.argmax(overflow))
+        raise ValueError(f"overflow: an intermediate of the flight (v**2, t*v, ...) exceeds"
+                         f" float64 at {state(i)}; inputs out of range")
     not_departing = status == NOT_DEPARTING
     if not_departing.any():
         i = int(np.argmax(not_departing))
-        w0 = float(v[i] + eps[i] * np.sin(phi[i]))
-        raise ValueError(f"not a departure: w0 = v + eps*sin(phi) = {w0!r} <= 0 at {state(i)};"
-                         " the particle does not leave the plate")
+        raise ValueError(f"not a departure: {w0_text(i)}, so w0 < 0 or w0 = 0 for certain, at"
+                         f" {state(i)}; the particle does not leave the plate")
     undecided = status != CONVERGED
     if undecided.any():
         i = int(np.argmax(undecided))
         name = FlightStatus(int(status[i])).name
+        w0, bound = departure_of(float(phi[i]), float(v[i]), float(eps[i]))
+        why = f" ({w0_text(i)}: departure or not)" if abs(w0) <= bound else ""
         raise UncertainCollision(
             f"{int(undecided.sum())} flight(s) float64 cannot decide ({name}), first at"
-            f" {state(i)}; use fastpath.flight() to inspect the status and verify.flight_time()"
-            " to settle them"
+            f" {state(i)}{why}; use fastpath.flight() to inspect the status and"
+            " verify.flight_time() to settle them"
         )
 
 
@@ -101,6 +134,10 @@ def flight(phi, v, eps, method="auto"):
     steps otherwise) or "seed" (the seed's lower-bound steps everywhere).
     """
     code = _method(method)
+    scalars = scalar_inputs(phi=phi, v=v, eps=eps)
+    if scalars is not None:
+        tau, iterations, status = solve_flight(*scalars, code)
+        return FlightResult(tau, iterations, status)
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
@@ -114,6 +151,12 @@ def flight_time(phi, v, eps):
     Scalars give a float, arrays broadcast. Raises ValueError for NaN/inf input or w0 <= 0, and
     UncertainCollision where float64 cannot decide a near-graze (eps > 1).
     """
+    scalars = scalar_inputs(phi=phi, v=v, eps=eps)
+    if scalars is not None:
+        tau, _, status = solve_flight(*scalars, METHODS["auto"])
+        if status != CONVERGED:
+            _raise_on_status(np.array([status]), *([x] for x in scalars))
+        return tau
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
@@ -127,6 +170,12 @@ def step(phi, v, eps):
 
     v1 = tau - v - 2*eps*sin(phi + tau). Errors as for ``flight_time``.
     """
+    scalars = scalar_inputs(phi=phi, v=v, eps=eps)
+    if scalars is not None:
+        phi1, v1, tau, _, status = collide(*scalars)
+        if status != CONVERGED:
+            _raise_on_status(np.array([status]), *([x] for x in scalars))
+        return phi1, v1, tau
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     phi1, v1, tau, status = np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8)
@@ -136,10 +185,21 @@ def step(phi, v, eps):
 
 
 def holmes_step(phi, v, eps):
-    """One step of the Holmes map: phi1 = (phi + 2v) mod 2*pi, v1 = |v - 2*eps*sin(phi1)|."""
+    """One step of the Holmes map: phi1 = (phi + 2v) mod 2*pi, v1 = |v - 2*eps*sin(phi1)|.
+
+    The state must be a departure (w0 = v + eps*sin(phi) > 0), errors as for ``flight_time``.
+    """
+    scalars = scalar_inputs(phi=phi, v=v, eps=eps)
+    if scalars is not None:
+        status = departure_status(*scalars)
+        if status != CONVERGED:
+            _raise_on_status(np.array([status]), *([x] for x in scalars))
+        return holmes_collide(*scalars)
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
-    phi1, v1 = np.empty(len(phi_a)), np.empty(len(phi_a))
-    _holmes_steps(phi_a, v_a, eps_a, phi1, v1)
+    n = len(phi_a)
+    phi1, v1, status = np.empty(n), np.empty(n), np.empty(n, np.int8)
+    _holmes_steps(phi_a, v_a, eps_a, phi1, v1, status)
+    _raise_on_status(status, phi_a, v_a, eps_a)
     return _shaped(shape, scalar, phi1, v1)
 
 
@@ -163,6 +223,9 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto"):
     phi0, v0, eps = float(phi_a[0]), float(v_a[0]), float(eps_a[0])
     phi, v, t = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
     if model == "holmes":
+        status = departure_status(phi0, v0, eps)
+        if status != CONVERGED:
+            _raise_on_status(np.array([status]), [phi0], [v0], [eps])
         holmes_orbit(phi0, v0, eps, phi, v, t)
         return Orbit(phi, v, t, None, FlightStatus.CONVERGED, model, eps)
     iterations = np.zeros(n, np.int32)

@@ -9,7 +9,8 @@ incoming velocity v_in = v - tau, the elastic impact gives
 import math
 
 from fastpath._jit import jit
-from fastpath.flight import AUTO, flight_from
+from fastpath.flight import AUTO, flight_from, phase_error_of
+from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.phase import centre_phase, reduce_phase
 
 
@@ -30,8 +31,11 @@ def collide_from(phi, sin_phi, cos_phi, v, eps, method=AUTO):
     Takes and returns the sine and cosine of the phase, so that a chain of collisions calls
     libm's sine and cosine once per collision.
     """
+    centred = centre_phase(phi)
+    # the carried sine has an absolute error of a few u (rotation, Newton update)
+    phase_error = phase_error_of(phi, centred) + 8.0 * UNIT_ROUNDOFF
     tau, sin1, cos1, iterations, status = flight_from(
-        centre_phase(phi), sin_phi, cos_phi, v, eps, method
+        centred, sin_phi, cos_phi, v, eps, method, phase_error
     )
     phi1 = reduce_phase(phi + tau)
     v1 = tau - v - 2.0 * eps * sin1

@@ -1,16 +1,23 @@
-"""Fast flight solver for |eps| < 1, where the gap is strictly concave (DESIGN fact 2).
+"""Fast flight solver for |eps| <= 1 (exactly 1 included), where the gap is concave (DESIGN fact 2).
 
-With d'' <= -1 + |eps| < 0 the gap has exactly one positive root, so any point t with d(t) > 0 lies
-before it and any point with d(t) < 0 after it: every evaluation narrows a certified bracket
-[lo, hi], which starts as [2*w0/(1+|eps|), 2*w0/(1-|eps|)]. Inside it we take Halley steps
+With d'' = -1 + eps*cos(phi + t) <= -1 + |eps| <= 0 the gap has exactly one positive root, so a
+point t where the computed gap exceeds its rounding bound E (``fastpath.gap.gap_error``) lies
+before it and a point with d < -E after it: every such evaluation narrows a certified bracket
+[lo, hi]. It starts from the bounds of fact 2 and, since d <= 2|eps| + t*v - t**2/2,
 
-    t <- t - 2*d*d' / (2*d'**2 - d*d'')            (cubic convergence)
+    2*w0/(1 + |eps|)  <=  tau  <=  min(2*w0/(1 - |eps|),  v + sqrt(v**2 + 4|eps|)),
 
-falling back to bisection if a step leaves the bracket. The last evaluation, within rounding of
-the root, gets one Newton correction -d/d'. From the right (d < 0) concavity keeps it at or
-beyond the root; from the left it passes the root by at most (1+|eps|)*s**2/(2|d'|) for a step s
-that is itself at rounding level, i.e. by far less than one ulp: the result never oversteps by
-more than rounding.
+the second upper bound finite at |eps| = 1 (w0 taken with its rounding error, ``departure``).
+Inside it we take Halley steps t <- t - 2*d*d' / (2*d'**2 - d*d''), or a bisection step (the
+geometric mean while hi > 4*lo) when a step leaves the bracket. A point with |d| <= E is
+
+* after the maximum of d (d' < -its error): the root is within rounding of t. One Newton
+  correction -d/d' gives the answer, CLAMPED to [lo, hi], so it is always in the certified bracket
+  (near a triple root, eps -> 1 with phi = -x, v = x, d' is tiny and the unclamped step is wild);
+* before the maximum (d' > its error): d increases there, so the root lies beyond t: lo = t;
+* at a flat top (|d'| within its error too): float64 cannot place the root: UNCERTAIN.
+
+At most ITERATION_LIMIT evaluations (then MAX_ITERATIONS, as UNCERTAIN).
 
 Two starts and two ways of evaluating the gap, each one libm sine and cosine per flight; later
 iterates move the angles along by angle addition (``fastpath.rotation``):
@@ -31,25 +38,69 @@ Both return sin and cos of phi + tau, which the collision needs and the next fli
 import math
 
 from fastpath._jit import jit
-from fastpath.gap import gap_error
+from fastpath.gap import UNIT_ROUNDOFF, gap_error, rate_error
 from fastpath.rotation import rotate
+from fastpath.status import FlightStatus
 
-ITERATION_LIMIT = 2200  # bisection alone exhausts any float64 bracket in < 2100 steps
+ITERATION_LIMIT = 60
+CONVERGED = int(FlightStatus.CONVERGED)
+UNCERTAIN = int(FlightStatus.UNCERTAIN)
+MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
+OVERFLOW = int(FlightStatus.OVERFLOW)
+
+# classification of one evaluation (see the module docstring)
+_BEFORE, _AFTER, _AT_ROOT, _FLAT = 0, 1, 2, 3
 
 
 @jit
-def halley(t, d, d1, d2, lo, hi):
-    """Narrow the bracket (lo, hi) by the sign of d at t, then step: (t_next, lo, hi).
+def bracket(v, w0, w0_error, eps):
+    """Certified (lo, hi) for the root (module docstring), rounded outwards."""
+    a = 1.0 + abs(eps)
+    lo = 2.0 * max(w0 - w0_error, 0.0) / a * (1.0 - 4.0 * UNIT_ROUNDOFF)
+    hi = math.inf
+    if abs(eps) < 1.0:
+        hi = 2.0 * (w0 + w0_error) / (1.0 - abs(eps))
+    if not hi <= 2.0 * abs(v) + 2.0:  # the bound below is <= 2|v| + 2: it can only help here
+        if 1e-150 < abs(v) < 1e150:
+            root = math.sqrt(v * v + 4.0 * abs(eps))
+        else:  # v**2 would underflow or overflow
+            root = math.hypot(v, 2.0 * math.sqrt(abs(eps)))
+        hi = min(hi, v + root if v >= 0.0 else 4.0 * abs(eps) / (root - v))
+    return lo, hi * (1.0 + 4.0 * UNIT_ROUNDOFF)
 
-    t_next is the Halley step from t, or the bracket's midpoint if that step leaves it.
+
+@jit
+def classify(phi, v, eps, t, d, d1):
+    """Where t lies relative to the root, from d(t) and d'(t) with their error bounds."""
+    d_err = gap_error(phi, v, eps, t)
+    if d > d_err:
+        return _BEFORE
+    if d < -d_err:
+        return _AFTER
+    d1_err = rate_error(phi, v, eps, t)
+    if d1 < -d1_err:
+        return _AT_ROOT
+    if d1 > d1_err:
+        return _BEFORE
+    return _FLAT
+
+
+@jit
+def halley(t, d, d1, d2, where, lo, hi):
+    """Narrow the bracket (lo, hi) by where t lies, then step: (t_next, lo, hi).
+
+    t_next is the Halley step from t, or a bisection point if that step leaves the bracket.
     """
-    if d > 0.0:
+    if where == _BEFORE:
         lo = t
     else:
         hi = t
     t_next = t - 2.0 * d * d1 / (2.0 * d1 * d1 - d * d2)
     if not lo < t_next < hi:
-        t_next = 0.5 * (lo + hi)
+        if lo > 0.0 and hi > 4.0 * lo:
+            t_next = math.sqrt(lo) * math.sqrt(hi)
+        else:
+            t_next = 0.5 * (lo + hi)
     return t_next, lo, hi
 
 
@@ -62,64 +113,83 @@ def two_sum(x, y):
 
 
 @jit
-def concave_flight(phi, sin_phi, cos_phi, v, eps):
-    """(tau, sin(phi + tau), cos(phi + tau), evaluations) for |eps| < 1 and w0 > 0, phi reduced.
+def concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
+    """(tau, sin(phi + tau), cos(phi + tau), evaluations, status) for |eps| <= 1, w0 > w0_error.
 
-    evaluations == ITERATION_LIMIT means the bracket did not close (never seen; reported).
+    phi reduced to [-pi, pi); status CONVERGED, UNCERTAIN, MAX_ITERATIONS or OVERFLOW.
     """
-    if 2.0 * (v + eps * sin_phi) >= 1.0 + abs(eps):
-        return _flight_from_holmes(phi, sin_phi, cos_phi, v, eps)
-    return _flight_half_angle(phi, sin_phi, cos_phi, v, eps)
+    w0 = v + eps * sin_phi
+    lo, hi = bracket(v, w0, w0_error, eps)
+    if not hi < math.inf:
+        return math.nan, math.nan, math.nan, 0, OVERFLOW
+    if 2.0 * w0 >= 1.0 + abs(eps):
+        return _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi)
+    return _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi)
 
 
 @jit
-def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps):
-    w0 = v + eps * sin_phi
-    a = 1.0 + abs(eps)
-    lo, hi = 2.0 * w0 / a, 2.0 * w0 / (1.0 - abs(eps))
+def _finish(t, d, d1, s, c, angle, lo, hi, evaluations, where):
+    """The answer from the last evaluation at t (module docstring)."""
+    if where == _FLAT:
+        return t, s, c, evaluations, UNCERTAIN
+    if where == _AT_ROOT:
+        tau = min(max(t - d / d1, lo), hi)
+    else:  # the bracket closed to adjacent floats around the root
+        tau = lo
+    h = tau - t
+    if abs(h) < 1e-8:  # first order: the neglected h**2/2 is below u/2
+        return tau, s + c * h, c - s * h, evaluations, CONVERGED
+    s, c = rotate(s, c, angle, h)
+    return tau, s, c, evaluations, CONVERGED
+
+
+@jit
+def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
     two_v = 2.0 * v
     theta0, theta0_error = two_sum(phi, two_v)
     s, c = rotate(math.sin(theta0), math.cos(theta0), theta0, theta0_error)
     delta, t = 0.0, two_v
-    evaluations = 0
-    while evaluations < ITERATION_LIMIT:
-        evaluations += 1
+    for evaluations in range(1, ITERATION_LIMIT + 1):
         d = eps * (cos_phi - c) - 0.5 * t * delta
         d1 = -v - delta + eps * s
-        if abs(d) <= gap_error(phi, v, eps, t):
-            break
-        t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, lo, hi)
-        if t_next == t:
-            break
+        if not abs(d) < math.inf:
+            return math.nan, math.nan, math.nan, evaluations, OVERFLOW
+        where = classify(phi, v, eps, t, d, d1)
+        if where >= _AT_ROOT:
+            return _finish(t, d, d1, s, c, theta0 + theta0_error + delta, lo, hi, evaluations,
+                           where)
+        t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, where, lo, hi)
+        if t_next == lo or t_next == hi:
+            return _finish(t, d, d1, s, c, theta0 + theta0_error + delta, lo, hi, evaluations,
+                           _BEFORE)
         delta_next = t_next - two_v
         s, c = rotate(s, c, theta0 + theta0_error + delta, delta_next - delta)
         delta, t = delta_next, t_next
-    step = -d / d1
-    return t + step, s + c * step, c - s * step, evaluations
+    return t, s, c, ITERATION_LIMIT, MAX_ITERATIONS
 
 
 @jit
-def _flight_half_angle(phi, sin_phi, cos_phi, v, eps):
+def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi):
     w0 = v + eps * sin_phi
-    a = 1.0 + abs(eps)
-    lo, hi = 2.0 * w0 / a, 2.0 * w0 / (1.0 - abs(eps))
-    t = 2.0 * w0 / (1.0 - eps * cos_phi)  # inside [lo, hi] since |eps*cos(phi)| <= |eps|
+    t = 2.0 * w0 / (1.0 - eps * cos_phi)  # the frozen-acceleration root
+    if not lo < t < hi:
+        t = 0.5 * (lo + hi)
     sin_h, cos_h = math.sin(0.5 * t), math.cos(0.5 * t)
-    evaluations = 0
-    while evaluations < ITERATION_LIMIT:
-        evaluations += 1
+    for evaluations in range(1, ITERATION_LIMIT + 1):
         sin_mid = sin_phi * cos_h + cos_phi * sin_h  # sin(phi + t/2)
         cos_mid = cos_phi * cos_h - sin_phi * sin_h
         s = sin_mid * cos_h + cos_mid * sin_h  # sin(phi + t)
         c = cos_mid * cos_h - sin_mid * sin_h
         d = 2.0 * eps * sin_h * sin_mid + t * (v - 0.5 * t)
         d1 = v - t + eps * s
-        if abs(d) <= gap_error(phi, v, eps, t):
-            break
-        t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, lo, hi)
-        if t_next == t:
-            break
+        if not abs(d) < math.inf:
+            return math.nan, math.nan, math.nan, evaluations, OVERFLOW
+        where = classify(phi, v, eps, t, d, d1)
+        if where >= _AT_ROOT:
+            return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, where)
+        t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, where, lo, hi)
+        if t_next == lo or t_next == hi:
+            return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, _BEFORE)
         sin_h, cos_h = rotate(sin_h, cos_h, 0.5 * t, 0.5 * (t_next - t))
         t = t_next
-    step = -d / d1
-    return t + step, s + c * step, c - s * step, evaluations
+    return t, s, c, ITERATION_LIMIT, MAX_ITERATIONS

@@ -1,33 +1,53 @@
 """One flight: the smallest positive root of the gap.
 
-For |eps| < 1 the gap is concave and ``fastpath.concave`` finds its single root by bracketed
-Halley steps (about two gap evaluations a flight). For |eps| >= 1, where several roots can exist,
-the seed's lower-bound steps are used, which approach the first root from below:
+For |eps| <= 1 (exactly 1 included) the gap is concave and ``fastpath.concave`` finds its single
+root in a certified bracket. For |eps| > 1, where several roots can exist, lower-bound steps
+approach the first root from below, never overstepping it (up to rounding).
 
-Gravity and the plate's acceleration give d''(t) >= -(1 + |eps|) =: -a, so from a time t_k with
-d_k = d(t_k) > 0 and slope r_k = d'(t_k),
+Global step (the seed's, DESIGN fact 3). Gravity and the plate's acceleration give
+d2(t) >= -(1 + |eps|) =: -a (d1, d2, d3: the first three derivatives of d), so from a time t_k
+with d_k = d(t_k) > 0 and slope r_k = d1(t_k),
 
     d(t_k + s) >= d_k + r_k*s - a*s**2/2,
 
-and the larger root s_k of the right-hand side is a rigorous lower bound on the time left before
-the next collision (DESIGN fact 3). Iterating t_{k+1} = t_k + s_k never oversteps (up to
-rounding) and converges quadratically at a transversal root. The root formula is chosen by the
-sign of r_k so that it never subtracts nearly equal numbers:
+and the larger root s_a of the right-hand side is a rigorous lower bound on the time left before
+the next collision.
 
-    s = (r + sqrt(r**2 + 2*a*d)) / a          if r >= 0
-    s = 2*d / (sqrt(r**2 + 2*a*d) - r)        if r <  0
+Local step (fast near a double root). The derivatives of the plate term are bounded by |eps|, so
+with c_k = d2(t_k) = -1 + eps*cos(phi + t_k) and j_k = d3(t_k) = -eps*sin(phi + t_k),
 
-The iteration stops when the gap is within its rounding error of zero. For |eps| > 1 the gap can
-be convex (d'' <= |eps| - 1 =: b), and a zero gap with a small slope may be the bottom of a
-near-tangent dip whose sign float64 cannot tell: that flight is returned as UNCERTAIN.
+    d2(t_k + s) >= c_k + j_k*s - |eps|*s**2/2 >= min(c_k, c_k + j_k*H - |eps|*H**2/2) =: c_H
+
+for 0 <= s <= H (a concave quadratic in s has its minimum at an end), and c_H >= -a too. Hence
+d(t_k + s) >= q_H(s) := d_k + r_k*s + c_H*s**2/2 on [0, H]. If the first positive root s_H of
+q_H is <= H, d > 0 on [t_k, t_k + s_H): a step of s_H never oversteps; if q_H has no root in
+[0, H], a step of H does not. H starts at s_a and grows towards s_H for a few rounds; the step is
+the largest certified one. Near a double root t* (d ~ m*(t - t*)**2/2) the model's error is
+O(|eps|*h**4) at a distance h, so h shrinks quadratically instead of the global step's crawl
+(eps just above 1: the global bound a ~ 2 dwarfs the dip's curvature <= eps - 1, and steps of
+~sqrt(2*d/a) took up to 20,000 iterations).
+
+Rounding: the models use d_k, r_k and c_k lowered by their error bounds (``gap_error``,
+``rate_error``), so they bound the exact gap from below; a discriminant within its rounding of zero
+counts as a root. Root formulas are chosen by the sign of r_k so that they never subtract nearly
+equal numbers (``first_root``). The iteration stops when the gap is within its rounding error of
+zero; a final Newton correction (``polish``) then moves onto the crossing: the stop can be up to
+~12 kappa*u early, the polish leaves only the gap's actual rounding. It is taken only where the
+slope d1 < 0 beyond its error; where d is convex over the step the tangent lies below d and its
+root is not beyond the crossing, where it is concave the overshoot is at most s**2*a/(2|d1|) for a
+step s itself at rounding level (|d| <= E). No second root lies that close (``may_be_graze``).
+
+For |eps| > 1 the gap can be convex (d2 <= |eps| - 1 =: b), and a zero gap with a small slope may
+be the bottom of a near-tangent dip whose sign float64 cannot tell: that flight is UNCERTAIN. At
+most ITERATION_LIMIT evaluations for any input (then MAX_ITERATIONS, as UNCERTAIN). A non-finite
+intermediate (v**2, t*v overflowing) gives OVERFLOW.
 """
 
 import math
 
 from fastpath._jit import jit
-from fastpath.concave import ITERATION_LIMIT as CONCAVE_LIMIT
 from fastpath.concave import concave_flight
-from fastpath.gap import UNIT_ROUNDOFF, gap, gap_error, gap_rate
+from fastpath.gap import UNIT_ROUNDOFF, departure, gap, gap_error, gap_rate, rate_error
 from fastpath.phase import centre_phase
 from fastpath.status import FlightStatus
 
@@ -35,12 +55,14 @@ CONVERGED = int(FlightStatus.CONVERGED)
 UNCERTAIN = int(FlightStatus.UNCERTAIN)
 NOT_DEPARTING = int(FlightStatus.NOT_DEPARTING)
 MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
+OVERFLOW = int(FlightStatus.OVERFLOW)
 
-AUTO = 0  # bracketed Halley for |eps| < 1 (fastpath.concave), lower-bound steps otherwise
-SEED = 1  # the seed's lower-bound steps for every eps (kept for comparison)
+AUTO = 0  # bracketed Halley for |eps| <= 1 (fastpath.concave), lower-bound steps otherwise
+SEED = 1  # lower-bound steps for every eps (kept for comparison)
 METHODS = {"auto": AUTO, "seed": SEED}
 
-ITERATION_LIMIT = 100_000  # crawling past a near-tangency at eps slightly above 1 is slow
+ITERATION_LIMIT = 60
+_GROWTH_ROUNDS = 4  # rounds of growing H in the local step
 
 
 @jit
@@ -53,32 +75,83 @@ def lower_bound_step(d, r, a):
 
 
 @jit
+def first_root(d, r, k):
+    """Smallest positive root of d + r*s + k*s**2/2 (d > 0), inf if none; cancellation-free.
+
+    A discriminant within its rounding error of zero counts as zero (a root: the shorter step).
+    """
+    disc = r * r - 2.0 * k * d
+    if disc < -4.0 * UNIT_ROUNDOFF * (r * r + 2.0 * abs(k) * d) or (r >= 0.0 and k >= 0.0):
+        return math.inf
+    disc = max(disc, 0.0)
+    if r < 0.0:
+        return 2.0 * d / (math.sqrt(disc) - r)
+    return (r + math.sqrt(disc)) / -k
+
+
+@jit
+def certified_step(d, r, c, j, eps):
+    """Largest step from a point with d > 0 that the module docstring's lower models certify."""
+    a = 1.0 + abs(eps)
+    best = lower_bound_step(d, r, a)
+    h = best
+    for _ in range(_GROWTH_ROUNDS):
+        c_h = max(min(c, c + j * h - 0.5 * abs(eps) * h * h), -a)
+        s_h = first_root(d, r, c_h)
+        if s_h <= h:
+            return max(best, s_h)
+        best = h  # q_H > 0 on [0, H]
+        h = min(s_h, 4.0 * h)
+    return best
+
+
+@jit
+def phase_error_of(phi_given, phi_centred):
+    """Bound on the error of the centred phase: 0 if unchanged, else one ulp (``phase``)."""
+    if phi_centred == phi_given:
+        return 0.0
+    return 2.0 * UNIT_ROUNDOFF * abs(phi_centred)
+
+
+@jit
+def departure_of(phi, v, eps):
+    """(w0, bound): w0 = v + eps*sin(phi) as the flight kernels compute it, with its error bound."""
+    centred = centre_phase(phi)
+    return departure(centred, math.sin(centred), v, eps, phase_error_of(phi, centred))
+
+
+@jit
 def solve_flight(phi, v, eps, method=AUTO):
     """Return (tau, iterations, status) for a departure at phase phi (any real) with velocity v.
 
     tau is the smallest positive root of the gap; ``status`` is a FlightStatus code.
     """
-    phi = centre_phase(phi)
+    centred = centre_phase(phi)
     tau, _, _, iterations, status = flight_from(
-        phi, math.sin(phi), math.cos(phi), v, eps, method
+        centred, math.sin(centred), math.cos(centred), v, eps, method,
+        phase_error_of(phi, centred),
     )
     return tau, iterations, status
 
 
 @jit
-def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO):
+def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, phase_error=0.0):
     """(tau, sin(phi + tau), cos(phi + tau), iterations, status) for phi in [-pi, pi).
 
     The caller supplies sin and cos of the departure phase, which the previous collision has
-    already computed: an orbit needs one libm sine and cosine per collision.
+    already computed: an orbit needs one libm sine and cosine per collision. phase_error bounds
+    the error of phi itself (its reduction). NOT_DEPARTING only where w0 <= 0 is certain; a w0
+    within its rounding bound of zero is UNCERTAIN.
     """
-    w0 = v + eps * sin_phi
-    if not w0 > 0.0:
+    w0, w0_error = departure(phi, sin_phi, v, eps, phase_error)
+    if not abs(w0) < math.inf:
+        return math.nan, math.nan, math.nan, 0, OVERFLOW
+    if not w0 > -w0_error:
         return math.nan, math.nan, math.nan, 0, NOT_DEPARTING
-    if abs(eps) < 1.0 and method == AUTO:
-        tau, sin_end, cos_end, evaluations = concave_flight(phi, sin_phi, cos_phi, v, eps)
-        status = CONVERGED if evaluations < CONCAVE_LIMIT else MAX_ITERATIONS
-        return tau, sin_end, cos_end, evaluations, status
+    if not w0 > w0_error:
+        return math.nan, math.nan, math.nan, 0, UNCERTAIN
+    if abs(eps) <= 1.0 and method == AUTO:
+        return concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error)
     tau, iterations, status = lower_bound_flight(phi, v, eps, w0)
     return tau, math.sin(phi + tau), math.cos(phi + tau), iterations, status
 
@@ -104,19 +177,33 @@ def may_be_graze(phi, eps, t, r, d_err):
 
 @jit
 def lower_bound_flight(phi, v, eps, w0):
-    """(tau, iterations, status) by the seed's lower-bound steps; phi reduced, w0 > 0."""
+    """(tau, iterations, status) by certified lower-bound steps; phi reduced, w0 > 0."""
     a = 1.0 + abs(eps)
     t = 2.0 * w0 / a  # the step from d(0) = 0, d'(0) = w0
     for k in range(1, ITERATION_LIMIT + 1):
         d = gap(phi, v, eps, t)
         r = gap_rate(phi, v, eps, t)
+        if not (abs(d) < math.inf and abs(r) < math.inf):
+            return math.nan, k, OVERFLOW
         d_err = gap_error(phi, v, eps, t)
         if d <= d_err:
             if may_be_graze(phi, eps, t, r, d_err):
                 return t, k, UNCERTAIN
-            return t, k, CONVERGED
-        t_next = t + lower_bound_step(d, r, a)
-        if t_next == t:  # the root is within one ulp of t
-            return t, k, CONVERGED
+            return polish(phi, v, eps, t, d, r), k, CONVERGED
+        # the models take the worst values within rounding: d, d' and d'' lowered by their bounds
+        theta = phi + t
+        curvature = -1.0 + eps * math.cos(theta) - 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
+        r_low = r - rate_error(phi, v, eps, t)
+        t_next = t + certified_step(d - d_err, r_low, curvature, -eps * math.sin(theta), eps)
+        if t_next == t:  # the root is within rounding of t: d <= d_err + |r|*ulp(t)
+            return polish(phi, v, eps, t, d, r), k, CONVERGED
         t = t_next
     return t, ITERATION_LIMIT, MAX_ITERATIONS
+
+
+@jit
+def polish(phi, v, eps, t, d, r):
+    """One certified Newton correction t - d/r at a stop with |d| within rounding of zero."""
+    if not r < -rate_error(phi, v, eps, t):
+        return t
+    return t - d / r

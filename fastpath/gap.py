@@ -6,7 +6,8 @@ For a departure at phase phi with velocity v, after a time t (DESIGN section 2):
           = 2*eps*sin(phi + t/2)*sin(t/2) + t*(v - t/2)        (no cancellation at small t)
     d'(t) = v - t + eps*sin(phi + t)
 
-``gap_error`` bounds the rounding error of ``gap`` in float64 (phi reduced to [0, 2*pi)).
+``gap_error`` and ``rate_error`` bound the rounding errors of ``gap`` and ``gap_rate`` in float64
+(phi reduced); ``departure`` computes w0 = d'(0) = v + eps*sin(phi) with its error bound.
 """
 
 import math
@@ -39,3 +40,23 @@ def gap_error(phi, v, eps, t):
     plate = abs(eps) * min(t, 2.0) * (abs(phi) + t + 3.0)
     flight = t * (abs(v) + t)
     return 4.0 * UNIT_ROUNDOFF * (plate + flight)
+
+
+@jit
+def rate_error(phi, v, eps, t):
+    """A bound on |computed d' - exact d'| at the float t: a few u of each term of
+    v - t + eps*sin(phi + t), the sine's argument carrying u*(|phi| + t)."""
+    return 4.0 * UNIT_ROUNDOFF * (abs(v) + t + abs(eps) * (1.0 + abs(phi) + t))
+
+
+@jit
+def departure(phi, sin_phi, v, eps, phase_error):
+    """(w0, bound) with w0 = fl(v + eps*sin_phi) and |w0 - (v + eps*sin(phi_exact))| <= bound.
+
+    phase_error bounds |phi - phi_exact| (0 for a phase used as given; the reduction's error
+    otherwise) plus any absolute error of sin_phi beyond libm's (a sine carried by rotation).
+    The sine, the product and the sum each round by <= u of their size.
+    """
+    w0 = v + eps * sin_phi
+    bound = 2.0 * UNIT_ROUNDOFF * abs(w0) + 3.0 * UNIT_ROUNDOFF * abs(eps * sin_phi)
+    return w0, bound + abs(eps) * phase_error

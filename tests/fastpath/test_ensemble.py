@@ -146,7 +146,7 @@ def test_sample_holds_the_state_before_the_target_collision():
 
 def test_counts_do_not_depend_on_the_number_of_threads():
     if numba.config.NUMBA_NUM_THREADS < 2:
-        pytest.skip("one thread only")
+        pytest.skip("numba has one thread only: 1 vs 2 threads cannot be compared")
     phi, v = starts(20_000, seed=7)
     before = numba.get_num_threads()
     try:

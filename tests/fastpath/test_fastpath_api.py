@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 import pytest
+from fastpath_tolerances import exact_w0
 
 import fastpath
 
@@ -35,12 +36,13 @@ def test_orbit_non_finite_input_names_the_value(name, bad):
 
 @pytest.mark.parametrize(
     "phi, v",
-    [(4.0, 0.0), (1.0, -1.0), (1.0, -0.6 * math.sin(1.0)), (4.0, -0.6 * math.sin(4.0) - 1e-15)],
+    [(4.0, 0.0), (1.0, -1.0), (4.0, -0.6 * math.sin(4.0) - 1e-15), (1e12, 0.0)],
 )
 def test_not_departing_is_rejected(phi, v):
-    """w0 = v + eps*sin(phi) <= 0 at eps = 0.6 (the last two exactly at 0 or just below)."""
+    """w0 = v + eps*sin(phi) < 0 for certain at eps = 0.6 (the third 1e-15 below 0, beyond the
+    ~5e-16 rounding bound of w0), also at a huge phase."""
     eps = 0.6
-    assert v + eps * math.sin(phi) <= 0
+    assert exact_w0(phi, v, eps) < -2e-16
     with pytest.raises(ValueError, match="w0"):
         fastpath.flight_time(phi, v, eps)
     with pytest.raises(ValueError, match="w0"):
@@ -49,6 +51,65 @@ def test_not_departing_is_rejected(phi, v):
         fastpath.orbit(phi, v, eps, 3)
     res = fastpath.flight(phi, v, eps)
     assert res.status == fastpath.FlightStatus.NOT_DEPARTING and math.isnan(res.tau)
+
+
+def test_w0_within_rounding_of_zero_is_uncertain_not_rejected():
+    """v = -fl(0.6*sin(1)): w0 computes as 0, but the exact w0 of these floats is not 0; its sign
+    is below float64's resolution, so the flight is UNCERTAIN (never NOT_DEPARTING)."""
+    phi, v, eps = 1.0, -0.6 * math.sin(1.0), 0.6
+    assert exact_w0(phi, v, eps) != 0
+    assert fastpath.flight(phi, v, eps).status == fastpath.FlightStatus.UNCERTAIN
+    with pytest.raises(fastpath.UncertainCollision, match="departure or not"):
+        fastpath.flight_time(phi, v, eps)
+
+
+def test_message_states_the_computed_w0():
+    with pytest.raises(ValueError, match=r"computed as -0\.36674.* rounding error <= "):
+        fastpath.flight_time(1e12, 0.0, 0.6)
+
+
+def test_valid_departure_at_huge_phase_is_accepted():
+    """Regression: phi = 1e12 with w0 = +1e-8 was rejected as 'w0 = 9.99e-09 <= 0'."""
+    from mpmath import mp
+
+    with mp.workdps(60):
+        v = float(1e-8 - 0.6 * mp.sin(mp.mpf(1e12)))
+    assert exact_w0(1e12, v, 0.6) > 0
+    assert fastpath.flight_time(1e12, v, 0.6) > 0
+
+
+@pytest.mark.parametrize(
+    "phi, v, eps", [(1.0, 1e308, 0.6), (1.0, 1e200, 3.0), (1.0, 3.0, 1e308), (0.5, 1e300, 1e300)]
+)
+def test_overflow_is_a_value_error_saying_overflow(phi, v, eps):
+    for func in (fastpath.flight_time, fastpath.step):
+        with pytest.raises(ValueError, match="overflow"):
+            func(phi, v, eps)
+        with pytest.raises(ValueError, match="overflow"):
+            func(np.array([phi, 4.0]), np.array([v, 3.0]), eps)
+    assert fastpath.flight(phi, v, eps).status == fastpath.FlightStatus.OVERFLOW
+
+
+@pytest.mark.parametrize("bad", ["4.0", True, np.bool_(False), None, [1.0, "x"], 1 + 2j,
+                                 np.array(["1.0"]), np.array([True, False])])
+@pytest.mark.parametrize(
+    "func", [fastpath.flight_time, fastpath.flight, fastpath.step, fastpath.holmes_step]
+)
+def test_strings_and_bools_are_rejected(func, bad):
+    with pytest.raises(ValueError, match="phi"):
+        func(bad, 3.0, 0.6)
+    with pytest.raises(ValueError, match="eps"):
+        func(4.0, 3.0, bad)
+
+
+@pytest.mark.parametrize("phi, v", [(4.0, 0.0), (1.0, -1.0)])
+def test_holmes_step_rejects_non_departures(phi, v):
+    with pytest.raises(ValueError, match="w0"):
+        fastpath.holmes_step(phi, v, 0.6)
+    with pytest.raises(ValueError, match="w0"):
+        fastpath.holmes_step(np.array([4.0, phi]), np.array([3.0, v]), 0.6)
+    with pytest.raises(ValueError, match="w0"):
+        fastpath.orbit(phi, v, 0.6, 3, model="holmes")
 
 
 def test_exact_tangential_departure_is_rejected():

@@ -52,6 +52,10 @@ def test_random_departures_agree_with_verify(phi, w0, eps):
 # gap_error then scales with 5.94 instead of 0.34; tau is off by 19 kappa*u (kappa at the
 # caller's phi). Also in hard_cases.HARD_CASES as "negative-phase-short-graze".
 @example(eps=1.05, fraction=0.125, sign=-1.0, t_guess=1.0)
+# Regression (found while adding the local lower-bound step): a dip at float resolution (minimum
+# -1.4e-17) whose computed discriminant was -1.6e-19: "no root", a jump to tau = 4.93 over the
+# first root 0.4453. The lower models now take d, d' and d'' at their rounding bounds.
+@example(eps=2.0, fraction=0.25, sign=-1.0, t_guess=1.0)
 def test_grazing_departures_never_converge_to_a_wrong_root(eps, fraction, sign, t_guess):
     """eps*cos(psi) = 1 + fraction*(eps - 1) > 1: the contact is a dip (a graze from above)."""
     import verify

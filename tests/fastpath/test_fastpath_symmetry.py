@@ -47,7 +47,11 @@ def test_reversibility(phi, w0, eps):
     rev = fastpath.flight(phi_r, v_r, eps)
     if rev.status != fastpath.FlightStatus.CONVERGED:
         assert_flight_ok(phi_r, v_r, eps)  # UNCERTAIN must be a justified near-graze
-        return
+    else:
+        _check_reversed(phi, v, eps, phi1, tau, phi_r, v_r, rev)
+
+
+def _check_reversed(phi, v, eps, phi1, tau, phi_r, v_r, rev):
     w0_exact = float(exact_w0(phi, v, eps))
     dv = float(tau_tolerance(phi, v, eps, tau)) + math.ulp(abs(tau - v))
     dphi = phi1_tolerance(phi, v, eps, tau)
@@ -74,6 +78,7 @@ def test_eps_sign_symmetry(phi, w0, eps):
 
 @given(phi=st.floats(min_value=-1e6, max_value=1e6), v=st.floats(min_value=1e-300, max_value=1e6))
 @example(phi=0.0, v=3.0)
+@example(phi=0.0, v=1e-300)  # regression: v**2 underflowed in the bracket's bound
 def test_eps_zero_gives_2v_bitwise(phi, v):
     assert fastpath.flight_time(phi, v, 0.0) == 2.0 * v
     assert fastpath.flight_time(phi, v, -0.0) == 2.0 * v
