@@ -13,27 +13,34 @@ from fastpath.flight import AUTO, flight_from, phase_error_of
 from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.phase import centre_phase, reduce_phase
 
+CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rotation, Newton)
+
 
 @jit
 def collide(phi, v, eps):
-    """Return (phi1, v1, tau, iterations, status) for one flight and impact."""
-    phi = centre_phase(phi)
+    """Return (phi1, v1, tau, iterations, status) for one flight and impact.
+
+    The sine and cosine are computed here from the centred phase (libm, a relative error of an
+    ulp, within the departure's own rounding bound): only the centring's error is added.
+    """
+    centred = centre_phase(phi)
     phi1, _, _, v1, tau, iterations, status = collide_from(
-        phi, math.sin(phi), math.cos(phi), v, eps
+        centred, math.sin(centred), math.cos(centred), v, eps, AUTO,
+        phase_error_of(phi, centred)
     )
     return phi1, v1, tau, iterations, status
 
 
 @jit
-def collide_from(phi, sin_phi, cos_phi, v, eps, method=AUTO):
+def collide_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, sine_error=CARRIED_SINE_ERROR):
     """(phi1, sin(phi1), cos(phi1), v1, tau, iterations, status) for phi in [-pi, 2*pi).
 
     Takes and returns the sine and cosine of the phase, so that a chain of collisions calls
-    libm's sine and cosine once per collision.
+    libm's sine and cosine once per collision; ``sine_error`` bounds the absolute error of the
+    given sine (a few u when carried, ``CARRIED_SINE_ERROR``).
     """
     centred = centre_phase(phi)
-    # the carried sine has an absolute error of a few u (rotation, Newton update)
-    phase_error = phase_error_of(phi, centred) + 8.0 * UNIT_ROUNDOFF
+    phase_error = phase_error_of(phi, centred) + sine_error
     tau, sin1, cos1, iterations, status = flight_from(
         centred, sin_phi, cos_phi, v, eps, method, phase_error
     )
