@@ -1,4 +1,5 @@
-"""Tests that kill mutants of ``fastpath/ensemble.py`` (scripts/mutation/ensemble.py).
+"""Tests that kill mutants of ``fastpath/ensemble.py`` (scripts/mutation/ensemble.py): the
+wrapped hole edge (the two_sum carry) and the time horizon (a collision at t = max_time).
 
 ``exit_hole`` adds TWO_PI to a negative ``d = phi - lo`` with ``two_sum``; that sum is exact
 (zero carry) whenever ``d_hi + TWO_PI`` stays on ``d_hi``'s grid, which is why the edge probes
@@ -11,7 +12,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from fastpath.ensemble import exit_hole
+from fastpath.ensemble import NO_LIMIT, escape_chunk, exit_hole
 from fastpath.phase import TWO_PI
 
 LO = 5.0
@@ -34,3 +35,27 @@ def test_wrapped_edge_of_a_wide_hole_with_a_fine_phase_grid():
     for phi, expected in zip(phis, verdicts, strict=True):
         got = exit_hole(float(phi), np.array([LO]), np.array([WIDTH]))
         assert (got == 0) == expected, phi
+
+
+def _escape_one(phi, v, eps, hole_lo, hole_width, max_time):
+    """One particle through ``escape_chunk``, one block, unit bins: (esc_t, cens_t, collisions)."""
+    t_edges = np.arange(0.0, 10.0)
+    esc_n, esc_t = np.zeros((1, 1, 10), np.int64), np.zeros((1, 1, 10), np.int64)
+    cens_n, cens_t = np.zeros((1, 10), np.int64), np.zeros((1, 10), np.int64)
+    collisions = np.zeros(1, np.int64)
+    escape_chunk(np.array([phi]), np.array([v]), np.zeros(1), np.zeros(1, np.int64), eps,
+                 np.array([hole_lo]), np.array([hole_width]), NO_LIMIT, max_time, t_edges,
+                 t_edges, True, True, np.full(1, -1, np.int64), np.zeros(1, np.int64),
+                 esc_n, esc_t, cens_n, cens_t, collisions, np.zeros(1, np.int8),
+                 np.zeros((1, 4)), np.zeros((0, 6)))
+    return esc_t[0, 0], cens_t[0], collisions[0]
+
+
+def test_collision_exactly_at_the_time_horizon_is_made():
+    """Censoring needs t > max_time (module docstring): with eps = 0 the first flight is exactly
+    tau = 2*v = 2, so a horizon of 2 still makes that collision and the particle escapes."""
+    esc_t, cens_t, collisions = _escape_one(0.0, 1.0, 0.0, 1.9, 0.2, max_time=2.0)
+    assert collisions == 1
+    assert esc_t[2] == 1 and esc_t.sum() == 1 and cens_t.sum() == 0
+    esc_t, cens_t, collisions = _escape_one(0.0, 1.0, 0.0, 1.9, 0.2, max_time=np.nextafter(2, 0))
+    assert collisions == 0 and esc_t.sum() == 0 and cens_t[2] == 1  # the bound t1 = 2 is kept
