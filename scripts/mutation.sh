@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Mutation testing (issue 12 item 5). Not part of the default test run: it takes minutes.
+#
+#   scripts/mutation.sh [verify|runs|ensemble|certify|all]     (default: all)
+#
+# verify, runs, certify: mutmut 3 on the pure-Python targets, configured by scripts/mutation/<group>.cfg
+#   (copied to setup.cfg in a scratch copy of the worktree, so the worktree is never mutated).
+# ensemble: fastpath/ensemble.py is numba-compiled, which mutmut's trampolines cannot be, so a
+#   small AST driver (scripts/mutation/ensemble.py) applies one operator swap at a time to a
+#   scratch copy and runs the ensemble tests with a per-mutant NUMBA_CACHE_DIR.
+#
+# One worker, under nice: the machine is shared. Scratch copies live under $MUTATION_DIR
+# (default /tmp/bouncer-mutation); each group prints its survivors and a one-line score.
+set -euo pipefail
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+work=${MUTATION_DIR:-/tmp/bouncer-mutation}
+groups=${1:-all}
+[ "$groups" = all ] && groups="verify runs ensemble certify"  # cheapest first
+
+scratch_copy() {  # $1: destination; tracked and untracked-but-not-ignored files only
+    rm -rf "$1" && mkdir -p "$1"
+    (cd "$root" && git ls-files -co --exclude-standard -z | tar --null -cf - -T -) | tar -xf - -C "$1"
+}
+
+run_mutmut() {  # $1: group name (scripts/mutation/$1.cfg)
+    local dest="$work/$1"
+    scratch_copy "$dest"
+    cp "$root/scripts/mutation/$1.cfg" "$dest/setup.cfg"
+    cd "$dest"
+    export NUMBA_CACHE_DIR="$work/numba-$1"
+    local t0=$SECONDS
+    local names=()  # optional scripts/mutation/<group>.names: mutant-name globs to run, one a line
+    [ -f "$root/scripts/mutation/$1.names" ] && mapfile -t names < "$root/scripts/mutation/$1.names"
+    nice -n 10 mutmut run --max-children 1 "${names[@]}" > mutmut-run.log 2>&1 || { tail -20 mutmut-run.log; return 1; }
+    mutmut results --all true > results.txt 2>&1
+    echo "== $1: wall $((SECONDS - t0)) s (log: $dest/mutmut-run.log)"
+    python - results.txt <<'EOF'
+import collections, sys  # "not checked": outside the group's .names selection
+per = collections.defaultdict(collections.Counter)
+for line in open(sys.argv[1]):
+    if ":" not in line:
+        continue
+    name, status = (s.strip() for s in line.rsplit(":", 1))
+    if status == "not checked":
+        continue
+    module = name.split(".x_")[0].split(".xǁ")[0]
+    per[module][status] += 1
+    if status not in ("killed",):
+        print(f"   {status:10s} {name}")
+for module, c in sorted(per.items()):
+    n = sum(c.values())
+    print(f"{module}: {n} mutants, {c['killed']} killed, {c['survived']} survived, "
+          f"{c['timeout']} timeouts, other {n - c['killed'] - c['survived'] - c['timeout']}; "
+          f"score {100 * c['killed'] / n:.1f}%")
+EOF
+    cd "$root"
+}
+
+for g in $groups; do
+    case $g in
+        verify|runs|certify) run_mutmut "$g" ;;
+        ensemble)
+            scratch_copy "$work/ensemble"
+            nice -n 10 python "$root/scripts/mutation/ensemble.py" "$work/ensemble" ;;
+        *) echo "unknown group: $g (verify, runs, ensemble, certify, all)" >&2; exit 2 ;;
+    esac
+done

@@ -1,0 +1,87 @@
+"""Tests that kill mutants of ``verify/_inputs.py`` and ``verify/phase.py`` (scripts/mutation.sh).
+
+Each test pins a documented behaviour that the rest of the suite did not observe: the value a
+validation message names, the boundary of an inclusive rule, the exactness of a conversion, and
+the documented fields of a ``ReducedPhase``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from mpmath import mp
+
+import verify
+from verify._inputs import MIN_DPS, check_state, exact_real
+from verify.phase import _GUARD_BITS, reduce_phase, reduction_bits
+
+
+@pytest.mark.parametrize("bad", [0, 1, 2])
+def test_non_finite_input_is_named(bad):
+    """The message names the argument that is bad (phi, v or eps), not another one."""
+    args = [0.0, 1.0, 0.5]
+    args[bad] = math.nan
+    name = ("phi", "v", "eps")[bad]
+    with pytest.raises(ValueError, match=rf"^{name} must be finite, got {name}=nan$"):
+        verify.flight_time(*args)
+
+
+def test_no_departure_message_names_w0_and_each_argument():
+    """phi = 0 makes sin(phi) = 0 exactly, so w0 = v: the message shows it to 8 digits, then
+    each argument under its own name (including the orbit's phi0, v0)."""
+    v = -1 / 3
+    with pytest.raises(ValueError) as err:
+        verify.flight_time(0.0, v, 0.5)
+    msg = str(err.value)
+    assert f"= {mp.nstr(mp.mpf(v), 8)} <= 0" in msg
+    assert mp.nstr(mp.mpf(v), 8) == "-0.33333333"
+    assert msg.endswith(f"(phi=0.0, v={v!r}, eps=0.5)")
+    with pytest.raises(ValueError, match=r"\(phi0=0\.0, v0=-0\.333"):
+        verify.orbit(0.0, v, 0.5, 3)
+
+
+def test_bad_tau_is_named():
+    with pytest.raises(ValueError, match=r"^tau must be finite, got tau=inf$"):
+        verify.condition_number(0.0, 1.0, 0.5, math.inf)
+    with pytest.raises(ValueError, match=r"^tau must be > 0, got tau=0\.0$"):
+        verify.condition_number(0.0, 1.0, 0.5, 0.0)
+
+
+def test_tau_is_none_when_not_passed():
+    assert check_state(0.0, 1.0, 0.5).tau is None
+    assert check_state(0.0, 1.0, 0.5, tau=2.0).tau == 2
+
+
+def test_min_dps_is_accepted():
+    """``dps >= 15`` is the rule: 15 itself is valid, 14 is not."""
+    assert verify.flight_time(0.0, 1.0, 0.0, dps=MIN_DPS) == 2
+    with pytest.raises(ValueError, match="dps=14"):
+        verify.flight_time(0.0, 1.0, 0.0, dps=MIN_DPS - 1)
+
+
+def test_large_integer_converts_exactly():
+    """An int wider than 53 bits is taken exactly, whatever the caller's precision."""
+    n = 2**80 + 1
+    with mp.workprec(53):
+        assert int(exact_real("v", n)) == n
+
+
+def test_small_phase_is_returned_unreduced():
+    """|phi| < 8: the phase itself, k = 0, at the caller's precision."""
+    r = reduce_phase(mp.mpf(1), 53)
+    assert (r.value, r.k, r.work_bits) == (1, 0, 53)
+    assert r.enclosure.a == 1 and r.enclosure.b == 1
+
+
+def test_phase_eight_is_reduced():
+    """The no-reduction rule is strict (|phi| < 8): phi = 8 is reduced by one period."""
+    r = reduce_phase(mp.mpf(8), 53)
+    assert r.k == 1
+    assert 0 < r.value < 2 * mp.pi
+
+
+def test_reduction_bits_never_subtracts_for_small_phases():
+    """prec + max(0, exponent) + guard: a phase below 1 adds no bits."""
+    assert reduction_bits(mp.mpf(0.25), 53) == 53 + _GUARD_BITS
+    assert reduction_bits(mp.mpf(2) ** 100, 53) == 53 + 101 + _GUARD_BITS
