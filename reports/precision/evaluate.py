@@ -77,10 +77,21 @@ def reference(case: Case) -> Reference | None:
     return _REFERENCES[key]
 
 
+def _reduced_phase(phi: float) -> mpmath.mpf:
+    """phi mod 2*pi to 40 digits, with the working precision raised by phi's decimal exponent
+    (a phase of 1e300 needs 300 more digits of pi to be reduced right)."""
+    extra = max(0, math.frexp(phi)[1]) * 30 // 100 + 1
+    with mp.workdps(40 + extra):
+        r = mp.mpf(phi) % (2 * mp.pi)
+    with mp.workdps(40):
+        return +r
+
+
 def _gap_rate(case: Case, t) -> mpmath.mpf:
+    phi = _reduced_phase(case.phi)
     with mp.workdps(40):
         t = mp.mpf(t)
-        return mp.mpf(case.v) - t + mp.mpf(case.eps) * mp.sin(mp.mpf(case.phi) + t)
+        return mp.mpf(case.v) - t + mp.mpf(case.eps) * mp.sin(phi + t)
 
 
 def overstepped(case: Case, ref: Reference, tau) -> bool:
@@ -91,8 +102,7 @@ def overstepped(case: Case, ref: Reference, tau) -> bool:
     if _gap_rate(case, tau) > 0:
         return True
     lo, hi = float(ref.upper), float(tau)
-    with mp.workdps(40):
-        phi = float(mp.mpf(case.phi) % (2 * mp.pi))
+    phi = float(_reduced_phase(case.phi))
     n = int(min(200_000, max(64, (hi - lo) / 0.005)))
     s = np.linspace(lo, hi, n)
     eps, v = case.eps, case.v

@@ -83,3 +83,15 @@ def test_hard_case_section(tmp_path):
     for case in cases:
         assert f"| {case.label} |" in md
     assert "**missed**" in md
+
+
+def test_huge_phases_are_reduced_exactly_when_judging_a_miss():
+    """phi = +-1e300: the judge's gap must use phi mod 2*pi at enough digits (it marked every
+    method, verify included, as 'missed' when it reduced 1e300 at 40 digits)."""
+    from reports.precision.evaluate import Case, evaluate
+
+    cases = [Case(p, 3.0, 3.0, f"phi={p:g}", "hard") for p in (1e300, -1e300)]
+    methods = [m for m in default_methods() if m.name in ("fastpath auto", "verify dps=50")]
+    _, errors = evaluate(methods, cases)
+    for m in methods:
+        assert [e.status for e in errors[m.name]] == ["ok", "ok"], m.name
