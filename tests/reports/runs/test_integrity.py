@@ -397,8 +397,11 @@ def test_sigint_leaves_a_resumable_checkpoint(tmp_path):
     ref = subprocess.run([*cmd, "--out", str(tmp_path / "ref")], cwd=ROOT, env=env,
                          capture_output=True, text=True, timeout=300)
     assert ref.returncode == 0, ref.stderr
+    # a shell that starts the test runner in the background leaves SIGINT ignored, and a
+    # child then never sees Ctrl-C: give the run the default disposition, as a terminal does
     proc = subprocess.Popen([*cmd, "--out", str(tmp_path / "cut")], cwd=ROOT, env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     ckpt = tmp_path / "cut" / "checkpoint.npz"
     deadline = time.monotonic() + 120
     while not ckpt.exists() and proc.poll() is None and time.monotonic() < deadline:
