@@ -224,7 +224,8 @@ def escape_claims(analysis, run_dir):
     return claims
 
 
-def _draw_regimes(ax, curve, result, xs=None):
+def draw_regimes(ax, curve, result, xs=None):
+    """Each regime's fitted law in black, styled by law (``LAW_STYLE``)."""
     for regime in result["regimes"]:
         law = regime["law"]
         try:
@@ -255,8 +256,8 @@ def figure_escape(run_dir, out_dir, analysis):
             sq = np.sqrt if clock == "time" else None
             band(axes[row, 0], x, p, lo, hi, label, xs=np.sqrt(x) if sq else None, color=col)
             band(axes[row, 1], x, p, lo, hi, label, color=col)
-            _draw_regimes(axes[row, 0], curve, res, xs=sq)
-            _draw_regimes(axes[row, 1], curve, res)
+            draw_regimes(axes[row, 0], curve, res, xs=sq)
+            draw_regimes(axes[row, 1], curve, res)
     floor = 0.3 / man["particles"]
     for ax in axes.flat:
         ax.set_yscale("log")

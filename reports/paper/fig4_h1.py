@@ -19,14 +19,13 @@ import math
 from pathlib import Path
 
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim
-from reports.paper.fig2_escape import LAW_STYLE, regimes_text
+from reports.paper.fig2_escape import draw_regimes, regimes_text
 from reports.paper.fig3_transport import transport_curve
 from reports.paper.runs import read_manifest, run_summary
 from reports.paper.style import band, caption, pyplot, save_figure
 from reports.runs.survival import read_survival
 from reports.stats.analysis import analyse
 from reports.stats.histogram import read_run
-from reports.stats.regime_fit import fitted_curve
 
 H = "1"
 CLOCKS = ("collisions", "time")
@@ -88,15 +87,7 @@ def figure_h1(run_dir, out_dir, analysis, h=H):
                 if c is not None:
                     band(ax, *c, ij)
             if clock in analysis:
-                curve, res = analysis[clock]
-                for regime in res["regimes"]:
-                    law = regime["law"]
-                    try:
-                        x, s = fitted_curve(curve, regime, "stretched_exponential"
-                                            if law == "inconclusive" else law)
-                    except ValueError:
-                        continue
-                    ax.plot(x, s, LAW_STYLE[law], color="k", lw=0.9)
+                draw_regimes(ax, *analysis[clock])
             ax.set_yscale("log")
             ax.set_ylim(0.3 / n, 1.5)
             if row == 1:

@@ -4,11 +4,10 @@
 late one with intervals. The claims of the seed are also about other regimes, so here any
 regime [x_from, x_to] is refitted with 95% profile intervals, its law chosen by the rule of
 ``selection`` (with Vuong's exponential-vs-power-law test kept, the seed's dichotomy), its
-systematic half-ranges taken over the window family of ``analysis.systematic``, and its weight
-measured as the fall of the empirical all-cause survival across it,
+systematic half-ranges taken over the window family of ``analysis.systematic``. Fitted laws
+are drawn anchored at the empirical all-cause survival
 
-    drop = ln S(x_from) - ln S(x_to),    S(x_k) = 1 - (escapes, competing escapes and horizon
-                                                         censorings in bins before k) / N.
+    S(x_k) = 1 - (escapes, competing escapes and horizon censorings in bins before k) / N.
 
 The *bulk* regime is the one holding the most escapes of the curve (where most particles leave);
 the *late* regime is the last one (``analyse``'s headline fit).
@@ -40,27 +39,20 @@ def bins_of(curve, x_from, x_to):
     return a, b
 
 
-def drop(curve, regime):
-    """ln S(x_from) - ln S(x_to) of a regime (inf if nobody survives past x_to: the last)."""
-    s = all_cause_survival(curve)
-    a, b = bins_of(curve, regime["from"], regime["to"])
-    return math.log(s[a]) - math.log(s[b]) if s[b] > 0 else math.inf
-
-
 def bulk_regime(result):
     """The regime of ``result["regimes"]`` holding the most escapes."""
     return max(result["regimes"], key=lambda r: r["escapes"])
 
 
 def regime_detail(curve, regime):
-    """Fits with 95% intervals, the chosen law and tests, systematics and drop of one regime."""
+    """Fits with 95% intervals, the chosen law and tests and the systematics of one regime."""
     a, b = bins_of(curve, regime["from"], regime["to"])
     fits = fit_all(window_of(curve, a, b), intervals=True)
     best, tests = choose(fits)
     a0, b0 = usable_range(curve)
     return {"from": regime["from"], "to": regime["to"], "best": best, "tests": tests,
             "fits": fits, "systematic": systematic(curve, a, b, a0, b0),
-            "escapes": int(curve.escapes[a:b].sum()), "drop": drop(curve, regime)}
+            "escapes": int(curve.escapes[a:b].sum())}
 
 
 def fitted_curve(curve, regime, law, points=60):
