@@ -47,3 +47,5 @@ def _cached_njit(**options):
 
 jit = _cached_njit()
 parallel_jit = _cached_njit(parallel=True)
+# scalar helpers of the lockstep kernels: inlined into the loop so that it can be vectorised
+inline_jit = _cached_njit(inline="always")

@@ -6,12 +6,12 @@ incoming velocity v_in = v - tau, the elastic impact gives
     phi1 = (phi + tau) mod 2*pi,      v1 = 2*u - v_in = tau - v - 2*eps*sin(phi + tau).
 """
 
-import math
 
 from fastpath._jit import jit
 from fastpath.flight import AUTO, flight_from, phase_error_of
 from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.phase import centre_phase, reduce_phase
+from fastpath.sincos import SIN_COS_ERROR, sin_cos
 
 CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rotation, Newton)
 
@@ -20,13 +20,13 @@ CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rota
 def collide(phi, v, eps):
     """Return (phi1, v1, tau, iterations, status) for one flight and impact.
 
-    The sine and cosine are computed here from the centred phase (libm, a relative error of an
-    ulp, within the departure's own rounding bound): only the centring's error is added.
+    The sine and cosine are computed here from the centred phase by ``fastpath.sincos`` (the
+    ensembles' lanes do the same): its error beyond libm's and the centring's are added.
     """
     centred = centre_phase(phi)
+    sin_phi, cos_phi = sin_cos(centred)
     phi1, _, _, v1, tau, iterations, status = collide_from(
-        centred, math.sin(centred), math.cos(centred), v, eps, AUTO,
-        phase_error_of(phi, centred)
+        centred, sin_phi, cos_phi, v, eps, AUTO, phase_error_of(phi, centred) + SIN_COS_ERROR
     )
     return phi1, v1, tau, iterations, status
 

@@ -26,16 +26,21 @@ pre-collision state and fast result (n, phi, v, phi1, v1, tau) of its collision
 n = min(``sample_target[i]``, last collision it made in this kernel).
 """
 
+
 import numpy as np
 from numba import prange
 
 from fastpath._jit import jit, parallel_jit
 from fastpath.collision import collide
 from fastpath.concave import two_sum
-from fastpath.flight import CONVERGED
-from fastpath.phase import TWO_PI
+from fastpath.flight import CONVERGED, phase_error_of
+from fastpath.holmes import holmes_collide
+from fastpath.lockstep import lockstep_collide
+from fastpath.phase import TWO_PI, centre_phase, reduce_phase
+from fastpath.sincos import SIN_COS_ERROR, sin_cos
 
 NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only
+LANES = 64  # particles in flight together in a block (a multiple of the vector width)
 SAMPLE_FIELDS = ("n", "phi", "v", "phi1", "v1", "tau")
 FLAG_FIELDS = ("phi", "v", "t", "n")
 
@@ -85,6 +90,24 @@ def _flag(flags, flag_state, i, status, phi, v, t, n):
     flag_state[i, 3] = n
 
 
+@jit
+def _load(i, lane, phi0, v0, t0, n0, sample_slot, sample_target, flags, idx, phi, centred,
+          phase_error, v, t, n, slot, target):
+    """Put particle i into a lane: its state and where its flight starts."""
+    idx[lane] = i
+    phi[lane], v[lane], t[lane], n[lane] = phi0[i], v0[i], t0[i], n0[i]
+    slot[lane], target[lane] = sample_slot[i], sample_target[i]
+    flags[i] = 0
+    _aim(lane, phi, centred, phase_error)
+
+
+@jit
+def _aim(lane, phi, centred, phase_error):
+    """The centred phase of a lane's next departure and the error its sine will carry."""
+    centred[lane] = centre_phase(phi[lane])
+    phase_error[lane] = phase_error_of(phi[lane], centred[lane]) + SIN_COS_ERROR
+
+
 @parallel_jit
 def escape_chunk(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max_time,
                  n_edges, t_edges, record_n, record_t, sample_slot, sample_target,
@@ -96,45 +119,139 @@ def escape_chunk(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max
     ``collisions[b]`` collisions simulated, for block b = 0 .. len(collisions)-1;
     ``flags[i]`` the status of an undecided flight (0 if none) with ``flag_state[i]`` =
     (phi, v, t, n) before it; ``samples`` as in the module docstring.
+
+    Each block keeps LANES particles in flight together: the flights of all lanes in one
+    vectorised loop (``fastpath.lockstep``), then the bookkeeping lane by lane, a finished
+    particle's lane taking the block's next one. A lane the lockstep flight does not answer
+    gets ``collide``, whose answer is the same function of the departure: every particle's
+    collisions are those of ``fastpath.step`` whatever the lanes, blocks or threads.
     """
+    m = len(phi0)
+    blocks = len(collisions)
+    per_block = (m + blocks - 1) // blocks
+    for b in prange(blocks):
+        collisions[b] += _escape_block(
+            b, b * per_block, min(m, (b + 1) * per_block), phi0, v0, t0, n0, eps, hole_lo,
+            hole_width, max_collisions, max_time, n_edges, t_edges, record_n, record_t,
+            sample_slot, sample_target, esc_n, esc_t, cens_n, cens_t, flags, flag_state, samples)
+
+
+@jit
+def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions,
+                  max_time, n_edges, t_edges, record_n, record_t, sample_slot, sample_target,
+                  esc_n, esc_t, cens_n, cens_t, flags, flag_state, samples):
+    """Particles first .. end-1 of ``escape_chunk``'s block b; returns the collisions made."""
+    idx = np.empty(LANES, np.int64)
+    phi, centred, phase_error = np.empty(LANES), np.empty(LANES), np.empty(LANES)
+    v, t, n = np.empty(LANES), np.empty(LANES), np.empty(LANES, np.int64)
+    slot, target = np.empty(LANES, np.int64), np.empty(LANES, np.int64)
+    tau, sin1, done_flight = np.empty(LANES), np.empty(LANES), np.empty(LANES, np.bool_)
+    active = max(min(LANES, end - first), 0)
+    for lane in range(active):
+        _load(first + lane, lane, phi0, v0, t0, n0, sample_slot, sample_target, flags, idx, phi,
+              centred, phase_error, v, t, n, slot, target)
+    following = first + active
+    done = 0
+    while active > 0:
+        for lane in range(active):  # vectorised: no calls, no branches but selects
+            s, c = sin_cos(centred[lane])
+            tau[lane], sin1[lane], _, _, done_flight[lane] = lockstep_collide(
+                centred[lane], s, c, v[lane], eps, phase_error[lane])
+        idle = False
+        for lane in range(active):
+            i = idx[lane]
+            finished = False
+            if n[lane] >= max_collisions:
+                if record_n:
+                    cens_n[b, bin_index(n_edges, n[lane])] += 1
+                if record_t:
+                    cens_t[b, bin_index(t_edges, t[lane])] += 1
+                finished = True
+            else:
+                if done_flight[lane]:
+                    tau_l = tau[lane]
+                    phi1 = reduce_phase(centred[lane] + tau_l)
+                    v1 = tau_l - v[lane] - 2.0 * eps * sin1[lane]
+                    status = CONVERGED
+                else:
+                    phi1, v1, tau_l, _, status = collide(phi[lane], v[lane], eps)
+                t1 = t[lane] + tau_l
+                if status != CONVERGED:
+                    _flag(flags, flag_state, i, status, phi[lane], v[lane], t[lane], n[lane])
+                    finished = True
+                elif t1 > max_time:
+                    if record_n:
+                        cens_n[b, bin_index(n_edges, n[lane])] += 1
+                    if record_t:
+                        cens_t[b, bin_index(t_edges, t1)] += 1
+                    finished = True
+                else:
+                    n[lane] += 1
+                    done += 1
+                    if slot[lane] >= 0 and n[lane] <= target[lane]:
+                        _store_sample(samples, slot[lane], n[lane], phi[lane], v[lane], phi1,
+                                      v1, tau_l)
+                    phi[lane], v[lane], t[lane] = phi1, v1, t1
+                    j = exit_hole(phi1, hole_lo, hole_width)
+                    if j >= 0:
+                        if record_n:
+                            esc_n[b, j, bin_index(n_edges, n[lane])] += 1
+                        if record_t:
+                            esc_t[b, j, bin_index(t_edges, t1)] += 1
+                        finished = True
+                    else:
+                        _aim(lane, phi, centred, phase_error)
+            if finished:
+                if following < end:
+                    _load(following, lane, phi0, v0, t0, n0, sample_slot, sample_target,
+                          flags, idx, phi, centred, phase_error, v, t, n, slot, target)
+                    following += 1
+                else:
+                    idx[lane] = -1
+                    idle = True
+        if idle:  # the block's last particles: move the lanes still in flight to the front
+            busy = 0
+            for lane in range(active):
+                if idx[lane] >= 0:
+                    idx[busy], phi[busy], centred[busy] = idx[lane], phi[lane], centred[lane]
+                    phase_error[busy], v[busy], t[busy] = phase_error[lane], v[lane], t[lane]
+                    n[busy], slot[busy], target[busy] = n[lane], slot[lane], target[lane]
+                    busy += 1
+            active = busy
+    return done
+
+
+@parallel_jit
+def holmes_escape_chunk(phi0, v0, eps, hole_lo, hole_width, max_collisions, max_time,
+                        n_edges, t_edges, esc_n, esc_t, cens_n, cens_t, collisions):
+    """``escape_chunk`` with the Holmes map (flight time 2*v) instead of the exact map: the bare
+    loop the benchmark compares with (same starts, holes, horizon, bins and blocks; no
+    verification sample, no flags: the Holmes map has no undecidable flight)."""
     m = len(phi0)
     blocks = len(collisions)
     per_block = (m + blocks - 1) // blocks
     for b in prange(blocks):
         done = 0
         for i in range(b * per_block, min(m, (b + 1) * per_block)):
-            phi, v, t, n = phi0[i], v0[i], t0[i], n0[i]
-            slot, target = sample_slot[i], sample_target[i]
-            flags[i] = 0
+            phi, v, t, n = phi0[i], v0[i], 0.0, 0
             while True:
                 if n >= max_collisions:
-                    if record_n:
-                        cens_n[b, bin_index(n_edges, n)] += 1
-                    if record_t:
-                        cens_t[b, bin_index(t_edges, t)] += 1
+                    cens_n[b, bin_index(n_edges, n)] += 1
+                    cens_t[b, bin_index(t_edges, t)] += 1
                     break
-                phi1, v1, tau, _, status = collide(phi, v, eps)
-                if status != CONVERGED:
-                    _flag(flags, flag_state, i, status, phi, v, t, n)
-                    break
-                t1 = t + tau
+                t1 = t + 2.0 * v
                 if t1 > max_time:
-                    if record_n:
-                        cens_n[b, bin_index(n_edges, n)] += 1
-                    if record_t:
-                        cens_t[b, bin_index(t_edges, t1)] += 1
+                    cens_n[b, bin_index(n_edges, n)] += 1
+                    cens_t[b, bin_index(t_edges, t1)] += 1
                     break
+                phi, v = holmes_collide(phi, v, eps)
+                t = t1
                 n += 1
                 done += 1
-                if slot >= 0 and n <= target:
-                    _store_sample(samples, slot, n, phi, v, phi1, v1, tau)
-                phi, v, t = phi1, v1, t1
                 j = exit_hole(phi, hole_lo, hole_width)
                 if j >= 0:
-                    if record_n:
-                        esc_n[b, j, bin_index(n_edges, n)] += 1
-                    if record_t:
-                        esc_t[b, j, bin_index(t_edges, t)] += 1
+                    esc_n[b, j, bin_index(n_edges, n)] += 1
+                    esc_t[b, j, bin_index(t_edges, t)] += 1
                     break
         collisions[b] += done
 
@@ -192,6 +309,7 @@ __all__ = [
     "bin_index",
     "escape_chunk",
     "exit_hole",
+    "holmes_escape_chunk",
     "log_edges",
     "portrait_chunk",
 ]

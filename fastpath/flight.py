@@ -48,6 +48,7 @@ import math
 from fastpath._jit import jit
 from fastpath.concave import concave_flight
 from fastpath.gap import UNIT_ROUNDOFF, departure, gap, gap_error, gap_rate, rate_error
+from fastpath.lockstep import lockstep_flight_one
 from fastpath.phase import centre_phase
 from fastpath.status import FlightStatus
 
@@ -151,6 +152,10 @@ def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, phase_error=0.0):
     if not w0 > w0_error:
         return math.nan, math.nan, math.nan, 0, UNCERTAIN
     if abs(eps) <= 1.0 and method == AUTO:
+        tau, sin1, cos1, evaluations, done = lockstep_flight_one(phi, sin_phi, cos_phi, v, eps,
+                                                                 w0_error)
+        if done:  # the common flight, as the ensembles compute it (fastpath.lockstep)
+            return tau, sin1, cos1, evaluations, CONVERGED
         return concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error)
     tau, iterations, status = lower_bound_flight(phi, v, eps, w0)
     return tau, math.sin(phi + tau), math.cos(phi + tau), iterations, status

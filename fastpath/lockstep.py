@@ -1,0 +1,219 @@
+"""The common flight in straight-line code: the same arithmetic in every lane of a batch.
+
+The ensemble kernels spend almost all their time in flights of the concave case (|eps| <= 1)
+that start at the Holmes time t = 2*v and end after three or four evaluations. Written with
+early exits, each flight waits on its own branches and on libm; written as a fixed number of
+evaluations whose decisions are selects, a loop over particles compiles to vector instructions
+(``fastpath.ensemble``) and the flight costs a few nanoseconds.
+
+``lockstep_flight`` is the method of ``fastpath.concave`` (its Holmes start, the certified
+bracket, the classification of each evaluation with its error bounds, Halley steps with the
+bisection guard, the clamped Newton correction at the root), with three changes that keep it
+branch-free:
+
+* sines and cosines come from ``fastpath.sincos.sin_cos`` (no call; error <= 4u instead of
+  libm's ulp, within the gap's error bound: for t >= 1 ``gap_error`` allows >= 16u*|eps| for the
+  plate term and ``rate_error`` >= 8u*|eps|), also for the rotations of later iterates;
+* exactly ``LOCKSTEP_EVALUATIONS`` evaluations, a lane's answer frozen at its first root;
+* whatever it does not handle, it does not answer: ``done`` is False for a flight that is not a
+  certain departure, starts short (2*w0 < 1 + |eps|), has |phi + 2v| >= 2**20, a non-finite
+  value, a flat top, a bracket closed to adjacent floats, or no root within the evaluations.
+  The caller then runs ``concave_flight``'s general loop. About 1 flight in 25 of the seed's
+  escape ensemble (measured in the benchmark's report).
+
+Final step. ``concave_flight`` answers at a point where |d| <= d_err (the gap's rounding bound)
+and d' < -d1_err, with the Newton correction h = -d/d'. Its error: the root t* = t + h* solves
+0 = d + d'*h* + d''(xi)*h***2/2 with |d''| <= a = 1 + |eps|, so |h* - h| <= a*h***2/(2|d'|), and
+the rounding of d and d' adds (d_err + |h|*d1_err)/(|d'| - d1_err): in all at most
+(d_err + |h|*d1_err + a*h**2/2)/(|d'| - d1_err) (to first order in h). A Newton step from a point
+with |d| > d_err has the same bound; where |h|*d1_err + a*h**2/2 <= d_err/16 it exceeds the
+bound at |d| <= d_err by at most 1/16 of it. ``lockstep_flight`` then answers at once instead of
+evaluating once more at t + h (after a Halley step from an error ~1e-3 the next error is ~1e-9,
+and |h| <= ~4e-8 is final): one evaluation fewer in most flights, the answer as good.
+
+The answer is a pure function of the inputs, so ``concave_flight`` (one flight) and the
+ensemble (a batch) return the same bits for the same departure.
+"""
+
+import math
+
+from fastpath._jit import inline_jit, jit
+from fastpath.concave import two_sum
+from fastpath.gap import UNIT_ROUNDOFF, departure, gap_error, rate_error
+from fastpath.sincos import SIN_COS_LIMIT, sin_cos
+
+LOCKSTEP_EVALUATIONS = 4
+
+# the classification of fastpath.concave
+_BEFORE, _AFTER, _AT_ROOT, _FLAT = 0, 1, 2, 3
+
+
+@inline_jit
+def _select(condition, a, b):
+    """a if condition else b, as a select."""
+    return a if condition else b
+
+
+@inline_jit
+def moderate_bracket(v, w0, w0_error, eps):
+    """``fastpath.concave.bracket`` for 1e-150 < |v| < 1e150 (v**2 neither under- nor overflows),
+    without branches: both upper bounds are computed and the same one is chosen."""
+    a = 1.0 + abs(eps)
+    lo = 2.0 * _select(w0 - w0_error > 0.0, w0 - w0_error, 0.0) / a * (1.0 - 4.0 * UNIT_ROUNDOFF)
+    hi_concave = _select(abs(eps) < 1.0, 2.0 * (w0 + w0_error) / (1.0 - abs(eps)), math.inf)
+    root = math.sqrt(v * v + 4.0 * abs(eps))
+    hi_energy = _select(v >= 0.0, v + root, 4.0 * abs(eps) / (root - v))
+    use_energy = not hi_concave <= 2.0 * abs(v) + 2.0
+    hi = _select(use_energy and hi_energy < hi_concave, hi_energy, hi_concave)
+    return lo, hi * (1.0 + 4.0 * UNIT_ROUNDOFF)
+
+
+@inline_jit
+def _classify(phi, v, eps, t, d, d1):
+    """``fastpath.concave.classify`` as nested selects."""
+    d_err = gap_error(phi, v, eps, t)
+    d1_err = rate_error(phi, v, eps, t)
+    by_rate = _select(d1 < -d1_err, _AT_ROOT, _select(d1 > d1_err, _BEFORE, _FLAT))
+    return _select(d > d_err, _BEFORE, _select(d < -d_err, _AFTER, by_rate))
+
+
+@inline_jit
+def _newton_is_final(newton, d_err, d1_err, eps):
+    """Whether the Newton correction h = -d/d' from a point after the maximum (d' < -its error)
+    is as good as one from a point where |d| <= d_err (module docstring, "Final step")."""
+    return (0.5 * (1.0 + abs(eps)) * newton * newton + abs(newton) * d1_err) <= d_err / 16.0
+
+
+@inline_jit
+def _rotate(s, c, h):
+    """(sin, cos) of the angle moved on by h: first order below 1e-8, else angle addition."""
+    sh, ch = sin_cos(h)
+    tiny = abs(h) < 1e-8
+    sh = _select(tiny, h, sh)
+    ch = _select(tiny, 1.0, ch)
+    return s * ch + c * sh, c * ch - s * sh
+
+
+@inline_jit
+def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
+    """One evaluation of a lane that has neither answered nor given up; else unchanged.
+
+    At the root the answer is the Newton correction clamped into the certified bracket; its
+    sine and cosine are rotated from (t_root, s_root, c_root) once, after the last evaluation.
+    The branches only skip work: a vectorised loop computes both sides and selects.
+    """
+    t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, done, failed = state
+    if done or failed:
+        return state
+    d = eps * (cos_phi - c) - 0.5 * t * delta
+    d1 = -v - delta + eps * s
+    if not (abs(d) < math.inf and abs(d1) < math.inf):
+        return t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
+    d_err = gap_error(phi, v, eps, t)
+    d1_err = rate_error(phi, v, eps, t)
+    newton = -d / d1
+    if d1 < -d1_err and (abs(d) <= d_err or _newton_is_final(newton, d_err, d1_err, eps)):
+        # at the root: the Newton correction, clamped into the certified bracket
+        answer = min(max(t + newton, lo), hi)
+        if d > d_err:
+            lo = t
+        elif d < -d_err:
+            hi = t
+        return t, delta, s, c, lo, hi, answer, t, s, c, k, True, False
+    if d > d_err:
+        lo = t
+    elif d < -d_err:
+        hi = t
+    else:
+        if not d1 > d1_err:  # a flat top
+            return t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
+        lo = t
+    t_next = t - 2.0 * d * d1 / (2.0 * d1 * d1 - d * (-1.0 + eps * c))
+    if not lo < t_next < hi:
+        if lo > 0.0 and hi > 4.0 * lo:
+            t_next = math.sqrt(lo) * math.sqrt(hi)
+        else:
+            t_next = 0.5 * (lo + hi)
+    if t_next == lo or t_next == hi:  # the bracket closed to adjacent floats
+        return t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
+    delta_next = t_next - two_v
+    s, c = _rotate(s, c, delta_next - delta)
+    return t_next, delta_next, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, False
+
+
+@inline_jit
+def _start(phi, sin_phi, v, eps, w0_error):
+    """The lane's state before its first evaluation (Holmes start t = 2*v), and two_v."""
+    w0 = v + eps * sin_phi
+    two_v = 2.0 * v
+    theta0, theta0_error = two_sum(phi, two_v)
+    eligible = (2.0 * w0 >= 1.0 + abs(eps) and abs(theta0) < SIN_COS_LIMIT
+                and 1e-150 < abs(v) < 1e150)
+    lo, hi = moderate_bracket(v, w0, w0_error, eps)
+    s, c = sin_cos(_select(eligible, theta0, 0.0))
+    s, c = s + c * theta0_error, c - s * theta0_error  # |theta0_error| <= ulp: first order
+    state = (two_v, 0.0, s, c, lo, hi, math.nan, 0.0, 0.0, 1.0, 0, False,
+             not (eligible and hi < math.inf))
+    return state, two_v
+
+
+@inline_jit
+def _answer(state):
+    """(tau, sin(phi + tau), cos(phi + tau), evaluations, done) of a lane's final state."""
+    _, _, _, _, _, _, tau, t_root, s_root, c_root, evaluations, done, failed = state
+    s1, c1 = _rotate(s_root, c_root, tau - t_root)
+    return tau, s1, c1, evaluations, done and not failed
+
+
+@inline_jit
+def lockstep_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
+    """(tau, sin(phi + tau), cos(phi + tau), evaluations, done) for |eps| <= 1, phi in [-pi, pi).
+
+    As ``fastpath.concave.concave_flight`` (same arguments, a certain departure w0 > w0_error),
+    for the flights described in the module docstring; done False: no answer, use that.
+    Straight-line code for the ensemble's loops over lanes.
+    """
+    state, two_v = _start(phi, sin_phi, v, eps, w0_error)
+    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 1)
+    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 2)
+    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 3)
+    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 4)
+    return _answer(state)
+
+
+@jit
+def lockstep_flight_one(phi, sin_phi, cos_phi, v, eps, w0_error):
+    """``lockstep_flight`` for one flight: the same evaluations, the same bits, but it stops
+    at the first answer (or give-up) instead of running all LOCKSTEP_EVALUATIONS."""
+    state, two_v = _start(phi, sin_phi, v, eps, w0_error)
+    if state[12]:
+        return _answer(state)
+    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 1)
+    if state[11] or state[12]:  # done or failed
+        return _answer(state)
+    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 2)
+    if state[11] or state[12]:
+        return _answer(state)
+    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 3)
+    if state[11] or state[12]:
+        return _answer(state)
+    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 4)
+    return _answer(state)
+
+
+@inline_jit
+def lockstep_collide(phi, sin_phi, cos_phi, v, eps, phase_error):
+    """The departure check and ``lockstep_flight`` of ``flight_from`` for a centred phi:
+    (tau, sin(phi + tau), cos(phi + tau), evaluations, done)."""
+    w0, w0_error = departure(phi, sin_phi, v, eps, phase_error)
+    tau, s1, c1, evaluations, done = lockstep_flight(phi, sin_phi, cos_phi, v, eps, w0_error)
+    return tau, s1, c1, evaluations, done and w0 > w0_error and abs(eps) <= 1.0
+
+
+__all__ = [
+    "LOCKSTEP_EVALUATIONS",
+    "lockstep_collide",
+    "lockstep_flight",
+    "lockstep_flight_one",
+    "moderate_bracket",
+]
