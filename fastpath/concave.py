@@ -19,6 +19,19 @@ geometric mean while hi > 4*lo) when a step leaves the bracket. A point with |d|
 
 At most ITERATION_LIMIT evaluations (then MAX_ITERATIONS, as UNCERTAIN).
 
+Refinement near (near-)triple roots (``_refine``, half-angle start only). E = gap_error allows an
+absolute error of a few u in the plate term's sine; where the gap's terms are small (t and phi
+small: d ~ x**4/24 at phi = -x, v = x, eps -> 1) it is 1e3-1e6 times the actual rounding. A stop
+there is either flat (UNCERTAIN although float64 could decide) or far from the root, and the Newton
+correction's second-order error |d''|*(d/d')**2/(2|d'|) dominates (2.29 kappa*u at x = 3e-5).
+So when the loop stops flat, or where that second-order term may exceed u*t/2
+(``_newton_inexact``; never on ordinary flights, where d/d' ~ u*t), the iteration goes on with
+``fastpath.tight_gap``: fresh half-angle sines and a bound E, R from the sizes of the terms, proved
+there. Its points narrow the same certified bracket by the same rules, so every answer stays in
+it. Only short flights need this: a concave gap with d(0) = 0, d'(0) = w0 > 0 and d'(tau) ~ 0 has
+d ~ 0 on all of [0, tau], which needs d'' ~ 0 there, i.e. eps ~ 1 and phi + t ~ 0 (mod 2*pi) over
+the flight; the Holmes start (w0 >= 1) never sees it.
+
 Two starts and two ways of evaluating the gap, each one libm sine and cosine per flight; later
 iterates move the angles along by angle addition (``fastpath.rotation``):
 
