@@ -28,9 +28,10 @@ So when the loop stops flat, or where that second-order term may exceed u*t/2
 (``_newton_inexact``; never on ordinary flights, where d/d' ~ u*t), the iteration goes on with
 ``fastpath.tight_gap``: fresh half-angle sines and a bound E, R from the sizes of the terms, proved
 there. Its points narrow the same certified bracket by the same rules, so every answer stays in
-it. Only short flights need this: a concave gap with d(0) = 0, d'(0) = w0 > 0 and d'(tau) ~ 0 has
-d ~ 0 on all of [0, tau], which needs d'' ~ 0 there, i.e. eps ~ 1 and phi + t ~ 0 (mod 2*pi) over
-the flight; the Holmes start (w0 >= 1) never sees it.
+it. Only short flights need this: a concave gap with d(0) = d(tau) = 0 lies between 0 and its
+tangent at tau, 0 <= d <= |d'(tau)|*tau on [0, tau], so a small d'(tau) needs d'' ~ 0 over the
+whole flight, i.e. eps ~ 1 and phi + t ~ 0 (mod 2*pi): impossible over the Holmes start's flights
+(tau >= 2*w0/(1 + |eps|) >= 1).
 
 Two starts and two ways of evaluating the gap, each one libm sine and cosine per flight; later
 iterates move the angles along by angle addition (``fastpath.rotation``):
