@@ -105,18 +105,19 @@ def departure_start(ctx: DragContext):
     ``ValueError`` when the gap is proved not to open (no departure); :class:`NotDecided` when
     the signs cannot be decided at this precision.
     """
+    state = f"(phi={ctx.phi_exact}, v={ctx.v}, eps={ctx.eps})"
     d2 = ctx.curvature(mp.zero, mp.zero)
     if hi(d2) < 0:
         raise ValueError(
             f"no departure: w0 = 0 and d''(0) = {mp.nstr(hi(d2), 8)} < 0 (the plate pushes "
-            "the particle)"
+            f"the particle) {state}"
         )
     if lo(d2) > 0:
         proof = ctx.curvature
     elif lo(d2) == 0 == hi(d2):
         d3 = ctx.third(mp.zero, mp.zero)
         if hi(d3) < 0:
-            raise ValueError("no departure: w0 = 0, d''(0) = 0 and d'''(0) < 0")
+            raise ValueError(f"no departure: w0 = 0, d''(0) = 0 and d'''(0) < 0 {state}")
         if not lo(d3) > 0:
             raise NotDecided("w0 = 0 and d''(0) = 0: the sign of d'''(0) is not decided")
         proof = ctx.third
