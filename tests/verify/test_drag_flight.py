@@ -201,3 +201,16 @@ def test_bad_physics_is_a_value_error_naming_it(func, kwargs, named):
 def test_quadratic_departure_below_terminal_velocity_is_rejected():
     with pytest.raises(ValueError, match="terminal velocity"):
         verify.certify_flight(1.5, -1.2, 1.5, drag=1.0, drag_law="quadratic")
+
+
+def test_certificate_refuses_the_landing_after_a_root_pair(monkeypatch):
+    """The later landing r3 > r2 is a sign change + to - like the first root: only the proof of
+    no earlier root can refuse it."""
+    case, _, _ = _root_pair()
+    with mp.workdps(REF_DPS):
+        r3 = mp.findroot(lambda t: naive_gap(case.phi, case.v, case.eps, case.drag, "linear", t),
+                         mp.mpf("4.23"))
+    assert r3 > 4
+    monkeypatch.setattr(certify, "_local_candidate", lambda ctx, curv, t: +r3)
+    with pytest.raises(verify.UndecidableCollision):
+        verify.certify_flight(case.phi, case.v, case.eps, dps=30, max_dps=60, drag=case.drag)
