@@ -6,8 +6,9 @@ import numpy as np
 from numba import prange
 
 from fastpath._jit import jit, parallel_jit
-from fastpath._validate import count, float_inputs, scalar_inputs
+from fastpath._validate import count, float_inputs, physics, scalar_inputs
 from fastpath.collision import collide
+from fastpath.drag_flight import solve_drag_flight
 from fastpath.flight import (
     CONVERGED,
     METHODS,
@@ -18,8 +19,17 @@ from fastpath.flight import (
     solve_flight,
 )
 from fastpath.holmes import holmes_collide
+from fastpath.impact import dissipative_collide
 from fastpath.orbit import exact_orbit, holmes_orbit
 from fastpath.status import FlightStatus, UncertainCollision
+
+# The defaults of the physics keywords: the elastic call passes these very objects, which
+# ``_elastic`` recognises by identity before any validation (the elastic path pays ~50 ns).
+NO_DRAG, LINEAR, ELASTIC = 0.0, "linear", 1.0
+
+
+def _elastic(drag, drag_law, restitution):
+    return drag is NO_DRAG and drag_law is LINEAR and restitution is ELASTIC
 
 
 @dataclass(frozen=True)
@@ -58,6 +68,22 @@ def _flights(phi, v, eps, method, tau, iterations, status):
 def _steps(phi, v, eps, phi1, v1, tau, status):
     for i in prange(len(phi)):
         phi1[i], v1[i], tau[i], _, status[i] = collide(phi[i], v[i], eps[i])
+
+
+@parallel_jit
+def _drag_flights(phi, v, eps, drag, law, method, tau, iterations, status):
+    for i in prange(len(phi)):
+        tau[i], iterations[i], status[i] = solve_drag_flight(
+            phi[i], v[i], eps[i], drag, law, method
+        )
+
+
+@parallel_jit
+def _dissipative_steps(phi, v, eps, drag, law, restitution, phi1, v1, tau, status):
+    for i in prange(len(phi)):
+        phi1[i], v1[i], tau[i], _, status[i] = dissipative_collide(
+            phi[i], v[i], eps[i], drag, law, restitution
+        )
 
 
 @parallel_jit
@@ -126,60 +152,96 @@ def _method(method):
     return METHODS[method]
 
 
-def flight(phi, v, eps, method="auto"):
+def _flight_arrays(phi, v, eps, code, drag, law):
+    """(tau, iterations, status, inputs, shape, scalar) of the flights, elastic or with drag."""
+    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
+    n = len(phi_a)
+    tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
+    if drag == 0.0:
+        _flights(phi_a, v_a, eps_a, code, tau, iterations, status)
+    else:
+        _drag_flights(phi_a, v_a, eps_a, drag, law, code, tau, iterations, status)
+    return tau, iterations, status, (phi_a, v_a, eps_a), shape, scalar
+
+
+def _scalar_flight(scalars, code, drag, law):
+    if drag == 0.0:
+        return solve_flight(*scalars, code)
+    return solve_drag_flight(*scalars, drag, law, code)
+
+
+def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
     """Flight times with their iteration counts and FlightStatus codes; never raises for status.
 
     Inputs broadcast; NaN/inf raise ValueError. Non-departures come back as NOT_DEPARTING (tau NaN).
     method: "auto" (bracketed Halley where the gap is concave, |eps| < 1; the seed's lower-bound
     steps otherwise) or "seed" (the seed's lower-bound steps everywhere).
+    drag, drag_law: air drag eta(v) = drag*v ("linear") or drag*v*|v| ("quadratic") during the
+    flight (``fastpath.drag``); restitution (checked, in (0, 1]) does not change a flight.
     """
     code = _method(method)
+    drag, law, _ = (0.0, 0, 1.0) if _elastic(drag, drag_law, restitution) else physics(
+        drag, drag_law, restitution
+    )
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
-        tau, iterations, status = solve_flight(*scalars, code)
+        tau, iterations, status = _scalar_flight(scalars, code, drag, law)
         return FlightResult(tau, iterations, status)
-    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
-    n = len(phi_a)
-    tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
-    _flights(phi_a, v_a, eps_a, code, tau, iterations, status)
+    tau, iterations, status, _, shape, scalar = _flight_arrays(phi, v, eps, code, drag, law)
     return FlightResult(*_shaped(shape, scalar, tau, iterations, status))
 
 
-def flight_time(phi, v, eps):
+def flight_time(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
     """Smallest positive root tau of d(tau) = eps*(cos(phi) - cos(phi+tau)) + tau*(v - tau/2).
 
     Scalars give a float, arrays broadcast. Raises ValueError for NaN/inf input or w0 <= 0, and
     UncertainCollision where float64 cannot decide a near-graze (eps > 1).
+    With drag > 0 the particle's part tau*(v - tau/2) is its displacement under drag
+    (``fastpath.drag``); restitution (checked, in (0, 1]) does not change a flight.
     """
+    drag, law, _ = (0.0, 0, 1.0) if _elastic(drag, drag_law, restitution) else physics(
+        drag, drag_law, restitution
+    )
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
-        tau, _, status = solve_flight(*scalars, METHODS["auto"])
+        tau, _, status = _scalar_flight(scalars, METHODS["auto"], drag, law)
         if status != CONVERGED:
             _raise_on_status(np.array([status]), *([x] for x in scalars))
         return tau
-    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
-    n = len(phi_a)
-    tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
-    _flights(phi_a, v_a, eps_a, METHODS["auto"], tau, iterations, status)
-    _raise_on_status(status, phi_a, v_a, eps_a)
+    tau, _, status, inputs, shape, scalar = _flight_arrays(
+        phi, v, eps, METHODS["auto"], drag, law
+    )
+    _raise_on_status(status, *inputs)
     return _shaped(shape, scalar, tau)[0]
 
 
-def step(phi, v, eps):
+def step(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
     """One collision of the exact map: (phi1, v1, tau), phi1 reduced to [0, 2*pi).
 
     v1 = tau - v - 2*eps*sin(phi + tau). Errors as for ``flight_time``.
+    With drag or restitution r < 1 (``fastpath.impact``): the flight with drag, then
+    v1 = (1 + r)*u - r*v_in, u = -eps*sin(phi + tau) the plate's velocity, v_in the particle's.
     """
+    elastic = _elastic(drag, drag_law, restitution)
+    if not elastic:
+        drag, law, restitution = physics(drag, drag_law, restitution)
+        elastic = drag == 0.0 and restitution == 1.0
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
-        phi1, v1, tau, _, status = collide(*scalars)
+        if elastic:
+            phi1, v1, tau, _, status = collide(*scalars)
+        else:
+            phi1, v1, tau, _, status = dissipative_collide(*scalars, drag, law, restitution)
         if status != CONVERGED:
             _raise_on_status(np.array([status]), *([x] for x in scalars))
         return phi1, v1, tau
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     phi1, v1, tau, status = np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8)
-    _steps(phi_a, v_a, eps_a, phi1, v1, tau, status)
+    if elastic:
+        _steps(phi_a, v_a, eps_a, phi1, v1, tau, status)
+    else:
+        _dissipative_steps(phi_a, v_a, eps_a, drag, law, restitution, phi1, v1, tau, status)
     _raise_on_status(status, phi_a, v_a, eps_a)
     return _shaped(shape, scalar, phi1, v1, tau)
 

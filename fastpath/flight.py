@@ -90,9 +90,13 @@ def first_root(d, r, k):
 
 
 @jit
-def certified_step(d, r, c, j, eps):
-    """Largest step from a point with d > 0 that the module docstring's lower models certify."""
-    a = 1.0 + abs(eps)
+def certified_step(d, r, c, j, eps, a):
+    """Largest step from a point with d > 0 that the module docstring's lower models certify.
+
+    a > 0 bounds -d2 from above for the rest of the flight (1 + |eps| here; with drag
+    ``fastpath.drag_flight`` passes its own bound), c is a lower bound on d2 at the point where
+    only the plate's part still varies (third derivative j, Taylor remainder |eps|*s**2/2).
+    """
     best = lower_bound_step(d, r, a)
     h = best
     for _ in range(_GROWTH_ROUNDS):
@@ -194,7 +198,7 @@ def lower_bound_flight(phi, v, eps, w0):
         theta = phi + t
         curvature = -1.0 + eps * math.cos(theta) - 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
         r_low = r - rate_error(phi, v, eps, t)
-        t_next = t + certified_step(d - d_err, r_low, curvature, -eps * math.sin(theta), eps)
+        t_next = t + certified_step(d - d_err, r_low, curvature, -eps * math.sin(theta), eps, a)
         if t_next == t:  # the root is within rounding of t: d <= d_err + |r|*ulp(t)
             return polish(phi, v, eps, t, d, r), k, CONVERGED
         t = t_next
