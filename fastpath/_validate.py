@@ -82,3 +82,25 @@ def count(name, value, minimum=0):
     if value < minimum:
         raise ValueError(f"{name} must be >= {minimum}, got {value}")
     return int(value)
+
+
+DRAG_LAWS = ("linear", "quadratic")
+
+
+def physics(drag, drag_law, restitution):
+    """Check the dissipation keywords; return (drag, drag_law, restitution) as floats and str.
+
+    drag: a finite real >= 0; drag_law: "linear" or "quadratic"; restitution: a real in (0, 1].
+    ValueError names the bad value.
+    """
+    for name, value in (("drag", drag), ("restitution", restitution)):
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+            raise ValueError(f"{name} must be a real number, got {name}={value!r}")
+    drag, restitution = float(drag), float(restitution)
+    if not (math.isfinite(drag) and drag >= 0.0):
+        raise ValueError(f"drag must be finite and >= 0, got drag={drag!r}")
+    if drag_law not in DRAG_LAWS:
+        raise ValueError(f"drag_law must be 'linear' or 'quadratic', got drag_law={drag_law!r}")
+    if not 0.0 < restitution <= 1.0:
+        raise ValueError(f"restitution must be in (0, 1], got restitution={restitution!r}")
+    return drag, drag_law, restitution
