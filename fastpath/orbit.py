@@ -97,8 +97,8 @@ def inelastic_orbit(phi0, v0, eps, r, phi, v, t, iterations, sticking, method):
     s = 0.0  # time since the base
     phi[0], v[0], t[0] = base_phase, v0, 0.0
     sin_th, cos_th = math.sin(base_phase), math.cos(base_phase)
-    centred = centre_phase(base_phase)
-    w, w_error = departure(centred, math.sin(centred), v0, eps, phase_error_of(base_phase, centred))
+    # not centred: centring fl(pi) moves it by an ulp, and w = v0 + eps*sin would carry that
+    w, w_error = departure(base_phase, sin_th, v0, eps, phase_error_of(phi0, base_phase))
     if not w > -w_error:
         return 0, 0, NOT_DEPARTING, False
     if not w > w_error:

@@ -74,9 +74,9 @@ def accumulation_tail(sin_theta, cos_theta, w, eps, r):
 
     T0 = 2*w/(a*(1 - r)), a = 1 - eps*cos(theta), J = -eps*sin(theta) (module docstring).
     """
-    a = departure_deceleration(cos_theta, eps)
-    if not (a > 0.0 and w > 0.0 and r < 1.0):
+    if not (departure_deceleration(cos_theta, eps) > 0.0 and w > 0.0 and r < 1.0):
         return math.nan
+    a = 1.0 - eps * cos_theta  # the value, not lowered by its rounding bound as in the test
     t0 = 2.0 * w / (a * (1.0 - r))
     jerk = -eps * sin_theta
     q = t0 * t0 * (jerk * jerk / (a * a) + abs(eps) / a)
