@@ -8,10 +8,11 @@ the gap of DESIGN section 2. A flight is solved only where its first root is cer
 concavity: either |eps| < 1 (d'' <= -1 + |eps| < 0 everywhere: one positive root, bracketed by
 2w/(1 + |eps|) and 2w/(1 - |eps|)), or a = 1 - eps*cos(phi) > 0 and the plate's acceleration
 keeps d'' <= -a/2 over [0, h], h = 4w/a (d''(s) <= -a + |eps*sin(phi)|*s + |eps|*s**2/2), so the
-one root lies in [2w/(1 + |eps|), 2w/(a/2)]. 1 - cos(t) is 2*sin(t/2)**2 and t - sin(t) is
-evaluated with extra digits (w down to 1e-35 makes t tiny). Bisection to 40 bits, then Newton inside the bracket.
-The impact: w1 = -r*d'(tau). Accumulation: iterate until w < 1e-35, then add the geometric tail
-T0 = 2w/(a(1 - r)) (its error ~T0**2 relative, < 1e-60 there).
+one root lies in [2w/(1 + |eps|), 2w/(a/2)]; Newton from the upper end moves monotonically
+onto it (a concave function's tangent beyond the root crosses zero between them). 1 - cos(t) is 2*sin(t/2)**2 and t - sin(t) is
+evaluated with extra digits (w down to 1e-22 makes t tiny). The impact: w1 = -r*d'(tau). Accumulation: iterate until
+w < 1e-22, then add the bare geometric tail T0 = 2w/(a(1 - r)) (its error is of order
+|J|*T0**2/a, ~1e-40 there, far below u times any time compared).
 """
 
 from mpmath import mp
@@ -51,17 +52,19 @@ def flight(phi, w, eps):
             assert a - abs(eps * mp.sin(phi)) * h - abs(eps) * h**2 / 2 >= a / 2, "not certified"
             hi = h
         assert _gap(phi, w, eps, lo) >= 0 and _gap(phi, w, eps, hi) < 0
-        for _ in range(40):
-            mid = (lo + hi) / 2
-            lo, hi = (mid, hi) if _gap(phi, w, eps, mid) > 0 else (lo, mid)
-        t = hi
-        for _ in range(20):
-            t = t - _gap(phi, w, eps, t) / _rate(phi, w, eps, t)
+        t = hi  # Newton from beyond the root of a concave function: monotone down onto it
+        for _ in range(100):
+            step = _gap(phi, w, eps, t) / _rate(phi, w, eps, t)
+            t -= step
             assert lo <= t <= hi
+            if abs(step) <= t * mp.mpf(10) ** (-DPS + 3):
+                break
+        else:
+            raise AssertionError("Newton did not converge")
         return t, _rate(phi, w, eps, t)
 
 
-def chatter(phi, w, eps, r, w_stop=mp.mpf(10) ** -35):
+def chatter(phi, w, eps, r, w_stop=mp.mpf(10) ** -22):
     """(t_acc, impacts): time from (phi, w) to the accumulation point, number of impacts summed."""
     with mp.workdps(DPS):
         phi, w, eps, r = mp.mpf(phi), mp.mpf(w), mp.mpf(eps), mp.mpf(r)
