@@ -9,10 +9,11 @@ concavity: either |eps| < 1 (d'' <= -1 + |eps| < 0 everywhere: one positive root
 2w/(1 + |eps|) and 2w/(1 - |eps|)), or a = 1 - eps*cos(phi) > 0 and the plate's acceleration
 keeps d'' <= -a/2 over [0, h], h = 4w/a (d''(s) <= -a + |eps*sin(phi)|*s + |eps|*s**2/2), so the
 one root lies in [2w/(1 + |eps|), 2w/(a/2)]; Newton from the upper end moves monotonically
-onto it (a concave function's tangent beyond the root crosses zero between them). 1 - cos(t) is 2*sin(t/2)**2 and t - sin(t) is
-evaluated with extra digits (w down to 1e-22 makes t tiny). The impact: w1 = -r*d'(tau). Accumulation: iterate until
-w < 1e-22, then add the bare geometric tail T0 = 2w/(a(1 - r)) (its error is of order
-|J|*T0**2/a, ~1e-40 there, far below u times any time compared).
+onto it (a concave function's tangent beyond the root crosses zero between them).
+1 - cos(t) is 2*sin(t/2)**2 and t - sin(t) is evaluated with extra digits (w down to 1e-22
+makes t tiny). The impact: w1 = -r*d'(tau). Accumulation: iterate until w < 1e-22, then add
+the bare geometric tail T0 = 2w/(a(1 - r)) (its error is of order |J|*T0**2/a, ~1e-40 there,
+far below u times any time compared).
 """
 
 from mpmath import mp
@@ -64,7 +65,10 @@ def flight(phi, w, eps):
         return t, _rate(phi, w, eps, t)
 
 
-def chatter(phi, w, eps, r, w_stop=mp.mpf(10) ** -22):
+W_STOP = 1e-22
+
+
+def chatter(phi, w, eps, r, w_stop=W_STOP):
     """(t_acc, impacts): time from (phi, w) to the accumulation point, number of impacts summed."""
     with mp.workdps(DPS):
         phi, w, eps, r = mp.mpf(phi), mp.mpf(w), mp.mpf(eps), mp.mpf(r)
@@ -111,7 +115,8 @@ def detachment_flight(eps):
             g, r = d(t), d1(t)
             if g < mp.mpf(10) ** -50:
                 break
-            t += (r + mp.sqrt(r * r + 2 * a * g)) / a if r >= 0 else 2 * g / (mp.sqrt(r * r + 2 * a * g) - r)
+            root = mp.sqrt(r * r + 2 * a * g)  # larger root of g + r*s - a*s**2/2, no cancellation
+            t += (r + root) / a if r >= 0 else 2 * g / (root - r)
         else:
             raise AssertionError("lower-bound steps did not converge")
         for _ in range(5):

@@ -80,7 +80,8 @@ def test_detachment_phase_after_a_short_chatter(eps, r):
 @pytest.mark.parametrize(
     "eps, r, phi0, v0",
     [(0.5, 0.5, 4.0, 3.0),  # issue 16's done-when
-     (1.0, 0.8, math.pi, 1e-2), (-1.0, 0.5, 0.0, 1.0), (0.0, 0.9, 1.0, 5.0), (0.99, 0.7, math.pi, 0.05)],
+     (1.0, 0.8, math.pi, 1e-2), (-1.0, 0.5, 0.0, 1.0), (0.0, 0.9, 1.0, 5.0),
+     (0.99, 0.7, math.pi, 0.05)],
 )
 def test_abs_eps_at_most_one_ends_stuck_for_good(eps, r, phi0, v0):
     """Once accumulated, never detached. (Not every orbit accumulates: from (4, 3) at eps = 1,
