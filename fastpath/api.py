@@ -1,6 +1,6 @@
 """Public functions of the fast path: validate, broadcast, call the kernels (DESIGN section 4)."""
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numba import prange
@@ -20,7 +20,7 @@ from fastpath.flight import (
 )
 from fastpath.holmes import holmes_collide
 from fastpath.impact import dissipative_collide
-from fastpath.orbit import exact_orbit, holmes_orbit
+from fastpath.orbit import exact_orbit, holmes_orbit, inelastic_orbit
 from fastpath.status import FlightStatus, UncertainCollision
 
 # The defaults of the physics keywords: the elastic call passes these very objects, which
@@ -47,6 +47,11 @@ class Orbit:
 
     ``iterations`` holds the lower-bound steps of each exact flight (None for the Holmes map);
     ``status`` is CONVERGED, or the status of the flight that stopped the orbit early.
+    ``sticking`` (restitution < 1): rows (t_start, t_end) of the episodes where the particle
+    rides the plate, from the accumulation of a chattering sequence to the detachment, t_end =
+    inf when it never leaves; ``stopped``: "collisions" when the orbit ends after the n
+    collisions asked for (or at a flight it could not decide, see ``status``), "stuck" when it
+    ends stuck for good. phi, v, t hold the impacts computed (``fastpath.orbit``).
     """
 
     phi: np.ndarray
@@ -56,6 +61,8 @@ class Orbit:
     status: FlightStatus
     model: str
     eps: float
+    sticking: np.ndarray = field(default_factory=lambda: np.empty((0, 2)))
+    stopped: str = "collisions"
 
 
 @parallel_jit
@@ -265,15 +272,28 @@ def holmes_step(phi, v, eps):
     return _shaped(shape, scalar, phi1, v1)
 
 
-def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto"):
+def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", *,
+          drag=0.0, drag_law="linear", restitution=1.0):
     """n collisions from (phi0, v0): an Orbit with arrays .phi .v .t of length n+1.
 
     model: "exact" (the transcendental map) or "holmes". on_uncertain: "raise" raises
     UncertainCollision at a flight float64 cannot decide; "stop" returns the orbit up to it, with
     its status, so the caller can settle that collision (e.g. with ``verify.step``) and go on.
     method: the exact flight solver, as for ``flight``.
+
+    restitution r in (0, 1]: impacts v1 - u = -r*(v_in - u). With r < 1 impacts can accumulate;
+    the orbit then sticks to the plate and detaches where eps*cos(t) rises through 1, or stops
+    as "stuck" for |eps| <= 1 (``Orbit.sticking``, ``Orbit.stopped``; the arrays are shorter
+    than n+1 then). drag >= 0 with drag_law "linear" or "quadratic": only drag = 0 here so far
+    (drag flights are wired at merge). The defaults run the elastic kernel unchanged.
     """
     code = _method(method)
+    drag, _, restitution = physics(drag, drag_law, restitution)
+    if drag != 0.0:
+        raise ValueError(f"drag={drag!r}: drag (and drag with restitution < 1) in orbit is wired"
+                         " at merge; only drag=0.0 is available in this build")
+    if restitution != 1.0 and model != "exact":
+        raise ValueError(f"restitution < 1 needs model='exact', got model={model!r}")
     (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)
     if not scalar:
         raise ValueError("orbit takes scalar phi0, v0 and eps; use step() for arrays of states")
@@ -291,6 +311,8 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto"):
         holmes_orbit(phi0, v0, eps, phi, v, t)
         return Orbit(phi, v, t, None, FlightStatus.CONVERGED, model, eps)
     iterations = np.zeros(n, np.int32)
+    if restitution != 1.0:
+        return _inelastic(phi0, v0, eps, restitution, n, on_uncertain, code)
     done, status = exact_orbit(phi0, v0, eps, phi, v, t, iterations, code)
     if status != CONVERGED:
         at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])
@@ -301,3 +323,23 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto"):
                 raise type(err)(f"collision {done} of the orbit: {err}") from None
         phi, v, t, iterations = phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done]
     return Orbit(phi, v, t, iterations, FlightStatus(status), model, eps)
+
+
+def _inelastic(phi0, v0, eps, restitution, n, on_uncertain, code):
+    """The orbit with restitution < 1 (``fastpath.orbit.inelastic_orbit``)."""
+    phi, v, t = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
+    iterations = np.zeros(n, np.int32)
+    sticking = np.empty((n + 1, 2))
+    done, episodes, status, stuck = inelastic_orbit(
+        phi0, v0, eps, restitution, phi, v, t, iterations, sticking, code
+    )
+    if status != CONVERGED:
+        at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])
+        if status == NOT_DEPARTING or on_uncertain == "raise":
+            try:
+                _raise_on_status(np.array([status]), *at)
+            except (ValueError, UncertainCollision) as err:
+                raise type(err)(f"collision {done} of the orbit: {err}") from None
+    return Orbit(phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done],
+                 FlightStatus(status), "exact", eps, sticking[:episodes].copy(),
+                 "stuck" if stuck else "collisions")

@@ -180,10 +180,15 @@ def may_be_graze(phi, eps, t, r, d_err):
 
 
 @jit
-def lower_bound_flight(phi, v, eps, w0):
-    """(tau, iterations, status) by certified lower-bound steps; phi reduced, w0 > 0."""
+def lower_bound_flight(phi, v, eps, w0, start=0.0):
+    """(tau, iterations, status) by certified lower-bound steps; phi reduced, w0 > 0.
+
+    start > 0: the steps begin at t = start instead, a point the caller has certified to lie
+    before the first root (d > 0 on (0, start]; e.g. a departure with w0 = 0 from a convex gap,
+    ``fastpath.sticking``). w0 is then not used.
+    """
     a = 1.0 + abs(eps)
-    t = 2.0 * w0 / a  # the step from d(0) = 0, d'(0) = w0
+    t = start if start > 0.0 else 2.0 * w0 / a  # else the step from d(0) = 0, d'(0) = w0
     for k in range(1, ITERATION_LIMIT + 1):
         d = gap(phi, v, eps, t)
         r = gap_rate(phi, v, eps, t)
