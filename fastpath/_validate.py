@@ -8,6 +8,10 @@ import numbers
 
 import numpy as np
 
+from fastpath.drag import LAWS
+
+_LAW_NAMES = tuple(LAWS)  # a str compares by value; a tuple test never calls array __eq__
+
 
 def float_inputs(**named):
     """Convert named inputs to broadcast float64 arrays; return (arrays, all_scalar).
@@ -82,3 +86,35 @@ def count(name, value, minimum=0):
     if value < minimum:
         raise ValueError(f"{name} must be >= {minimum}, got {value}")
     return int(value)
+
+
+def physics(drag, drag_law, restitution):
+    """Check the keyword-only physics options; return (drag, law code, restitution).
+
+    drag: a finite real number >= 0; drag_law: "linear" or "quadratic" (``fastpath.drag.LAWS``);
+    restitution: a finite real number in (0, 1]. ValueError naming the bad value otherwise.
+    """
+    if (type(drag) is float and type(restitution) is float and type(drag_law) is str
+            and drag == 0.0 and restitution == 1.0 and drag_law in _LAW_NAMES):
+        return 0.0, LAWS[drag_law], 1.0  # the elastic defaults, checked in ~0.1 us
+    drag = _physical_scalar("drag", drag)
+    if not drag >= 0.0:
+        raise ValueError(f"drag must be >= 0, got drag={drag!r}")
+    if not isinstance(drag_law, str) or drag_law not in LAWS:
+        raise ValueError(f"drag_law must be one of {sorted(LAWS)}, got drag_law={drag_law!r}")
+    restitution = _physical_scalar("restitution", restitution)
+    if not 0.0 < restitution <= 1.0:
+        raise ValueError(f"restitution must be in (0, 1], got restitution={restitution!r}")
+    return drag, LAWS[drag_law], restitution
+
+
+def _physical_scalar(name, value):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating)):
+        raise ValueError(f"{name} must be a real number, got {name}={value!r}")
+    try:
+        x = float(value)
+    except OverflowError:
+        raise ValueError(f"{name} must be finite, got {name}={value!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{name} must be finite, got {name}={x!r}")
+    return x

@@ -1,13 +1,14 @@
 """Public functions of the fast path: validate, broadcast, call the kernels (DESIGN section 4)."""
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numba import prange
 
 from fastpath._jit import jit, parallel_jit
-from fastpath._validate import count, float_inputs, scalar_inputs
+from fastpath._validate import count, float_inputs, physics, scalar_inputs
 from fastpath.collision import collide
+from fastpath.drag_flight import solve_drag_flight
 from fastpath.flight import (
     CONVERGED,
     METHODS,
@@ -18,8 +19,17 @@ from fastpath.flight import (
     solve_flight,
 )
 from fastpath.holmes import holmes_collide
-from fastpath.orbit import exact_orbit, holmes_orbit
+from fastpath.impact import dissipative_collide
+from fastpath.orbit import exact_orbit, holmes_orbit, inelastic_orbit
 from fastpath.status import FlightStatus, UncertainCollision
+
+# The defaults of the physics keywords: the elastic call passes these very objects, which
+# ``_elastic`` recognises by identity before any validation (the elastic path pays ~50 ns).
+NO_DRAG, LINEAR, ELASTIC = 0.0, "linear", 1.0
+
+
+def _elastic(drag, drag_law, restitution):
+    return drag is NO_DRAG and drag_law is LINEAR and restitution is ELASTIC
 
 
 @dataclass(frozen=True)
@@ -37,6 +47,11 @@ class Orbit:
 
     ``iterations`` holds the lower-bound steps of each exact flight (None for the Holmes map);
     ``status`` is CONVERGED, or the status of the flight that stopped the orbit early.
+    ``sticking`` (restitution < 1): rows (t_start, t_end) of the episodes where the particle
+    rides the plate, from the accumulation of a chattering sequence to the detachment, t_end =
+    inf when it never leaves; ``stopped``: "collisions" when the orbit ends after the n
+    collisions asked for (or at a flight it could not decide, see ``status``), "stuck" when it
+    ends stuck for good. phi, v, t hold the impacts computed (``fastpath.orbit``).
     """
 
     phi: np.ndarray
@@ -46,6 +61,8 @@ class Orbit:
     status: FlightStatus
     model: str
     eps: float
+    sticking: np.ndarray = field(default_factory=lambda: np.empty((0, 2)))
+    stopped: str = "collisions"
 
 
 @parallel_jit
@@ -58,6 +75,22 @@ def _flights(phi, v, eps, method, tau, iterations, status):
 def _steps(phi, v, eps, phi1, v1, tau, status):
     for i in prange(len(phi)):
         phi1[i], v1[i], tau[i], _, status[i] = collide(phi[i], v[i], eps[i])
+
+
+@parallel_jit
+def _drag_flights(phi, v, eps, drag, law, method, tau, iterations, status):
+    for i in prange(len(phi)):
+        tau[i], iterations[i], status[i] = solve_drag_flight(
+            phi[i], v[i], eps[i], drag, law, method
+        )
+
+
+@parallel_jit
+def _dissipative_steps(phi, v, eps, drag, law, restitution, phi1, v1, tau, status):
+    for i in prange(len(phi)):
+        phi1[i], v1[i], tau[i], _, status[i] = dissipative_collide(
+            phi[i], v[i], eps[i], drag, law, restitution
+        )
 
 
 @parallel_jit
@@ -126,60 +159,96 @@ def _method(method):
     return METHODS[method]
 
 
-def flight(phi, v, eps, method="auto"):
+def _flight_arrays(phi, v, eps, code, drag, law):
+    """(tau, iterations, status, inputs, shape, scalar) of the flights, elastic or with drag."""
+    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
+    n = len(phi_a)
+    tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
+    if drag == 0.0:
+        _flights(phi_a, v_a, eps_a, code, tau, iterations, status)
+    else:
+        _drag_flights(phi_a, v_a, eps_a, drag, law, code, tau, iterations, status)
+    return tau, iterations, status, (phi_a, v_a, eps_a), shape, scalar
+
+
+def _scalar_flight(scalars, code, drag, law):
+    if drag == 0.0:
+        return solve_flight(*scalars, code)
+    return solve_drag_flight(*scalars, drag, law, code)
+
+
+def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
     """Flight times with their iteration counts and FlightStatus codes; never raises for status.
 
     Inputs broadcast; NaN/inf raise ValueError. Non-departures come back as NOT_DEPARTING (tau NaN).
     method: "auto" (bracketed Halley where the gap is concave, |eps| < 1; the seed's lower-bound
     steps otherwise) or "seed" (the seed's lower-bound steps everywhere).
+    drag, drag_law: air drag eta(v) = drag*v ("linear") or drag*v*|v| ("quadratic") during the
+    flight (``fastpath.drag``); restitution (checked, in (0, 1]) does not change a flight.
     """
     code = _method(method)
+    drag, law, _ = (0.0, 0, 1.0) if _elastic(drag, drag_law, restitution) else physics(
+        drag, drag_law, restitution
+    )
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
-        tau, iterations, status = solve_flight(*scalars, code)
+        tau, iterations, status = _scalar_flight(scalars, code, drag, law)
         return FlightResult(tau, iterations, status)
-    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
-    n = len(phi_a)
-    tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
-    _flights(phi_a, v_a, eps_a, code, tau, iterations, status)
+    tau, iterations, status, _, shape, scalar = _flight_arrays(phi, v, eps, code, drag, law)
     return FlightResult(*_shaped(shape, scalar, tau, iterations, status))
 
 
-def flight_time(phi, v, eps):
+def flight_time(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
     """Smallest positive root tau of d(tau) = eps*(cos(phi) - cos(phi+tau)) + tau*(v - tau/2).
 
     Scalars give a float, arrays broadcast. Raises ValueError for NaN/inf input or w0 <= 0, and
     UncertainCollision where float64 cannot decide a near-graze (eps > 1).
+    With drag > 0 the particle's part tau*(v - tau/2) is its displacement under drag
+    (``fastpath.drag``); restitution (checked, in (0, 1]) does not change a flight.
     """
+    drag, law, _ = (0.0, 0, 1.0) if _elastic(drag, drag_law, restitution) else physics(
+        drag, drag_law, restitution
+    )
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
-        tau, _, status = solve_flight(*scalars, METHODS["auto"])
+        tau, _, status = _scalar_flight(scalars, METHODS["auto"], drag, law)
         if status != CONVERGED:
             _raise_on_status(np.array([status]), *([x] for x in scalars))
         return tau
-    (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
-    n = len(phi_a)
-    tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
-    _flights(phi_a, v_a, eps_a, METHODS["auto"], tau, iterations, status)
-    _raise_on_status(status, phi_a, v_a, eps_a)
+    tau, _, status, inputs, shape, scalar = _flight_arrays(
+        phi, v, eps, METHODS["auto"], drag, law
+    )
+    _raise_on_status(status, *inputs)
     return _shaped(shape, scalar, tau)[0]
 
 
-def step(phi, v, eps):
+def step(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
     """One collision of the exact map: (phi1, v1, tau), phi1 reduced to [0, 2*pi).
 
     v1 = tau - v - 2*eps*sin(phi + tau). Errors as for ``flight_time``.
+    With drag or restitution r < 1 (``fastpath.impact``): the flight with drag, then
+    v1 = (1 + r)*u - r*v_in, u = -eps*sin(phi + tau) the plate's velocity, v_in the particle's.
     """
+    elastic = _elastic(drag, drag_law, restitution)
+    if not elastic:
+        drag, law, restitution = physics(drag, drag_law, restitution)
+        elastic = drag == 0.0 and restitution == 1.0
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
-        phi1, v1, tau, _, status = collide(*scalars)
+        if elastic:
+            phi1, v1, tau, _, status = collide(*scalars)
+        else:
+            phi1, v1, tau, _, status = dissipative_collide(*scalars, drag, law, restitution)
         if status != CONVERGED:
             _raise_on_status(np.array([status]), *([x] for x in scalars))
         return phi1, v1, tau
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     phi1, v1, tau, status = np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8)
-    _steps(phi_a, v_a, eps_a, phi1, v1, tau, status)
+    if elastic:
+        _steps(phi_a, v_a, eps_a, phi1, v1, tau, status)
+    else:
+        _dissipative_steps(phi_a, v_a, eps_a, drag, law, restitution, phi1, v1, tau, status)
     _raise_on_status(status, phi_a, v_a, eps_a)
     return _shaped(shape, scalar, phi1, v1, tau)
 
@@ -203,15 +272,28 @@ def holmes_step(phi, v, eps):
     return _shaped(shape, scalar, phi1, v1)
 
 
-def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto"):
+def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", *,
+          drag=0.0, drag_law="linear", restitution=1.0):
     """n collisions from (phi0, v0): an Orbit with arrays .phi .v .t of length n+1.
 
     model: "exact" (the transcendental map) or "holmes". on_uncertain: "raise" raises
     UncertainCollision at a flight float64 cannot decide; "stop" returns the orbit up to it, with
     its status, so the caller can settle that collision (e.g. with ``verify.step``) and go on.
     method: the exact flight solver, as for ``flight``.
+
+    restitution r in (0, 1]: impacts v1 - u = -r*(v_in - u). With r < 1 impacts can accumulate;
+    the orbit then sticks to the plate and detaches where eps*cos(t) rises through 1, or stops
+    as "stuck" for |eps| <= 1 (``Orbit.sticking``, ``Orbit.stopped``; the arrays are shorter
+    than n+1 then). drag >= 0 with drag_law "linear" or "quadratic": only drag = 0 here so far
+    (drag flights are wired at merge). The defaults run the elastic kernel unchanged.
     """
     code = _method(method)
+    drag, _, restitution = physics(drag, drag_law, restitution)
+    if drag != 0.0:
+        raise ValueError(f"drag={drag!r}: drag (and drag with restitution < 1) in orbit is wired"
+                         " at merge; only drag=0.0 is available in this build")
+    if restitution != 1.0 and model != "exact":
+        raise ValueError(f"restitution < 1 needs model='exact', got model={model!r}")
     (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)
     if not scalar:
         raise ValueError("orbit takes scalar phi0, v0 and eps; use step() for arrays of states")
@@ -229,6 +311,8 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto"):
         holmes_orbit(phi0, v0, eps, phi, v, t)
         return Orbit(phi, v, t, None, FlightStatus.CONVERGED, model, eps)
     iterations = np.zeros(n, np.int32)
+    if restitution != 1.0:
+        return _inelastic(phi0, v0, eps, restitution, n, on_uncertain, code)
     done, status = exact_orbit(phi0, v0, eps, phi, v, t, iterations, code)
     if status != CONVERGED:
         at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])
@@ -239,3 +323,23 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto"):
                 raise type(err)(f"collision {done} of the orbit: {err}") from None
         phi, v, t, iterations = phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done]
     return Orbit(phi, v, t, iterations, FlightStatus(status), model, eps)
+
+
+def _inelastic(phi0, v0, eps, restitution, n, on_uncertain, code):
+    """The orbit with restitution < 1 (``fastpath.orbit.inelastic_orbit``)."""
+    phi, v, t = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
+    iterations = np.zeros(n, np.int32)
+    sticking = np.empty((n + 1, 2))
+    done, episodes, status, stuck = inelastic_orbit(
+        phi0, v0, eps, restitution, phi, v, t, iterations, sticking, code
+    )
+    if status != CONVERGED:
+        at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])
+        if status == NOT_DEPARTING or on_uncertain == "raise":
+            try:
+                _raise_on_status(np.array([status]), *at)
+            except (ValueError, UncertainCollision) as err:
+                raise type(err)(f"collision {done} of the orbit: {err}") from None
+    return Orbit(phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done],
+                 FlightStatus(status), "exact", eps, sticking[:episodes].copy(),
+                 "stuck" if stuck else "collisions")

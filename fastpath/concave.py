@@ -19,6 +19,20 @@ geometric mean while hi > 4*lo) when a step leaves the bracket. A point with |d|
 
 At most ITERATION_LIMIT evaluations (then MAX_ITERATIONS, as UNCERTAIN).
 
+Refinement near (near-)triple roots (``_refine``, half-angle start only). E = gap_error allows an
+absolute error of a few u in the plate term's sine; where the gap's terms are small (t and phi
+small: d ~ x**4/24 at phi = -x, v = x, eps -> 1) it is 1e3-1e6 times the actual rounding. A stop
+there is either flat (UNCERTAIN although float64 could decide) or far from the root, and the Newton
+correction's second-order error |d''|*(d/d')**2/(2|d'|) dominates (2.29 kappa*u at x = 3e-5).
+So when the loop stops flat, or where that second-order term may exceed u*t/2
+(``_newton_inexact``; never on ordinary flights, where d/d' ~ u*t), the iteration goes on with
+``fastpath.tight_gap``: fresh half-angle sines and a bound E, R from the sizes of the terms, proved
+there. Its points narrow the same certified bracket by the same rules, so every answer stays in
+it. Only short flights need this: a concave gap with d(0) = d(tau) = 0 lies between 0 and its
+tangent at tau, 0 <= d <= |d'(tau)|*tau on [0, tau], so a small d'(tau) needs d'' ~ 0 over the
+whole flight, i.e. eps ~ 1 and phi + t ~ 0 (mod 2*pi): impossible over the Holmes start's flights
+(tau >= 2*w0/(1 + |eps|) >= 1).
+
 Two starts and two ways of evaluating the gap, each one libm sine and cosine per flight; later
 iterates move the angles along by angle addition (``fastpath.rotation``):
 
@@ -41,12 +55,15 @@ from fastpath._jit import jit
 from fastpath.gap import UNIT_ROUNDOFF, gap_error, rate_error
 from fastpath.rotation import rotate
 from fastpath.status import FlightStatus
+from fastpath.tight_gap import SMALLEST_T, tight_gap
 
 ITERATION_LIMIT = 60
 CONVERGED = int(FlightStatus.CONVERGED)
 UNCERTAIN = int(FlightStatus.UNCERTAIN)
 MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
 OVERFLOW = int(FlightStatus.OVERFLOW)
+
+_NEWTON_STALLS = 2  # Newton steps in ``_refine`` that may fail to halve before it stops
 
 # classification of one evaluation (see the module docstring)
 _BEFORE, _AFTER, _AT_ROOT, _FLAT = 0, 1, 2, 3
@@ -124,7 +141,7 @@ def concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
         return math.nan, math.nan, math.nan, 0, OVERFLOW
     if 2.0 * w0 >= 1.0 + abs(eps):
         return _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi)
-    return _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi)
+    return _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
 
 
 @jit
@@ -169,7 +186,61 @@ def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
 
 
 @jit
-def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi):
+def _newton_inexact(t, d, d1, d2, eps):
+    """Whether the correction -d/d1 from t may miss the root by more than u*t/2 in second order.
+
+    With delta = d/d1 the Newton point misses by |d''(xi)|*delta**2/(2|d'|), and
+    |d''(xi)| <= |d2| + |eps|*|delta| near t (the third derivative is bounded by |eps|).
+    """
+    delta = d / d1
+    return (abs(d2) + abs(eps * delta)) * delta * delta > UNIT_ROUNDOFF * t * abs(d1)
+
+
+@jit
+def _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi, done):
+    """Continue from t with ``tight_gap``, whose bound E is near the actual rounding: points that
+    the generic bound left undecided narrow the bracket, and the stop is at the root.
+
+    Each point is classified as by ``classify``, with E and R. From a point with |d| <= E and
+    d' < -R (after the maximum, the root within rounding) the Newton point is the next iterate
+    while ``_newton_inexact``, up to _NEWTON_STALLS steps that fail to halve the previous one
+    (then rounding dominates: the computed gap is noise at the scale of the step); otherwise it
+    is the answer (clamped into the certified bracket, ``_finish``). ``done``: evaluations
+    so far. If the evaluations run out, the answer is the last such Newton point, or
+    MAX_ITERATIONS if there was none.
+    """
+    last = (math.nan, math.nan, math.nan, ITERATION_LIMIT, MAX_ITERATIONS)
+    last_step = math.inf
+    stalls = 0
+    for evaluations in range(done + 1, ITERATION_LIMIT + 1):
+        d, d1, d2, s, c, d_err, d1_err = tight_gap(sin_phi, cos_phi, v, eps, w0_error, t)
+        if d > d_err or (d >= -d_err and d1 > d1_err):
+            where = _BEFORE
+        elif d < -d_err:
+            where = _AFTER
+        elif d1 < -d1_err:
+            where = _AT_ROOT
+        else:
+            return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, _FLAT)
+        if where == _AT_ROOT:
+            last = _finish(t, d, d1, s, c, phi + t, lo, hi, ITERATION_LIMIT, _AT_ROOT)
+            t_next = last[0]
+            step = abs(t_next - t)
+            if not step < 0.5 * last_step:
+                stalls += 1
+            if stalls > _NEWTON_STALLS or not _newton_inexact(t, d, d1, d2, eps):
+                return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, _AT_ROOT)
+            last_step = step
+        else:
+            t_next, lo, hi = halley(t, d, d1, d2, where, lo, hi)
+            if t_next == lo or t_next == hi:
+                return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, _BEFORE)
+        t = t_next
+    return last
+
+
+@jit
+def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error):
     w0 = v + eps * sin_phi
     t = 2.0 * w0 / (1.0 - eps * cos_phi)  # the frozen-acceleration root
     if not lo < t < hi:
@@ -186,6 +257,13 @@ def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi):
             return math.nan, math.nan, math.nan, evaluations, OVERFLOW
         where = classify(phi, v, eps, t, d, d1)
         if where >= _AT_ROOT:
+            if t >= SMALLEST_T and (where == _FLAT or _newton_inexact(t, d, d1, -1.0 + eps * c,
+                                                                        eps)):
+                refined = _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi,
+                                  evaluations)
+                if refined[4] != MAX_ITERATIONS:
+                    return refined
+                evaluations = ITERATION_LIMIT  # refinement ran out: the loose verdict stands
             return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, where)
         t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, where, lo, hi)
         if t_next == lo or t_next == hi:

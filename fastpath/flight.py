@@ -91,9 +91,13 @@ def first_root(d, r, k):
 
 
 @jit
-def certified_step(d, r, c, j, eps):
-    """Largest step from a point with d > 0 that the module docstring's lower models certify."""
-    a = 1.0 + abs(eps)
+def certified_step(d, r, c, j, eps, a):
+    """Largest step from a point with d > 0 that the module docstring's lower models certify.
+
+    a > 0 bounds -d2 from above for the rest of the flight (1 + |eps| here; with drag
+    ``fastpath.drag_flight`` passes its own bound), c is a lower bound on d2 at the point where
+    only the plate's part still varies (third derivative j, Taylor remainder |eps|*s**2/2).
+    """
     best = lower_bound_step(d, r, a)
     h = best
     for _ in range(_GROWTH_ROUNDS):
@@ -181,10 +185,15 @@ def may_be_graze(phi, eps, t, r, d_err):
 
 
 @jit
-def lower_bound_flight(phi, v, eps, w0):
-    """(tau, iterations, status) by certified lower-bound steps; phi reduced, w0 > 0."""
+def lower_bound_flight(phi, v, eps, w0, start=0.0):
+    """(tau, iterations, status) by certified lower-bound steps; phi reduced, w0 > 0.
+
+    start > 0: the steps begin at t = start instead, a point the caller has certified to lie
+    before the first root (d > 0 on (0, start]; e.g. a departure with w0 = 0 from a convex gap,
+    ``fastpath.sticking``). w0 is then not used.
+    """
     a = 1.0 + abs(eps)
-    t = 2.0 * w0 / a  # the step from d(0) = 0, d'(0) = w0
+    t = start if start > 0.0 else 2.0 * w0 / a  # else the step from d(0) = 0, d'(0) = w0
     for k in range(1, ITERATION_LIMIT + 1):
         d = gap(phi, v, eps, t)
         r = gap_rate(phi, v, eps, t)
@@ -199,7 +208,7 @@ def lower_bound_flight(phi, v, eps, w0):
         theta = phi + t
         curvature = -1.0 + eps * math.cos(theta) - 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
         r_low = r - rate_error(phi, v, eps, t)
-        t_next = t + certified_step(d - d_err, r_low, curvature, -eps * math.sin(theta), eps)
+        t_next = t + certified_step(d - d_err, r_low, curvature, -eps * math.sin(theta), eps, a)
         if t_next == t:  # the root is within rounding of t: d <= d_err + |r|*ulp(t)
             return polish(phi, v, eps, t, d, r), k, CONVERGED
         t = t_next

@@ -7,13 +7,14 @@ from .certify import FlightCertificate, certify_flight, flight_time
 from .check import CheckReport, Failure, assert_integrator, check_integrator, load_callable
 from .collision import step
 from .conditioning import condition_number
-from .errors import UndecidableCollision
+from .errors import ChatteringDetected, UndecidableCollision
 from .gap import gap
 from .grazing import GrazingContact, grazing_contact, grazing_departure
 from .jacobian import jacobian
 from .orbit import Orbit, orbit
 
 __all__ = [
+    "ChatteringDetected",
     "FlightCertificate",
     "GrazingContact",
     "Orbit",

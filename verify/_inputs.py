@@ -9,7 +9,9 @@ rounding). The rules, each failure a ``ValueError`` that names the bad value:
   ``w0 <= 0`` is proved in interval arithmetic; a ``w0`` too close to 0 to decide here passes
   and is decided (or reported undecidable) by the certificate;
 * a time ``tau`` passed with a state must be ``> 0``;
-* ``dps`` (digits) is an int ``>= 15`` (a bool is not an int here).
+* ``dps`` (digits) is an int ``>= 15`` (a bool is not an int here);
+* the dissipation keywords (:func:`check_physics`): ``drag`` finite and ``>= 0``, ``drag_law``
+  ``"linear"`` or ``"quadratic"``, ``restitution`` finite in ``(0, 1]``.
 """
 
 from __future__ import annotations
@@ -21,11 +23,41 @@ import mpmath
 from mpmath import iv, mp
 from mpmath.ctx_mp_python import _mpf as _mpf_base
 
-from ._precision import hi, working_dps
+from ._precision import hi, lo, working_dps
 from .phase import reduce_phase
 
 MIN_DPS = 15
+DRAG_LAWS = ("linear", "quadratic")
 _W0_CHECK_DPS = 30  # w0 is checked at this many digits (after an exact phase reduction)
+
+
+class Physics(NamedTuple):
+    """Validated dissipation keywords: ``drag`` k as an exact ``mpf``, the law, restitution r."""
+
+    drag: mpmath.mpf
+    drag_law: str
+    restitution: mpmath.mpf
+
+    @property
+    def is_default(self) -> bool:
+        """The elastic, friction-free model (today's code is called unchanged)."""
+        return self.drag == 0 and self.restitution == 1
+
+
+def check_physics(drag=0.0, drag_law="linear", restitution=1.0) -> Physics:
+    """Validate the keyword-only physics of the dissipation spec; ``ValueError`` naming the value.
+
+    ``drag`` finite ``>= 0``; ``drag_law`` in :data:`DRAG_LAWS`; ``restitution`` in ``(0, 1]``.
+    """
+    k = exact_real("drag", drag)
+    if k < 0:
+        raise ValueError(f"drag must be finite and >= 0, got drag={drag!r}")
+    if not isinstance(drag_law, str) or drag_law not in DRAG_LAWS:
+        raise ValueError(f"drag_law must be 'linear' or 'quadratic', got drag_law={drag_law!r}")
+    r = exact_real("restitution", restitution)
+    if not 0 < r <= 1:
+        raise ValueError(f"restitution must be in (0, 1], got restitution={restitution!r}")
+    return Physics(k, drag_law, r)
 
 
 class State(NamedTuple):
@@ -70,16 +102,20 @@ def check_dps(dps, name: str = "dps") -> int:
 _NO_TAU = object()
 
 
-def check_state(phi, v, eps, *, tau=_NO_TAU, dps=None, names=("phi", "v", "eps")) -> State:
+def check_state(phi, v, eps, *, tau=_NO_TAU, dps=None, names=("phi", "v", "eps"),
+                w0_zero_ok=False) -> State:
     """Validate a departure ``(phi, v, eps)``, optionally a time ``tau`` and digits ``dps``.
 
     ``names`` are the argument names used in the messages (``("phi0", "v0", "eps")`` for
-    :func:`verify.orbit`). See the module docstring for the rules.
+    :func:`verify.orbit`). See the module docstring for the rules. ``w0_zero_ok``: a ``w0``
+    proved to be exactly 0 passes (a departure at rest relative to the plate, which
+    :func:`verify.certify_flight` accepts only when the gap is proved to open, see
+    :mod:`verify.drag_certify`).
     """
     phi_, v_, eps_ = (exact_real(n, x) for n, x in zip(names, (phi, v, eps), strict=True))
     dps_ = None if dps is None else check_dps(dps)
-    w0_hi = _w0_upper(phi_, v_, eps_)
-    if w0_hi <= 0:
+    w0_lo, w0_hi = _w0_enclosure(phi_, v_, eps_)
+    if w0_hi < 0 or (w0_hi == 0 and not (w0_zero_ok and w0_lo == 0)):
         raise ValueError(
             f"no departure: w0 = v + eps*sin(phi) = {mp.nstr(w0_hi, 8)} <= 0 "
             f"({names[0]}={phi!r}, {names[1]}={v!r}, {names[2]}={eps!r})"
@@ -92,8 +128,13 @@ def check_state(phi, v, eps, *, tau=_NO_TAU, dps=None, names=("phi", "v", "eps")
     return State(phi_, v_, eps_, tau_, dps_)
 
 
-def _w0_upper(phi, v, eps) -> mpmath.mpf:
-    """Upper end of an interval enclosure of ``w0 = v + eps*sin(phi)``."""
+def w0_is_zero(phi, v, eps) -> bool:
+    """``w0 = v + eps*sin(phi)`` is exactly 0 (its interval enclosure is the point 0)."""
+    return _w0_enclosure(phi, v, eps) == (0, 0)
+
+
+def _w0_enclosure(phi, v, eps) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """Ends of an interval enclosure of ``w0 = v + eps*sin(phi)``."""
     with working_dps(_W0_CHECK_DPS) as prec:
         w0 = iv.mpf(v) + iv.mpf(eps) * iv.sin(reduce_phase(phi, prec).enclosure)
-        return hi(w0)
+        return lo(w0), hi(w0)

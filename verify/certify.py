@@ -38,9 +38,11 @@ from typing import NamedTuple
 import mpmath
 from mpmath import iv, mp
 
-from ._inputs import check_dps, check_state, exact_real
+from ._inputs import check_dps, check_physics, check_state, exact_real, w0_is_zero
 from ._precision import hi, lo, working_dps
 from .conditioning import condition_number
+from .drag import NotDecided
+from .drag_certify import DragContext, departure_start
 from .errors import UndecidableCollision
 from .gap import iv_gap, iv_gap_prime, iv_gap_second, mp_gap, mp_gap_prime
 from .phase import reduce_phase
@@ -49,6 +51,7 @@ _MAX_STEPS = 100_000  # candidate steps per search: beyond it, ValueError (out o
 _MAX_BOXES = 20_000  # Taylor boxes per flight (a few seconds): beyond it, ValueError
 _MAX_BISECTIONS = 4_000  # halvings of the concave bracket: enough for 1e-1000 relative width
 _GUARD_DPS = 10
+_LOCAL_GROWTH = 30  # windows [t, t + 4**j * s] tried by the local candidate step
 
 
 @dataclass(frozen=True)
@@ -78,37 +81,76 @@ class _Undecided(Exception):
         self.needed = needed
 
 
-def certify_flight(phi, v, eps, dps: int = 50, max_dps: int | None = None) -> FlightCertificate:
+def certify_flight(phi, v, eps, dps: int = 50, max_dps: int | None = None, *, drag=0.0,
+                   drag_law: str = "linear", restitution=1.0) -> FlightCertificate:
     """Certify the smallest positive root of the gap ``d`` (see module docstring).
 
     Inputs are taken as exact binary values and checked by :func:`verify._inputs.check_state`:
     ``ValueError`` for NaN/inf/non-real inputs, a bad ``dps`` or ``max_dps``, or
     ``w0 = v + eps*sin(phi) <= 0``; :class:`UndecidableCollision` when the first root cannot be
     decided at ``max_dps`` digits (default ``max(4*dps, 400)``).
+
+    Physics (keyword-only, :func:`verify._inputs.check_physics`): ``drag`` k >= 0 with
+    ``drag_law`` "linear" or "quadratic" (:mod:`verify.drag`); ``restitution`` does not change a
+    flight and is only validated. Without drag the elastic code above runs unchanged (bit for
+    bit), except for a departure at rest, ``w0 = 0`` exactly, which it rejects and which goes
+    to the drag certificate (:func:`_drag_attempt`) with ``k = 0``.
     """
-    state = check_state(phi, v, eps, dps=dps)
+    phys = check_physics(drag, drag_law, restitution)
+    state = check_state(phi, v, eps, dps=dps, w0_zero_ok=True)
     phi, v, eps, dps = state.phi, state.v, state.eps, state.dps
     max_dps = max(4 * dps, 400) if max_dps is None else check_dps(max_dps, "max_dps")
     if max_dps < dps:
         raise ValueError(f"max_dps must be >= dps, got max_dps={max_dps}, dps={dps}")
+    if phys.drag == 0 and not w0_is_zero(phi, v, eps):
+        attempt = _attempt
+    else:
+        def attempt(phi, v, eps, dps, wdps):
+            return _drag_attempt(phi, v, eps, phys, dps, wdps)
     wdps = min(dps + _GUARD_DPS, max_dps)
     while True:
         try:
             with working_dps(wdps):
-                lo_, hi_, free, boxes = _attempt(phi, v, eps, dps, wdps)
+                lo_, hi_, free, boxes = attempt(phi, v, eps, dps, wdps)
                 mid = (lo_ + hi_) / 2
             with working_dps(dps):
                 tau = +mid
             return FlightCertificate(tau, (lo_, hi_), free, wdps, boxes)
-        except _Undecided as und:
+        except (_Undecided, NotDecided) as und:
             if wdps >= max_dps:
-                raise UndecidableCollision(phi, v, eps, wdps, und.what) from None
-            wdps = min(max_dps, max(2 * wdps, und.needed))
+                raise UndecidableCollision(phi, v, eps, wdps, str(und)) from None
+            wdps = min(max_dps, max(2 * wdps, getattr(und, "needed", 0)))
 
 
-def flight_time(phi, v, eps, dps: int = 50) -> mpmath.mpf:
+def flight_time(phi, v, eps, dps: int = 50, *, drag=0.0, drag_law: str = "linear",
+                restitution=1.0) -> mpmath.mpf:
     """Certified smallest positive root of ``d`` at ``dps`` digits: ``certify_flight(...).tau``."""
-    return certify_flight(phi, v, eps, dps).tau
+    return certify_flight(phi, v, eps, dps, drag=drag, drag_law=drag_law,
+                          restitution=restitution).tau
+
+
+def _drag_attempt(phi, v, eps, phys, dps, wdps):
+    """One attempt for a drag flight (:mod:`verify.drag_certify`): the analytic start
+    ``d > 0`` on ``(0, w0/a]`` with ``a`` the curvature bound (or, for ``w0 = 0`` exactly,
+    :func:`verify.drag_certify.departure_start`), then :func:`_search` with the concavity
+    shortcut where ``w0 > 0``."""
+    ctx = DragContext(phi, reduce_phase(phi, mp.prec).enclosure, v, eps, phys.drag,
+                      phys.drag_law, dps, wdps)
+    w0 = ctx.w0()
+    if hi(w0) < 0:
+        raise ValueError(
+            f"no departure: w0 = v + eps*sin(phi) = {mp.nstr(hi(w0), 8)} < 0 "
+            f"(phi={phi}, v={v}, eps={eps})"
+        )
+    curv = ctx.curvature_bound()
+    if lo(w0) == 0 == hi(w0):
+        return _search(ctx, curv, departure_start(ctx), None, candidate=_local_candidate)
+    if lo(w0) <= 0:
+        raise _Undecided(
+            f"w0 = v + eps*sin(phi) is within {mp.nstr(hi(w0) - lo(w0), 3)} of 0: departure or not"
+        )
+    return _search(ctx, curv, lo(w0) / curv, None, concave_from=ctx.concave_on,
+                   candidate=_local_candidate)
 
 
 class _Context(NamedTuple):
@@ -127,6 +169,19 @@ class _Context(NamedTuple):
     def d(self, t):
         """Interval enclosure of ``d`` at the exact point ``t``."""
         return iv_gap(self.iphi, self.iv_v, self.ieps, iv.mpf(t))
+
+    def d_and_slope(self, ia):
+        """Enclosures of ``d`` and ``d'`` at the point interval ``ia``."""
+        return (iv_gap(self.iphi, self.iv_v, self.ieps, ia),
+                iv_gap_prime(self.iphi, self.iv_v, self.ieps, ia))
+
+    def curvature(self, a, b):
+        """Enclosure of ``d''`` over ``[a, b]``."""
+        return iv_gap_second(self.iphi, self.ieps, iv.mpf([a, b]))
+
+    def point(self, t):
+        """Non-rigorous ``(d(t), d'(t))`` in ``mp`` for the candidate search."""
+        return (mp_gap(self.phi, self.v, self.eps, t), mp_gap_prime(self.phi, self.v, self.eps, t))
 
     def needed(self, t):
         return _needed_dps(self.phi_exact, self.v, self.eps, t, self.dps)
@@ -291,19 +346,34 @@ def _general(ctx: _Context, w0_lo):
     particle over a strong plate is not followed period by period."""
     curv = 1 + abs(ctx.eps)  # bound on |d''|
     free = w0_lo / curv  # d > 0 on (0, free] analytically: free < 2*w0/(1+|eps|)
-    window = _positive_window(ctx)
+    return _search(ctx, curv, free, _positive_window(ctx))
+
+
+def _search(ctx, curv, free, window, concave_from=None, candidate=None):
+    """The candidate-and-proof loop of :func:`_general` for any gap ``ctx`` (the elastic
+    :class:`_Context` or a :class:`verify.drag_certify.DragContext`): ``d > 0`` is proved on
+    ``(0, free]``; ``curv`` bounds ``-d''`` from above; ``window`` is an interval known to lie
+    in ``d > 0`` or None. ``concave_from``: where given (a callable of ``right``), a proof that
+    ``d`` is concave on ``[0, right]`` lets two point evaluations certify (as in
+    :func:`_concave`) before the box-by-box proof is tried. ``candidate``: the (non-rigorous)
+    candidate search, :func:`_candidate` unless given."""
     search_from = free
     boxes = 0
     scale = mp.mpf(10) ** (-ctx.dps)
     for _ in range(_MAX_STEPS):
         if window is not None and window[0] <= free < window[1]:
             free = search_from = window[1]  # (free, window[1]] lies inside (t_-, t_+)
-        c = _candidate(ctx, curv, search_from)
+        c = (candidate or _candidate)(ctx, curv, search_from)
         if c < search_from:  # the search only moves forward: a candidate behind it is refused
             raise _Undecided(f"candidate tau={mp.nstr(c, 20)} is behind the proved part")
         delta = c * scale
         left = max(c - delta, free)
         right = c + delta
+        if concave_from is not None and concave_from(right):
+            d_left, d_right = ctx.d(left), ctx.d(right)
+            boxes += 2
+            if lo(d_left) > 0 and hi(d_right) < 0:
+                return left, right, left, boxes
         if left > free:
             boxes += _prove_positive(ctx, free, left)
             free = left
@@ -331,18 +401,56 @@ def _candidate(ctx: _Context, curv, t):
     """Non-rigorous: step ``t`` by the larger root of ``d + d'*s - curv*s**2/2`` (never past a
     root in exact arithmetic) until ``d`` vanishes at working precision."""
     tol = mp.mpf(10) ** (-(ctx.wdps - 4))
-    phi, v, eps = ctx.phi, ctx.v, ctx.eps
     for _ in range(_MAX_STEPS):
-        g = mp_gap(phi, v, eps, t)
+        g, p = ctx.point(t)
         if g <= 0:
             return t
-        p = mp_gap_prime(phi, v, eps, t)
         disc = mp.sqrt(p * p + 2 * curv * g)
         s = (p + disc) / curv if p >= 0 else 2 * g / (disc - p)
         t += s
         if s <= t * tol:
             return t
     raise _over_budget(ctx, f"{_MAX_STEPS} lower-bound steps", t)
+
+
+def _local_candidate(ctx, curv, t):
+    """Non-rigorous candidate for drag flights: the seed's step with a LOCAL bound of ``-d''``.
+
+    From ``t`` the step ``s`` (larger root of ``d + d'*s - a*s**2/2``) never passes a root if
+    ``a >= -d''`` on ``[t, t+s]``. ``a`` is taken from the ``iv`` enclosure of ``d''`` over
+    ``[t, t+L]``, and ``L`` is raised to the step until the step fits inside it (else the
+    global ``curv``): near a root where ``d''`` is small this is far faster than the global
+    bound, which crawls at a departure at rest. Only ``ctx.point`` values decide the stop.
+    """
+    tol = mp.mpf(10) ** (-(ctx.wdps - 4))
+    for _ in range(_MAX_STEPS):
+        g, p = ctx.point(t)
+        if g <= 0:
+            return t
+        s = _lower_step(g, p, curv)
+        length = s
+        for _ in range(_LOCAL_GROWTH):
+            length *= 4
+            try:
+                a = max(hi(-ctx.curvature(t, t + length)), mp.zero)
+            except NotDecided:
+                break
+            s_loc = _lower_step(g, p, a)  # no root before min(s_loc, length)
+            s = max(s, length if s_loc is None else min(s_loc, length))
+            if s_loc is not None and s_loc <= length:
+                break
+        t += s
+        if s <= t * tol:
+            return t
+    raise _over_budget(ctx, f"{_MAX_STEPS} lower-bound steps", t)
+
+
+def _lower_step(g, p, a):
+    """Larger root of ``g + p*s - a*s**2/2`` (``g > 0``); None when ``a = 0`` and ``p >= 0``."""
+    if a == 0:
+        return None if p >= 0 else g / -p
+    disc = mp.sqrt(p * p + 2 * a * g)
+    return (p + disc) / a if p >= 0 else 2 * g / (disc - p)
 
 
 def _over_budget(ctx: _Context, what: str, t) -> ValueError:
@@ -374,15 +482,13 @@ def _prove_positive(ctx: _Context, a, end):
     ``q = min d''([a, a+h])`` (Taylor with the Lagrange remainder), all three enclosed in ``iv``
     and their lower ends used; :func:`_taylor_lower` bounds the quadratic from below.
     """
-    iphi, iv_v, ieps = ctx.iphi, ctx.iv_v, ctx.ieps
     boxes = 0
     tiny = mp.mpf(10) ** (-(ctx.wdps - 6))
     shrink = 1 - mp.mpf(2) ** -20
     h_prev = end - a
     while a < end:
         ia = iv.mpf(a)
-        d_iv = iv_gap(iphi, iv_v, ieps, ia)
-        p_iv = iv_gap_prime(iphi, iv_v, ieps, ia)
+        d_iv, p_iv = ctx.d_and_slope(ia)
         d_a, p_a = lo(d_iv), lo(p_iv)
         boxes += 1
         if d_a <= 0:
@@ -390,7 +496,7 @@ def _prove_positive(ctx: _Context, a, end):
         cap = min(2 * h_prev, end - a)
         while True:
             box_end = end if cap >= end - a else a + cap  # end may carry more bits than a
-            q = lo(iv_gap_second(iphi, ieps, iv.mpf([a, box_end])))
+            q = lo(ctx.curvature(a, box_end))
             boxes += 1
             if boxes > _MAX_BOXES:
                 raise _over_budget(ctx, f"{_MAX_BOXES} proof boxes", a)

@@ -25,3 +25,21 @@ class UndecidableCollision(ArithmeticError):
 def _short(x) -> str:
     s = str(x)
     return s if len(s) <= 40 else s[:40] + "..."
+
+
+class ChatteringDetected(ArithmeticError):
+    """Impacts accumulate (restitution < 1): the orbit would need infinitely many collisions.
+
+    Raised by :func:`verify.orbit` after collision ``n`` (at time ``t``, state ``phi``, ``v``)
+    when the velocity relative to the plate, ``w = v + eps*sin(phi)``, fell below the threshold
+    ``w_min`` while the gap's curvature ``d''(0)`` is negative (the plate pulls the particle
+    back). verify does not yet compute the accumulation time and the sticking phase.
+    """
+
+    def __init__(self, n: int, t, phi, v, w, w_min) -> None:
+        self.n, self.t, self.phi, self.v, self.w, self.w_min = n, t, phi, v, w, w_min
+        super().__init__(
+            f"chattering: after collision {n} (t={_short(t)}, phi={_short(phi)}, v={_short(v)}) "
+            f"the velocity relative to the plate is w={_short(w)} < {_short(w_min)} and falling: "
+            "impacts accumulate; verify.orbit does not compute sticking phases"
+        )

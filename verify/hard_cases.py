@@ -20,6 +20,9 @@ degenerates at 1), ``near-triple-root`` (``phi = -x, v = x``: for ``|eps| <= 1``
 flight time is ``2x``, and ``d'(2x) = eps*sin(x) - x ~ -x**3/6`` at eps = 1, DESIGN fact 11),
 ``huge-phase`` (``|phi|`` = 1e12 .. 1e300: reduction modulo 2*pi needs ~|phi|/2**53 more bits
 than the phase holds), ``overflow``.
+
+Classes added for issue 16 (``DISSIPATIVE_CASES``, with ``drag``, ``drag_law`` and the
+certified ``tau``): ``drag-graze`` and ``w0=0 departure`` (see the table).
 """
 
 import math
@@ -36,6 +39,10 @@ class HardCase(NamedTuple):
     clearance: float | None = None
     kind: str = ""
     expect: str = "flight"
+    drag: float = 0.0
+    drag_law: str = "linear"
+    restitution: float = 1.0
+    tau: float | None = None  # the certified flight time rounded to float64, where stored
 
 
 PI = math.pi
@@ -198,6 +205,39 @@ OVERFLOW_CASES = (
           "ValueError"),
 )
 
-ALL_CASES = HARD_CASES + OVERFLOW_CASES
+def _dissipative(case_id, phi, v, eps, law, k, tau, kind, reason):
+    return HardCase(case_id, phi, v, eps, reason, kind=kind, drag=k, drag_law=law, tau=tau)
+
+
+# Issue 16: flights with drag (not in HARD_CASES, whose users call the elastic model). ``tau`` is
+# verify.certify_flight(..., drag=k, drag_law=law).tau at 50 digits rounded to float64.
+# "drag-graze": the elastic near-grazes above (clearance 1e-2, +-1e-6) under drag 1e-8, which
+# moves the clearance by ~1e-8: still a pass above (landing later) or a close root pair.
+# "w0=0 departure": phi = 0, v = 0 (w0 = 0 exactly): d''(0) = eps - 1 > 0, or d''(0) = 0 with
+# d'''(0) = k > 0 (eps = 1, linear drag): the gap opens by its curvature.
+_DRAG_GRAZES = (
+    (-2.4762056588386616, 2.3329253488466524, 1.5, "1e-2",
+     4.2633070636679635, 4.263306931899682),
+    (-2.4690589104382212, 2.325778600446212, 1.5, "1e-6", 4.233979529806101, 4.23397939194823),
+    (-2.4690574729565076, 2.3257771629644983, 1.5, "-1e-6",
+     2.766852168072916, 2.7668128824794938),
+    (-3.8901814972737423, 3.3036208772897235, 3.0, "1e-6",
+     6.8232924430174675, 6.823292321128432),
+    (-3.8901811231228502, 3.303620503138832, 3.0, "-1e-6", 4.189062665767766, 4.188954674819296),
+)
+DISSIPATIVE_CASES = (
+    *[_dissipative(f"drag-graze-{law}-eps={eps:g}-c={c}", phi, v, eps, law, 1e-8, tau,
+                   "drag-graze", f"near-graze (clearance {c}) at eps = {eps} under {law} drag 1e-8")
+      for phi, v, eps, c, tau_lin, tau_quad in _DRAG_GRAZES
+      for law, tau in (("linear", tau_lin), ("quadratic", tau_quad))],
+    _dissipative("w0=0-eps=1.5-linear", 0.0, 0.0, 1.5, "linear", 0.1, 2.347056382201692,
+                 "w0=0 departure", "departure at rest, d''(0) = 0.5 > 0"),
+    _dissipative("w0=0-eps=1.5-quadratic", 0.0, 0.0, 1.5, "quadratic", 0.1, 2.365794430471219,
+                 "w0=0 departure", "departure at rest, d''(0) = 0.5 > 0"),
+    _dissipative("w0=0-eps=1-linear", 0.0, 0.0, 1.0, "linear", 0.1, 0.39814790798759475,
+                 "w0=0 departure", "departure at rest, d''(0) = 0 exactly, d'''(0) = k > 0"),
+)
+
+ALL_CASES = HARD_CASES + OVERFLOW_CASES + DISSIPATIVE_CASES
 
 KINDS = tuple(sorted({case.kind for case in ALL_CASES}))

@@ -26,7 +26,7 @@ import fastpath
 REF_DPS = 60
 
 
-def _triple():
+def triple_family():
     xs = 10.0 ** np.linspace(-6.0, 0.5, 27)
     epss = (1 - 1e-3, 1 - 1e-4, 1 - 1e-6, 1 - 1e-8, 1 - 1e-11, math.nextafter(1.0, 0.0), 1.0)
     return [("triple", -float(x), float(x), eps, 2.0 * float(x)) for eps in epss for x in xs]
@@ -83,7 +83,7 @@ def _huge_phases():
 
 def adversarial_set():
     """[(family, phi, v, eps, exact tau or None)] (fixed, deterministic)."""
-    return _triple() + _triple_perturbed() + _eps_one() + _grazes() + _huge_phases()
+    return triple_family() + _triple_perturbed() + _eps_one() + _grazes() + _huge_phases()
 
 
 def judge(family, phi, v, eps, exact):

@@ -1,0 +1,52 @@
+"""Impacts with restitution, and the collision map with drag (issue 16).
+
+An impact at phase theta = phi + tau with incoming particle velocity v_in and plate velocity
+u = -eps*sin(theta) reverses the relative velocity and shrinks it by r (0 < r <= 1):
+
+    v1 - u = -r*(v_in - u),   i.e.   v1 = (1 + r)*u - r*v_in,
+
+so the kinetic energy relative to the plate, (v - u)**2/2, loses the share 1 - r**2. The flight
+before it is ``fastpath.flight`` without drag and ``fastpath.drag_flight`` with it; v_in is
+v - tau, resp. V(tau) of ``fastpath.drag.particle``. With drag == 0 and r == 1 the elastic
+``fastpath.collision.collide`` is called unchanged, so its results are reproduced bit for bit.
+"""
+
+import math
+
+from fastpath._jit import jit
+from fastpath.collision import collide
+from fastpath.drag import particle
+from fastpath.drag_flight import drag_flight
+from fastpath.flight import AUTO, CONVERGED, flight_from, phase_error_of
+from fastpath.gap import departure
+from fastpath.phase import centre_phase, reduce_phase
+
+
+@jit
+def impact_velocity(v_in, u, restitution):
+    """Velocity just after an impact: v1 = (1 + r)*u - r*v_in (module docstring)."""
+    return (1.0 + restitution) * u - restitution * v_in
+
+
+@jit
+def dissipative_collide(phi, v, eps, drag, law, restitution):
+    """(phi1, v1, tau, iterations, status): one flight (with drag k = drag and law code ``law``,
+    ``fastpath.drag``) and one impact with restitution r; phi any real, phi1 in [0, 2*pi)."""
+    if drag == 0.0 and restitution == 1.0:
+        return collide(phi, v, eps)
+    centred = centre_phase(phi)
+    sin_phi, cos_phi = math.sin(centred), math.cos(centred)
+    phase_error = phase_error_of(phi, centred)
+    if drag == 0.0:
+        tau, sin1, _, iterations, status = flight_from(
+            centred, sin_phi, cos_phi, v, eps, AUTO, phase_error
+        )
+        v_in = v - tau
+    else:
+        _, w0_error = departure(centred, sin_phi, v, eps, phase_error)
+        tau, sin1, _, iterations, status = drag_flight(
+            centred, sin_phi, cos_phi, v, eps, drag, law, w0_error, AUTO
+        )
+        v_in = particle(v, drag, law, tau)[1] if status == CONVERGED else math.nan
+    v1 = impact_velocity(v_in, -eps * sin1, restitution)
+    return reduce_phase(centred + tau), v1, tau, iterations, status

@@ -1,0 +1,134 @@
+"""The gap of a drag flight in interval arithmetic, and the proofs the certificate needs of it.
+
+With the closed forms of :mod:`verify.drag` (``Y``, ``V`` from the departure velocity ``v``)::
+
+    d(t)   = Y(t) + eps*(cos(phi) - cos(phi+t)) = Y(t) + 2*eps*sin(phi + t/2)*sin(t/2)
+    d'(t)  = V(t) + eps*sin(phi+t)
+    d''(t) = -1 - eta(V(t)) + eps*cos(phi+t)
+    d'''(t) = -eta'(V)*V' - eps*sin(phi+t),  V' = -1 - eta(V)
+
+:class:`DragContext` offers the interface the certificate of :mod:`verify.certify` runs on
+(``d``, ``d_and_slope``, ``curvature``, ``point``). Facts used (the seed's Section 2):
+
+* ``V`` is monotone during a flight and ``eta`` increasing, so ``eta(V(t))`` lies between
+  ``eta(v)`` and ``eta(V(T))`` on ``[0, T]``. Hence ``-d'' <= a = max(1 + eta(v), 0) + |eps|``
+  (:meth:`DragContext.curvature_bound`): if ``V`` decreases, ``eta(V) <= eta(v)``; if it
+  increases (linear drag below the terminal velocity), ``1 + eta(V) <= 0``. With ``w0 > 0``,
+  ``d(t) >= w0*t - a*t**2/2 > 0`` on ``(0, 2*w0/a)``: the analytic start. The seed's
+  lower-bound step uses this ``a``.
+* Concavity on ``[0, T]`` (:meth:`DragContext.concave_on`): ``d'' <= -1 - min(eta(v), eta(V(T)))
+  + |eps| <= 0`` proved in ``iv``. Then ``d(lo) > 0 > d(hi)`` with ``hi <= T`` certify the first
+  root as in the elastic ``|eps| <= 1`` case (chord argument).
+* A departure at rest relative to the plate, ``w0 = 0`` exactly (:func:`departure_start`):
+  ``d(0) = d'(0) = 0`` and ``d(t) = integral_0^t (t-s)*d''(s) ds``, so ``d'' > 0`` on ``(0, h]``
+  gives ``d > 0`` there. ``d''`` is proved ``> 0`` on ``(0, h]`` either directly
+  (``d''([0, h]) > 0``) or, when ``d''(0) = 0`` exactly, from ``d'''([0, h]) > 0``.
+  ``d''(0) < 0``, or ``d''(0) = 0`` with ``d'''(0) < 0``, is no departure: ``ValueError``.
+"""
+
+from __future__ import annotations
+
+from mpmath import iv, mp
+
+from ._precision import hi, lo
+from .drag import DragFlight, NotDecided
+
+_HALVINGS = 200  # tries for the opening box of a departure at rest
+
+
+class DragContext:
+    """One attempt's drag gap at the current precision: exact inputs, reduced phase ``iphi``."""
+
+    def __init__(self, phi, iphi, v, eps, k, law, dps, wdps):
+        self.phi_exact, self.iphi, self.v, self.eps = phi, iphi, v, eps
+        self.dps, self.wdps = dps, wdps
+        self.ieps = iv.mpf(eps)
+        self.flight = DragFlight(v, k, law)
+
+    def d(self, t):
+        """Enclosure of ``d`` at the exact point ``t``."""
+        return self._at(t, iv.mpf(t))[0]
+
+    def d_and_slope(self, ia):
+        """Enclosures of ``d`` and ``d'`` at the point interval ``ia`` (one exact number)."""
+        if lo(ia) != hi(ia):
+            raise NotDecided("a box end is not representable at this precision")
+        return self._at(lo(ia), ia)
+
+    def _at(self, t, ia):
+        disp, vel = self.flight.motion(t)
+        half = ia / 2
+        plate = 2 * self.ieps * iv.sin(self.iphi + half) * iv.sin(half)
+        return disp + plate, vel + self.ieps * iv.sin(self.iphi + ia)
+
+    def curvature(self, a, b):
+        """Enclosure of ``d''`` over ``[a, b]`` (``V`` over the box from its ends)."""
+        vel = self.flight.velocity_box(a, b)
+        return -1 - self.flight.eta(vel) + self.ieps * iv.cos(self.iphi + iv.mpf([a, b]))
+
+    def third(self, a, b):
+        """Enclosure of ``d'''`` over ``[a, b]``."""
+        vel = self.flight.velocity_box(a, b)
+        accel = -1 - self.flight.eta(vel)
+        return -self.flight.eta_prime(vel) * accel - self.ieps * iv.sin(self.iphi + iv.mpf([a, b]))
+
+    def point(self, t):
+        """Non-rigorous ``(d(t), d'(t))``: midpoints of the enclosures, for the candidate search."""
+        d_iv, p_iv = self.d_and_slope(iv.mpf(t))
+        return (lo(d_iv) + hi(d_iv)) / 2, (lo(p_iv) + hi(p_iv)) / 2
+
+    def w0(self):
+        """Enclosure of ``w0 = d'(0) = v + eps*sin(phi)``."""
+        return iv.mpf(self.v) + self.ieps * iv.sin(self.iphi)
+
+    def curvature_bound(self):
+        """``a = max(1 + eta(v), 0) + |eps| >= -d''`` during the flight (module docstring)."""
+        top = hi(1 + self.flight.eta(iv.mpf(self.v)))
+        return max(top, mp.zero) + abs(self.eps)
+
+    def concave_on(self, end) -> bool:
+        """Proved ``d'' <= 0`` on ``[0, end]`` (module docstring)."""
+        try:
+            eta_end = self.flight.eta(self.flight.velocity(end))
+        except NotDecided:
+            return False
+        eta_min = min(lo(eta_end), lo(self.flight.eta(iv.mpf(self.v))))
+        return hi(-1 - iv.mpf(eta_min) + abs(self.ieps)) <= 0
+
+    def needed(self, t):
+        return 0  # no conditioning estimate with drag: the precision is doubled
+
+
+def departure_start(ctx: DragContext):
+    """For ``w0 = 0`` exactly: ``h > 0`` with ``d > 0`` proved on ``(0, h]`` (module docstring).
+
+    ``ValueError`` when the gap is proved not to open (no departure); :class:`NotDecided` when
+    the signs cannot be decided at this precision.
+    """
+    state = f"(phi={ctx.phi_exact}, v={ctx.v}, eps={ctx.eps})"
+    d2 = ctx.curvature(mp.zero, mp.zero)
+    if hi(d2) < 0:
+        raise ValueError(
+            f"no departure: w0 = 0 and d''(0) = {mp.nstr(hi(d2), 8)} < 0 (the plate pushes "
+            f"the particle) {state}"
+        )
+    if lo(d2) > 0:
+        proof = ctx.curvature
+    elif lo(d2) == 0 == hi(d2):
+        d3 = ctx.third(mp.zero, mp.zero)
+        if hi(d3) < 0:
+            raise ValueError(f"no departure: w0 = 0, d''(0) = 0 and d'''(0) < 0 {state}")
+        if not lo(d3) > 0:
+            raise NotDecided("w0 = 0 and d''(0) = 0: the sign of d'''(0) is not decided")
+        proof = ctx.third
+    else:
+        raise NotDecided("w0 = 0 and the sign of d''(0) is not decided: departure or not")
+    h = mp.one
+    for _ in range(_HALVINGS):
+        try:
+            if lo(proof(mp.zero, h)) > 0:
+                return h
+        except NotDecided:
+            pass
+        h /= 2
+    raise NotDecided("no opening box found for the departure at rest")
