@@ -17,7 +17,7 @@ CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rota
 
 
 @jit
-def collide(phi, v, eps):
+def collide(phi, v, eps, method=AUTO):
     """Return (phi1, v1, tau, iterations, status) for one flight and impact.
 
     The sine and cosine are computed here from the centred phase by ``fastpath.sincos`` (the
@@ -26,7 +26,7 @@ def collide(phi, v, eps):
     centred = centre_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)
     phi1, _, _, v1, tau, iterations, status = collide_from(
-        centred, sin_phi, cos_phi, v, eps, AUTO, phase_error_of(phi, centred) + SIN_COS_ERROR
+        centred, sin_phi, cos_phi, v, eps, method, phase_error_of(phi, centred) + SIN_COS_ERROR
     )
     return phi1, v1, tau, iterations, status
 

@@ -30,13 +30,14 @@ n = min(``sample_target[i]``, last collision it made in this kernel).
 import numpy as np
 from numba import prange
 
-from fastpath._jit import jit, parallel_jit
+from fastpath._jit import inline_jit, jit, parallel_jit
 from fastpath.collision import collide
 from fastpath.concave import two_sum
-from fastpath.flight import CONVERGED, phase_error_of
+from fastpath.flight import CONVERGED, GENERAL, phase_error_of
+from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.holmes import holmes_collide
-from fastpath.lockstep import lockstep_collide
-from fastpath.phase import TWO_PI, centre_phase, reduce_phase
+from fastpath.lockstep import _select, lockstep_collide
+from fastpath.phase import TWO_PI, centre_moderate, centre_phase, reduce_moderate
 from fastpath.sincos import SIN_COS_ERROR, sin_cos
 
 NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only
@@ -108,6 +109,25 @@ def _aim(lane, phi, centred, phase_error):
     phase_error[lane] = phase_error_of(phi[lane], centred[lane]) + SIN_COS_ERROR
 
 
+@inline_jit
+def lane_collide(centred, v, eps, phase_error):
+    """``collide`` from a centred phase in straight-line code, for the common flight:
+    (tau, phi1, v1, centred phi1, its phase error for the next flight, answered).
+
+    The same arithmetic as ``collide`` -> ``collide_from`` -> ``flight_from`` ->
+    ``lockstep_flight`` -> reduce_phase / centre_phase (their moderate ranges); answered False
+    where collide would do anything else (then the caller calls it).
+    """
+    s, c = sin_cos(centred)
+    tau, sin1, _, _, answered = lockstep_collide(centred, s, c, v, eps, phase_error)
+    x = centred + tau
+    phi1 = reduce_moderate(x)
+    centred1 = centre_moderate(phi1)
+    phase_error1 = _select(centred1 == phi1, 0.0, 2.0 * UNIT_ROUNDOFF * abs(centred1))
+    v1 = tau - v - 2.0 * eps * sin1
+    return tau, phi1, v1, centred1, phase_error1 + SIN_COS_ERROR, answered and abs(x) < 2.0**20
+
+
 @parallel_jit
 def escape_chunk(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max_time,
                  n_edges, t_edges, record_n, record_t, sample_slot, sample_target,
@@ -145,7 +165,9 @@ def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max
     phi, centred, phase_error = np.empty(LANES), np.empty(LANES), np.empty(LANES)
     v, t, n = np.empty(LANES), np.empty(LANES), np.empty(LANES, np.int64)
     slot, target = np.empty(LANES, np.int64), np.empty(LANES, np.int64)
-    tau, sin1, done_flight = np.empty(LANES), np.empty(LANES), np.empty(LANES, np.bool_)
+    tau, phi1, v1 = np.empty(LANES), np.empty(LANES), np.empty(LANES)
+    centred1, phase_error1 = np.empty(LANES), np.empty(LANES)
+    answered = np.empty(LANES, np.bool_)
     active = max(min(LANES, end - first), 0)
     for lane in range(active):
         _load(first + lane, lane, phi0, v0, t0, n0, sample_slot, sample_target, flags, idx, phi,
@@ -154,9 +176,8 @@ def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max
     done = 0
     while active > 0:
         for lane in range(active):  # vectorised: no calls, no branches but selects
-            s, c = sin_cos(centred[lane])
-            tau[lane], sin1[lane], _, _, done_flight[lane] = lockstep_collide(
-                centred[lane], s, c, v[lane], eps, phase_error[lane])
+            tau[lane], phi1[lane], v1[lane], centred1[lane], phase_error1[lane], answered[lane] = (
+                lane_collide(centred[lane], v[lane], eps, phase_error[lane]))
         idle = False
         for lane in range(active):
             i = idx[lane]
@@ -168,13 +189,12 @@ def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max
                     cens_t[b, bin_index(t_edges, t[lane])] += 1
                 finished = True
             else:
-                if done_flight[lane]:
-                    tau_l = tau[lane]
-                    phi1 = reduce_phase(centred[lane] + tau_l)
-                    v1 = tau_l - v[lane] - 2.0 * eps * sin1[lane]
-                    status = CONVERGED
-                else:
-                    phi1, v1, tau_l, _, status = collide(phi[lane], v[lane], eps)
+                if answered[lane]:
+                    phi1_l, v1_l, tau_l, status = phi1[lane], v1[lane], tau[lane], CONVERGED
+                else:  # what the lanes do not answer: collide's general path, the same function
+                    phi1_l, v1_l, tau_l, _, status = collide(phi[lane], v[lane], eps, GENERAL)
+                    centred1[lane] = centre_phase(phi1_l)
+                    phase_error1[lane] = phase_error_of(phi1_l, centred1[lane]) + SIN_COS_ERROR
                 t1 = t[lane] + tau_l
                 if status != CONVERGED:
                     _flag(flags, flag_state, i, status, phi[lane], v[lane], t[lane], n[lane])
@@ -189,10 +209,10 @@ def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max
                     n[lane] += 1
                     done += 1
                     if slot[lane] >= 0 and n[lane] <= target[lane]:
-                        _store_sample(samples, slot[lane], n[lane], phi[lane], v[lane], phi1,
-                                      v1, tau_l)
-                    phi[lane], v[lane], t[lane] = phi1, v1, t1
-                    j = exit_hole(phi1, hole_lo, hole_width)
+                        _store_sample(samples, slot[lane], n[lane], phi[lane], v[lane], phi1_l,
+                                      v1_l, tau_l)
+                    phi[lane], v[lane], t[lane] = phi1_l, v1_l, t1
+                    j = exit_hole(phi1_l, hole_lo, hole_width)
                     if j >= 0:
                         if record_n:
                             esc_n[b, j, bin_index(n_edges, n[lane])] += 1
@@ -200,7 +220,7 @@ def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max
                             esc_t[b, j, bin_index(t_edges, t1)] += 1
                         finished = True
                     else:
-                        _aim(lane, phi, centred, phase_error)
+                        centred[lane], phase_error[lane] = centred1[lane], phase_error1[lane]
             if finished:
                 if following < end:
                     _load(following, lane, phi0, v0, t0, n0, sample_slot, sample_target,

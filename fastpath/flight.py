@@ -60,6 +60,7 @@ OVERFLOW = int(FlightStatus.OVERFLOW)
 
 AUTO = 0  # bracketed Halley for |eps| <= 1 (fastpath.concave), lower-bound steps otherwise
 SEED = 1  # lower-bound steps for every eps (kept for comparison)
+GENERAL = 2  # AUTO without the lockstep attempt: for a flight the lockstep did not answer
 METHODS = {"auto": AUTO, "seed": SEED}
 
 ITERATION_LIMIT = 60
@@ -155,11 +156,12 @@ def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, phase_error=0.0):
         return math.nan, math.nan, math.nan, 0, NOT_DEPARTING
     if not w0 > w0_error:
         return math.nan, math.nan, math.nan, 0, UNCERTAIN
-    if abs(eps) <= 1.0 and method == AUTO:
-        tau, sin1, cos1, evaluations, done = lockstep_flight_one(phi, sin_phi, cos_phi, v, eps,
-                                                                 w0_error)
-        if done:  # the common flight, as the ensembles compute it (fastpath.lockstep)
-            return tau, sin1, cos1, evaluations, CONVERGED
+    if abs(eps) <= 1.0 and method != SEED:
+        if method == AUTO:
+            tau, sin1, cos1, evaluations, done = lockstep_flight_one(phi, sin_phi, cos_phi, v,
+                                                                     eps, w0_error)
+            if done:  # the common flight, as the ensembles compute it (fastpath.lockstep)
+                return tau, sin1, cos1, evaluations, CONVERGED
         return concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error)
     tau, iterations, status = lower_bound_flight(phi, v, eps, w0)
     return tau, math.sin(phi + tau), math.cos(phi + tau), iterations, status

@@ -15,6 +15,8 @@ branch-free:
   libm's ulp, within the gap's error bound: for t >= 1 ``gap_error`` allows >= 16u*|eps| for the
   plate term and ``rate_error`` >= 8u*|eps|), also for the rotations of later iterates;
 * exactly ``LOCKSTEP_EVALUATIONS`` evaluations, a lane's answer frozen at its first root;
+* one division per evaluation (Newton's and Halley's steps from one reciprocal) and the
+  arithmetic midpoint as the bisection guard (no square roots);
 * whatever it does not handle, it does not answer: ``done`` is False for a flight that is not a
   certain departure, starts short (2*w0 < 1 + |eps|), has |phi + 2v| >= 2**20, a non-finite
   value, a flat top, a bracket closed to adjacent floats, or no root within the evaluations.
@@ -111,7 +113,10 @@ def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
         return t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
     d_err = gap_error(phi, v, eps, t)
     d1_err = rate_error(phi, v, eps, t)
-    newton = -d / d1
+    # one division for both steps: Newton -d/d1 and Halley -2*d*d1/(2*d1**2 - d*d2)
+    halley_denominator = 2.0 * d1 * d1 - d * (-1.0 + eps * c)
+    reciprocal = 1.0 / (d1 * halley_denominator)
+    newton = -d * halley_denominator * reciprocal
     if d1 < -d1_err and (abs(d) <= d_err or _newton_is_final(newton, d_err, d1_err, eps)):
         # at the root: the Newton correction, clamped into the certified bracket
         answer = min(max(t + newton, lo), hi)
@@ -128,12 +133,9 @@ def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
         if not d1 > d1_err:  # a flat top
             return t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
         lo = t
-    t_next = t - 2.0 * d * d1 / (2.0 * d1 * d1 - d * (-1.0 + eps * c))
-    if not lo < t_next < hi:
-        if lo > 0.0 and hi > 4.0 * lo:
-            t_next = math.sqrt(lo) * math.sqrt(hi)
-        else:
-            t_next = 0.5 * (lo + hi)
+    t_next = t - 2.0 * d * d1 * d1 * reciprocal
+    if not lo < t_next < hi:  # the bisection guard (the Holmes start is within a factor 4)
+        t_next = 0.5 * (lo + hi)
     if t_next == lo or t_next == hi:  # the bracket closed to adjacent floats
         return t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
     delta_next = t_next - two_v

@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from fastpath._jit import jit
+from fastpath._jit import inline_jit, jit
 
 PI = math.pi
 TWO_PI = 2.0 * math.pi
@@ -133,7 +133,7 @@ def _payne_hanek(x, centred):
     return r
 
 
-@jit
+@inline_jit
 def _cody_waite(x, k):
     """x - k*2*pi for |k| < 2**21 (three-part 2*pi, module docstring)."""
     return ((x - k * TWO_PI_HI) - k * TWO_PI_MID) - k * TWO_PI_LO
@@ -148,15 +148,19 @@ def reduce_phase(x):
         return math.nan
     if abs(x) >= _CODY_WAITE_LIMIT:
         return _payne_hanek(x, False)
+    return reduce_moderate(x)
+
+
+@inline_jit
+def reduce_moderate(x):
+    """``reduce_phase`` for |x| < 2**20, with selects instead of branches (it is also used in
+    the vectorised lanes of the ensembles: the same arithmetic, the same bits)."""
     r = _cody_waite(x, math.floor(x / TWO_PI))
     # k from the float quotient can be off by one at the boundaries.
-    if r < 0.0:
-        r += TWO_PI
-    elif r >= TWO_PI:
-        r -= TWO_PI
-    if r >= TWO_PI:  # r was -tiny and r + 2*pi rounded up to 2*pi
-        r = 0.0
-    return r
+    r = r + TWO_PI if r < 0.0 else (r - TWO_PI if r >= TWO_PI else r)
+    # r was -tiny and r + 2*pi rounded up to 2*pi
+    r = 0.0 if r >= TWO_PI else r
+    return x if 0.0 <= x < TWO_PI else r
 
 
 @jit
@@ -173,9 +177,12 @@ def centre_phase(x):
         return math.nan
     if abs(x) >= _CODY_WAITE_LIMIT:
         return _payne_hanek(x, True)
+    return centre_moderate(x)
+
+
+@inline_jit
+def centre_moderate(x):
+    """``centre_phase`` for |x| < 2**20, with selects instead of branches (``reduce_moderate``)."""
     r = _cody_waite(x, math.floor(x / TWO_PI + 0.5))
-    if r < -PI:
-        r += TWO_PI
-    elif r >= PI:
-        r -= TWO_PI
-    return r
+    r = r + TWO_PI if r < -PI else (r - TWO_PI if r >= PI else r)
+    return x if -PI <= x < PI else r
