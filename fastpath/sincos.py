@@ -13,7 +13,8 @@ branch that is not a select:
 2. Taylor polynomials on |r| < 0.786: sin to r**17, cos to r**18, truncation below
    0.786**19/19! < 9e-20 and 0.786**20/20! < 4e-21. The leading terms r and 1 are added last, to
    a tail of at most |r|**3/6 < 0.081 (sin) and r**2/2 < 0.31 (cos) whose own rounding is a few
-   u of the tail.
+   u of the tail (each tail is a sum of terms decreasing by r**2/12 < 0.06, evaluated in pairs by
+   Estrin's scheme for a short dependency chain).
 3. sin x and cos x are (+-sin r, +-cos r) by the quadrant k mod 4 (exact sign swaps).
 
 Error: |sin_cos(x) - (sin x, cos x)| <= SIN_COS_ERROR = 4u in each component for |x| < 2**20
@@ -50,10 +51,13 @@ def sin_cos(x):
     k = math.floor(x * _TWO_OVER_PI + 0.5)
     r = ((x - k * _P1) - k * _P2) - k * _P3
     r2 = r * r
-    s_tail = _S3 + r2 * (_S5 + r2 * (_S7 + r2 * (_S9 + r2 * (_S11 + r2 * (_S13 + r2 * (
-        _S15 + r2 * _S17))))))
-    c_tail = _C2 + r2 * (_C4 + r2 * (_C6 + r2 * (_C8 + r2 * (_C10 + r2 * (_C12 + r2 * (
-        _C14 + r2 * (_C16 + r2 * _C18)))))))
+    # Estrin's scheme: the terms in pairs, so that the dependent chain is 4 steps, not 8
+    r4 = r2 * r2
+    r8 = r4 * r4
+    s_tail = ((_S3 + r2 * _S5) + r4 * (_S7 + r2 * _S9)) + r8 * (
+        (_S11 + r2 * _S13) + r4 * (_S15 + r2 * _S17))
+    c_tail = ((_C2 + r2 * _C4) + r4 * (_C6 + r2 * _C8)) + r8 * (
+        ((_C10 + r2 * _C12) + r4 * (_C14 + r2 * _C16)) + r8 * _C18)
     sin_r = r + r * r2 * s_tail
     cos_r = 1.0 + r2 * c_tail
     q = k - 4.0 * math.floor(0.25 * k)  # k mod 4, exact
