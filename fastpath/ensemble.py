@@ -28,7 +28,7 @@ n = min(``sample_target[i]``, last collision it made in this kernel).
 
 
 import numpy as np
-from numba import prange
+from numba import get_num_threads, prange
 
 from fastpath._jit import inline_jit, jit, parallel_jit
 from fastpath.collision import collide
@@ -149,18 +149,25 @@ def escape_chunk(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max
     m = len(phi0)
     blocks = len(collisions)
     per_block = (m + blocks - 1) // blocks
-    for b in prange(blocks):
-        collisions[b] += _escape_block(
-            b, b * per_block, min(m, (b + 1) * per_block), phi0, v0, t0, n0, eps, hole_lo,
-            hole_width, max_collisions, max_time, n_edges, t_edges, record_n, record_t,
-            sample_slot, sample_target, esc_n, esc_t, cens_n, cens_t, flags, flag_state, samples)
+    # Groups of whole blocks share lanes (fewer half-empty lanes at the end of a group); a
+    # particle counts into its own block's row, so the grouping, like the threads, changes no
+    # number: it only spreads the work.
+    groups = min(blocks, 2 * get_num_threads())
+    per_group = (blocks + groups - 1) // groups
+    for g in prange(groups):
+        _escape_lanes(
+            per_block, min(m, g * per_group * per_block), min(m, (g + 1) * per_group * per_block),
+            phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max_time, n_edges,
+            t_edges, record_n, record_t, sample_slot, sample_target, esc_n, esc_t, cens_n,
+            cens_t, collisions, flags, flag_state, samples)
 
 
 @jit
-def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions,
-                  max_time, n_edges, t_edges, record_n, record_t, sample_slot, sample_target,
-                  esc_n, esc_t, cens_n, cens_t, flags, flag_state, samples):
-    """Particles first .. end-1 of ``escape_chunk``'s block b; returns the collisions made."""
+def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width,
+                  max_collisions, max_time, n_edges, t_edges, record_n, record_t, sample_slot,
+                  sample_target, esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state,
+                  samples):
+    """Particles first .. end-1 of ``escape_chunk`` (whole blocks of per_block) in lanes."""
     idx = np.empty(LANES, np.int64)
     phi, centred, phase_error = np.empty(LANES), np.empty(LANES), np.empty(LANES)
     v, t, n = np.empty(LANES), np.empty(LANES), np.empty(LANES, np.int64)
@@ -173,7 +180,6 @@ def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max
         _load(first + lane, lane, phi0, v0, t0, n0, sample_slot, sample_target, flags, idx, phi,
               centred, phase_error, v, t, n, slot, target)
     following = first + active
-    done = 0
     while active > 0:
         for lane in range(active):  # vectorised: no calls, no branches but selects
             tau[lane], phi1[lane], v1[lane], centred1[lane], phase_error1[lane], answered[lane] = (
@@ -181,6 +187,7 @@ def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max
         idle = False
         for lane in range(active):
             i = idx[lane]
+            b = i // per_block
             finished = False
             if n[lane] >= max_collisions:
                 if record_n:
@@ -207,7 +214,7 @@ def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max
                     finished = True
                 else:
                     n[lane] += 1
-                    done += 1
+                    collisions[b] += 1
                     if slot[lane] >= 0 and n[lane] <= target[lane]:
                         _store_sample(samples, slot[lane], n[lane], phi[lane], v[lane], phi1_l,
                                       v1_l, tau_l)
@@ -238,7 +245,6 @@ def _escape_block(b, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width, max
                     n[busy], slot[busy], target[busy] = n[lane], slot[lane], target[lane]
                     busy += 1
             active = busy
-    return done
 
 
 @parallel_jit

@@ -20,6 +20,7 @@ from fastpath.drag_flight import drag_flight
 from fastpath.flight import AUTO, CONVERGED, flight_from, phase_error_of
 from fastpath.gap import departure
 from fastpath.phase import centre_phase, reduce_phase
+from fastpath.sincos import SIN_COS_ERROR, sin_cos
 
 
 @jit
@@ -35,8 +36,8 @@ def dissipative_collide(phi, v, eps, drag, law, restitution):
     if drag == 0.0 and restitution == 1.0:
         return collide(phi, v, eps)
     centred = centre_phase(phi)
-    sin_phi, cos_phi = math.sin(centred), math.cos(centred)
-    phase_error = phase_error_of(phi, centred)
+    sin_phi, cos_phi = sin_cos(centred)  # as collide: the same flight when drag == 0
+    phase_error = phase_error_of(phi, centred) + SIN_COS_ERROR
     if drag == 0.0:
         tau, sin1, _, iterations, status = flight_from(
             centred, sin_phi, cos_phi, v, eps, AUTO, phase_error

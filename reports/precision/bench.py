@@ -6,8 +6,16 @@
    R times, on one core (numba's parallel kernels are not involved), and the fastest of each is
    kept, so load from other processes on a shared machine inflates neither side of the ratio
    more than the other. Iterations per flight come from the same orbits.
-2. Ensemble throughput of ``paper-escape`` with P particles per curve on all cores: collisions/s
-   and particles/s, from the run's own counts and wall time (verification included).
+2. The ensemble workload users run, the seed's escape scene (``paper-escape``: eps = 0.6, starts
+   at 2 < v < 4, six holes), P particles per curve, all cores, against a Holmes-map ensemble on
+   the same starts, holes, horizon and bins (``fastpath.ensemble.holmes_escape_chunk``, the bare
+   loop: no verification, no flags, starts drawn before the clock starts):
+   * kernel only: ``escape_chunk`` over the same chunks of starts, no verification sample;
+   * end to end: ``bouncer run`` into a temporary directory (start generation, the verification
+     sample recomputed by verify, histograms, checkpoints, manifest), wall time.
+   The three are timed in turns, R times, and the fastest of each is kept. The ratio is the wall
+   time of the exact ensemble over the Holmes ensemble's (the same particles to their exits;
+   the two maps make slightly different numbers of collisions, so collisions/s are printed too).
 3. Peak resident memory of the process.
 
 Printed as ratios measured in this run, never asserted in a test: machines are shared and noisy.
@@ -20,8 +28,13 @@ import tempfile
 import time
 from dataclasses import dataclass
 
+import numba
+import numpy as np
+
 import fastpath
+from fastpath.ensemble import NO_LIMIT, escape_chunk, holmes_escape_chunk
 from reports.runs.driver import run
+from reports.runs.plan import BLOCKS, chunk_starts, make_plan
 from reports.runs.scenes import load_scene
 
 ORBIT_MODELS = (("exact", "auto"), ("exact", "seed"), ("holmes", "auto"))
@@ -55,15 +68,95 @@ def time_orbits(eps=0.6, collisions=10_000_000, repeats=5, start=START):
     return best
 
 
-def ensemble_throughput(particles=100_000, scene_name="paper-escape", threads=None):
-    """Run a scene into a temporary directory: (collisions/s, particles/s, wall s, manifest)."""
+@dataclass
+class EnsembleTiming:
+    label: str
+    wall: float
+    collisions: int
+    particles: int
+    curves: int
+
+
+def _chunks(plan):
+    """Every chunk's starts and verification picks, drawn once (outside the timings)."""
+    return [(e, chunk_starts(plan, e, k)) for e in range(len(plan.experiments))
+            for k in range(plan.chunks_per_experiment)]
+
+
+def _kernel_pass(plan, chunks, model):
+    """All chunks through the exact escape kernel (no sample) or the Holmes one: collisions."""
+    sc = plan.scene
+    nb, tb = len(plan.n_edges), len(plan.t_edges)
+    total = 0
+    for e, (phi, v, *_rest) in chunks:
+        exp = plan.experiments[e]
+        lo, width = np.array(exp.hole_lo), np.array(exp.hole_width)
+        m, holes = len(phi), len(lo)
+        esc_n, esc_t = np.zeros((BLOCKS, holes, nb), np.int64), np.zeros((BLOCKS, holes, tb),
+                                                                         np.int64)
+        cens_n, cens_t = np.zeros((BLOCKS, nb), np.int64), np.zeros((BLOCKS, tb), np.int64)
+        collisions = np.zeros(BLOCKS, np.int64)
+        max_n, max_t = sc.max_collisions or NO_LIMIT, sc.max_time or np.inf
+        if model == "holmes":
+            holmes_escape_chunk(phi, v, sc.eps, lo, width, max_n, max_t, plan.n_edges,
+                                plan.t_edges, esc_n, esc_t, cens_n, cens_t, collisions)
+        else:
+            escape_chunk(phi, v, np.zeros(m), np.zeros(m, np.int64), sc.eps, lo, width, max_n,
+                         max_t, plan.n_edges, plan.t_edges, True, True, np.full(m, -1),
+                         np.zeros(m, np.int64), esc_n, esc_t, cens_n, cens_t, collisions,
+                         np.zeros(m, np.int8), np.zeros((m, 4)), np.zeros((1, 6)))
+        total += int(collisions.sum())
+    return total
+
+
+def time_ensembles(particles=1_000_000, scene_name="paper-escape", repeats=3, threads=None):
+    """{label: EnsembleTiming}: the exact ensemble end to end and kernel only, and the Holmes
+    ensemble on the same starts, fastest of ``repeats`` turns (module docstring)."""
+    if threads is not None:
+        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
     scene = load_scene(scene_name)
-    with tempfile.TemporaryDirectory() as tmp:
-        t0 = time.perf_counter()
-        manifest = run(scene, f"{tmp}/run", particles=particles, progress=False, threads=threads)
-        wall = time.perf_counter() - t0
-    total = manifest["particles"] * len(manifest["curves"])
-    return manifest["collisions"] / wall, total / wall, wall, manifest
+    plan = make_plan(scene, particles)
+    chunks = _chunks(plan)
+    total = particles * len(plan.experiments)
+    small = make_plan(scene, 100)  # compile (or load from the cache) outside the timing
+    _kernel_pass(small, _chunks(small)[:1], "exact")
+    _kernel_pass(small, _chunks(small)[:1], "holmes")
+    best = {}
+    for _ in range(repeats):
+        for label in ("end to end", "kernel only", "Holmes map"):
+            t0 = time.perf_counter()
+            if label == "end to end":
+                with tempfile.TemporaryDirectory() as tmp:
+                    manifest = run(scene, f"{tmp}/run", particles=particles, progress=False,
+                                   threads=threads)
+                collisions = manifest["collisions"]
+            else:
+                collisions = _kernel_pass(plan, chunks, "holmes" if label == "Holmes map"
+                                          else "exact")
+            wall = time.perf_counter() - t0
+            if label not in best or wall < best[label].wall:
+                best[label] = EnsembleTiming(label, wall, collisions, total, len(plan.experiments))
+    return best
+
+
+def ensemble_table(best, scene_name="paper-escape"):
+    """Markdown table of ``time_ensembles``: wall time, throughput, ratio to the Holmes map."""
+    holmes = best["Holmes map"]
+    t = best["end to end"]
+    lines = [
+        f"`{scene_name}`, {t.particles:,} particles ({t.particles // t.curves:,} per curve x"
+        f" {t.curves} curves),"
+        f" {numba.get_num_threads()} threads, fastest of the turns:",
+        "",
+        "| ensemble | wall s | collisions/s | particles/s | x Holmes (wall) |",
+        "|---|---|---|---|---|",
+    ]
+    for label in ("end to end", "kernel only", "Holmes map"):
+        e = best[label]
+        lines.append(f"| {'exact, ' + label if label != 'Holmes map' else label} | {e.wall:.2f}"
+                     f" | {e.collisions / e.wall:.3g} | {e.particles / e.wall:.3g} |"
+                     f" {e.wall / holmes.wall:.2f} |")
+    return "\n".join(lines)
 
 
 def peak_memory_mib():
