@@ -11,7 +11,7 @@ from fastpath._jit import jit
 from fastpath.flight import AUTO, flight_from, phase_error_of
 from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.phase import centre_phase, reduce_phase
-from fastpath.sincos import SIN_COS_ERROR, sin_cos
+from fastpath.sincos import sin_cos, sin_cos_error
 
 CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rotation, Newton)
 
@@ -25,8 +25,9 @@ def collide(phi, v, eps, method=AUTO):
     """
     centred = centre_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)
+    phase_error = phase_error_of(phi, centred) + sin_cos_error(centred)
     phi1, _, _, v1, tau, iterations, status = collide_from(
-        centred, sin_phi, cos_phi, v, eps, method, phase_error_of(phi, centred) + SIN_COS_ERROR
+        centred, sin_phi, cos_phi, v, eps, method, phase_error
     )
     return phi1, v1, tau, iterations, status
 

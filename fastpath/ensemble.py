@@ -38,7 +38,7 @@ from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.holmes import holmes_collide
 from fastpath.lockstep import _select, lockstep_collide
 from fastpath.phase import TWO_PI, centre_moderate, centre_phase, reduce_moderate
-from fastpath.sincos import SIN_COS_ERROR, sin_cos
+from fastpath.sincos import sin_cos, sin_cos_error
 
 NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only
 LANES = 64  # particles in flight together in a block (a multiple of the vector width)
@@ -106,7 +106,7 @@ def _load(i, lane, phi0, v0, t0, n0, sample_slot, sample_target, flags, idx, phi
 def _aim(lane, phi, centred, phase_error):
     """The centred phase of a lane's next departure and the error its sine will carry."""
     centred[lane] = centre_phase(phi[lane])
-    phase_error[lane] = phase_error_of(phi[lane], centred[lane]) + SIN_COS_ERROR
+    phase_error[lane] = phase_error_of(phi[lane], centred[lane]) + sin_cos_error(centred[lane])
 
 
 @inline_jit
@@ -125,7 +125,8 @@ def lane_collide(centred, v, eps, phase_error):
     centred1 = centre_moderate(phi1)
     phase_error1 = _select(centred1 == phi1, 0.0, 2.0 * UNIT_ROUNDOFF * abs(centred1))
     v1 = tau - v - 2.0 * eps * sin1
-    return tau, phi1, v1, centred1, phase_error1 + SIN_COS_ERROR, answered and abs(x) < 2.0**20
+    return (tau, phi1, v1, centred1, phase_error1 + sin_cos_error(centred1),
+            answered and abs(x) < 2.0**20)
 
 
 @parallel_jit
@@ -201,7 +202,8 @@ def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_wi
                 else:  # what the lanes do not answer: collide's general path, the same function
                     phi1_l, v1_l, tau_l, _, status = collide(phi[lane], v[lane], eps, GENERAL)
                     centred1[lane] = centre_phase(phi1_l)
-                    phase_error1[lane] = phase_error_of(phi1_l, centred1[lane]) + SIN_COS_ERROR
+                    phase_error1[lane] = (phase_error_of(phi1_l, centred1[lane])
+                                          + sin_cos_error(centred1[lane]))
                 t1 = t[lane] + tau_l
                 if status != CONVERGED:
                     _flag(flags, flag_state, i, status, phi[lane], v[lane], t[lane], n[lane])

@@ -20,7 +20,7 @@ from fastpath.drag_flight import drag_flight
 from fastpath.flight import AUTO, CONVERGED, flight_from, phase_error_of
 from fastpath.gap import departure
 from fastpath.phase import centre_phase, reduce_phase
-from fastpath.sincos import SIN_COS_ERROR, sin_cos
+from fastpath.sincos import sin_cos, sin_cos_error
 
 
 @jit
@@ -37,7 +37,7 @@ def dissipative_collide(phi, v, eps, drag, law, restitution):
         return collide(phi, v, eps)
     centred = centre_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)  # as collide: the same flight when drag == 0
-    phase_error = phase_error_of(phi, centred) + SIN_COS_ERROR
+    phase_error = phase_error_of(phi, centred) + sin_cos_error(centred)
     if drag == 0.0:
         tau, sin1, _, iterations, status = flight_from(
             centred, sin_phi, cos_phi, v, eps, AUTO, phase_error
