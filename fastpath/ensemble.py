@@ -28,7 +28,7 @@ n = min(``sample_target[i]``, last collision it made in this kernel).
 
 
 import numpy as np
-from numba import get_num_threads, prange
+from numba import prange
 
 from fastpath._jit import inline_jit, jit, parallel_jit
 from fastpath.collision import collide
@@ -41,7 +41,8 @@ from fastpath.phase import TWO_PI, centre_moderate, centre_phase, reduce_moderat
 from fastpath.sincos import sin_cos, sin_cos_error
 
 NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only
-LANES = 64  # particles in flight together in a block (a multiple of the vector width)
+LANES = 64  # particles in flight together in a group (a multiple of the vector width)
+GROUPS = 16  # groups of blocks sharing lanes, spread over the threads (not a thread count)
 SAMPLE_FIELDS = ("n", "phi", "v", "phi1", "v1", "tau")
 FLAG_FIELDS = ("phi", "v", "t", "n")
 
@@ -153,7 +154,7 @@ def escape_chunk(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max
     # Groups of whole blocks share lanes (fewer half-empty lanes at the end of a group); a
     # particle counts into its own block's row, so the grouping, like the threads, changes no
     # number: it only spreads the work.
-    groups = min(blocks, 2 * get_num_threads())
+    groups = min(blocks, GROUPS)
     per_group = (blocks + groups - 1) // groups
     for g in prange(groups):
         _escape_lanes(
