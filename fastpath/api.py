@@ -6,7 +6,7 @@ import numpy as np
 from numba import prange
 
 from fastpath._jit import jit, parallel_jit
-from fastpath._validate import count, float_inputs, physics, scalar_inputs
+from fastpath._validate import check_dissipation, count, float_inputs, physics, scalar_inputs
 from fastpath.collision import collide
 from fastpath.drag_flight import solve_drag_flight
 from fastpath.flight import (
@@ -20,7 +20,7 @@ from fastpath.flight import (
 )
 from fastpath.holmes import holmes_collide
 from fastpath.impact import dissipative_collide
-from fastpath.orbit import exact_orbit, holmes_orbit, inelastic_orbit
+from fastpath.orbit import dissipative_orbit, exact_orbit, holmes_orbit
 from fastpath.status import FlightStatus, UncertainCollision
 
 # The defaults of the physics keywords: the elastic call passes these very objects, which
@@ -284,16 +284,16 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
     restitution r in (0, 1]: impacts v1 - u = -r*(v_in - u). With r < 1 impacts can accumulate;
     the orbit then sticks to the plate and detaches where eps*cos(t) rises through 1, or stops
     as "stuck" for |eps| <= 1 (``Orbit.sticking``, ``Orbit.stopped``; the arrays are shorter
-    than n+1 then). drag >= 0 with drag_law "linear" or "quadratic": only drag = 0 here so far
-    (drag flights are wired at merge). The defaults run the elastic kernel unchanged.
+    than n+1 then). drag >= 0 with drag_law "linear" or "quadratic": air drag during the flights
+    (``fastpath.drag_flight``), with restitution 1 only: drag together with restitution < 1
+    raises ValueError (its chattering tail is not derived, ``fastpath.advance``). The defaults
+    run the elastic kernel unchanged.
     """
     code = _method(method)
-    drag, _, restitution = physics(drag, drag_law, restitution)
-    if drag != 0.0:
-        raise ValueError(f"drag={drag!r}: drag (and drag with restitution < 1) in orbit is wired"
-                         " at merge; only drag=0.0 is available in this build")
-    if restitution != 1.0 and model != "exact":
-        raise ValueError(f"restitution < 1 needs model='exact', got model={model!r}")
+    drag, law, restitution = physics(drag, drag_law, restitution)
+    check_dissipation(drag, restitution)
+    if (drag != 0.0 or restitution != 1.0) and model != "exact":
+        raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
     (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)
     if not scalar:
         raise ValueError("orbit takes scalar phi0, v0 and eps; use step() for arrays of states")
@@ -311,8 +311,8 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
         holmes_orbit(phi0, v0, eps, phi, v, t)
         return Orbit(phi, v, t, None, FlightStatus.CONVERGED, model, eps)
     iterations = np.zeros(n, np.int32)
-    if restitution != 1.0:
-        return _inelastic(phi0, v0, eps, restitution, n, on_uncertain, code)
+    if drag != 0.0 or restitution != 1.0:
+        return _dissipative(phi0, v0, eps, drag, law, restitution, n, on_uncertain, code)
     done, status = exact_orbit(phi0, v0, eps, phi, v, t, iterations, code)
     if status != CONVERGED:
         at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])
@@ -325,13 +325,13 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
     return Orbit(phi, v, t, iterations, FlightStatus(status), model, eps)
 
 
-def _inelastic(phi0, v0, eps, restitution, n, on_uncertain, code):
-    """The orbit with restitution < 1 (``fastpath.orbit.inelastic_orbit``)."""
+def _dissipative(phi0, v0, eps, drag, law, restitution, n, on_uncertain, code):
+    """The orbit with drag or restitution < 1 (``fastpath.orbit.dissipative_orbit``)."""
     phi, v, t = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
     iterations = np.zeros(n, np.int32)
     sticking = np.empty((n + 1, 2))
-    done, episodes, status, stuck = inelastic_orbit(
-        phi0, v0, eps, restitution, phi, v, t, iterations, sticking, code
+    done, episodes, status, stuck = dissipative_orbit(
+        phi0, v0, eps, drag, law, restitution, phi, v, t, iterations, sticking, code
     )
     if status != CONVERGED:
         at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])

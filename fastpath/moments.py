@@ -25,8 +25,9 @@ import numpy as np
 from numba import prange
 
 from fastpath._jit import parallel_jit
-from fastpath._validate import count, float_inputs
+from fastpath._validate import check_dissipation, count, float_inputs, physics
 from fastpath.collision import collide_from
+from fastpath.dissipative_moments import dissipative_moments_kernel
 from fastpath.flight import AUTO, CONVERGED
 from fastpath.holmes import holmes_collide
 from fastpath.phase import reduce_phase
@@ -96,15 +97,19 @@ class Moments:
 
     Attributes: ``n_grid``, ``t_grid``; block arrays ``count_n``, ``sum_v_n``, ``sum_v2_n``,
     ``sum_dv2_n``, ``count_t``, ``sum_v_t`` (rows = blocks); ``collisions`` (total) and
-    ``flagged`` (particles stopped at an undecidable flight).
+    ``flagged`` (particles stopped at an undecidable flight); ``stuck_n``, ``stuck_t`` (rows =
+    blocks): particles stuck for good before grid point n resp. time t, not in count_n/count_t
+    (``fastpath.dissipative_moments``; zeros for the elastic, drag-free physics).
     """
 
     def __init__(self, n_grid, t_grid, count_n, sum_v_n, sum_v2_n, sum_dv2_n, count_t,
-                 sum_v_t, collisions, flagged, model, eps):
+                 sum_v_t, collisions, flagged, model, eps, stuck_n=None, stuck_t=None):
         self.n_grid, self.t_grid = n_grid, t_grid
         self.count_n, self.sum_v_n, self.sum_v2_n = count_n, sum_v_n, sum_v2_n
         self.sum_dv2_n, self.count_t, self.sum_v_t = sum_dv2_n, count_t, sum_v_t
         self.collisions, self.flagged, self.model, self.eps = collisions, flagged, model, eps
+        self.stuck_n = np.zeros_like(count_n) if stuck_n is None else stuck_n
+        self.stuck_t = np.zeros_like(count_t) if stuck_t is None else stuck_t
 
     @property
     def particles_n(self):
@@ -139,16 +144,26 @@ def _ratio(num, den):
         return np.where(den > 0, num / np.maximum(den, 1), np.nan)
 
 
-def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_collisions=None):
+def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_collisions=None,
+            *, drag=0.0, drag_law="linear", restitution=1.0):
     """Velocity moments of the orbits from (phi0[i], v0[i]) at collision indices ``n_grid`` and
     times ``t_grid``: a ``Moments``. ``blocks`` (at most; fewer if some would be empty) fixes
     the partition of the particles (not the threads: any thread count gives the same numbers).
     ``max_collisions`` caps each orbit (default: 100 * n_grid[-1] + 10**6 when a time grid is
     given, else n_grid[-1]).
 
+    drag, drag_law, restitution: as for ``fastpath.orbit`` (model "exact" only; drag with
+    restitution < 1 raises ValueError); the defaults run ``moments_kernel`` unchanged, any other
+    physics ``fastpath.dissipative_moments`` (with ``stuck_n``, ``stuck_t``).
+
     Raises ValueError for non-finite inputs, non-departing starts (v0 + eps*sin(phi0) <= 0),
-    unsorted or negative grids, an unknown model.
+    unsorted or negative grids, an unknown model, bad physics keywords.
     """
+    drag, law, restitution = physics(drag, drag_law, restitution)
+    check_dissipation(drag, restitution)
+    dissipative = drag != 0.0 or restitution != 1.0
+    if dissipative and model != "exact":
+        raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
     (phi_a, v_a), _, _ = float_inputs(phi0=phi0, v0=v0)
     (eps_a,), _, scalar = float_inputs(eps=eps)
     if not scalar:
@@ -182,10 +197,17 @@ def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_coll
     count_t, sum_v_t = np.zeros((blocks, kt), np.int64), np.zeros((blocks, kt))
     collisions = np.zeros(blocks, np.int64)
     flags = np.zeros(len(phi_a), np.int8)
-    moments_kernel(phi_a, v_a, eps, MODELS[model], n_grid, t_grid, max_collisions, count_n,
-                   *sums_n, count_t, sum_v_t, collisions, flags)
+    if not dissipative:
+        moments_kernel(phi_a, v_a, eps, MODELS[model], n_grid, t_grid, max_collisions, count_n,
+                       *sums_n, count_t, sum_v_t, collisions, flags)
+        return Moments(n_grid, t_grid, count_n, *sums_n, count_t, sum_v_t,
+                       int(collisions.sum()), int(np.count_nonzero(flags)), model, eps)
+    stuck_n, stuck_t = np.zeros_like(count_n), np.zeros_like(count_t)
+    dissipative_moments_kernel(phi_a, v_a, eps, drag, law, restitution, n_grid, t_grid,
+                               max_collisions, count_n, *sums_n, count_t, sum_v_t, stuck_n,
+                               stuck_t, collisions, flags)
     return Moments(n_grid, t_grid, count_n, *sums_n, count_t, sum_v_t, int(collisions.sum()),
-                   int(np.count_nonzero(flags)), model, eps)
+                   int(np.count_nonzero(flags)), model, eps, stuck_n, stuck_t)
 
 
 __all__ = ["EXACT", "HOLMES", "Moments", "moments", "moments_kernel"]

@@ -1,4 +1,9 @@
 """One chunk of a run, computed and verified: ``run_chunk``.
+
+Elastic scenes (no ``[physics]``) run ``fastpath.ensemble.escape_chunk`` unchanged. Scenes with
+restitution < 1 or drag run ``fastpath.dissipative_ensemble.dissipative_escape_chunk`` (the
+same contract plus the histograms of particles stuck on the plate for good), and their flagged
+and sampled collisions are recomputed by ``verify.step`` with the same physics.
 """
 
 from __future__ import annotations
@@ -10,6 +15,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+import mpmath
 import numpy as np
 
 import verify
@@ -57,6 +63,19 @@ class ChunkResult:
 _KERNEL_LOCK = threading.Lock()
 
 
+def _dissipative_kernel():
+    """The dissipative ensemble kernel, imported only by scenes that use it."""
+    from fastpath.dissipative_ensemble import dissipative_escape_chunk
+
+    return dissipative_escape_chunk
+
+
+def _law_code(name):
+    from fastpath.drag import LAWS
+
+    return LAWS[name]
+
+
 def _kernel(plan, exp, state, slot, target, samples, out):
     """One pass of the fast kernel over the particles in ``state`` = (phi, v, t, n)."""
     sc = plan.scene
@@ -78,12 +97,26 @@ def _kernel(plan, exp, state, slot, target, samples, out):
                                                                          np.int64)
         cens_n, cens_t = np.zeros((blocks, nb), np.int64), np.zeros((blocks, tb), np.int64)
         collisions = np.zeros(blocks, np.int64)
-        with _KERNEL_LOCK:
-            escape_chunk(phi, v, t, n, sc.eps, np.array(exp.hole_lo), np.array(exp.hole_width),
-                         sc.max_collisions or NO_LIMIT, sc.max_time or np.inf, plan.n_edges,
-                         plan.t_edges, "collisions" in sc.clocks, "time" in sc.clocks, slot,
-                         target, esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state,
-                         samples)
+        if sc.elastic:
+            with _KERNEL_LOCK:
+                escape_chunk(phi, v, t, n, sc.eps, np.array(exp.hole_lo),
+                             np.array(exp.hole_width), sc.max_collisions or NO_LIMIT,
+                             sc.max_time or np.inf, plan.n_edges, plan.t_edges,
+                             "collisions" in sc.clocks, "time" in sc.clocks, slot, target,
+                             esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state,
+                             samples)
+        else:
+            stuck_n, stuck_t = np.zeros((blocks, nb), np.int64), np.zeros((blocks, tb), np.int64)
+            kernel = _dissipative_kernel()
+            with _KERNEL_LOCK:
+                kernel(phi, v, t, n, sc.eps, sc.drag, _law_code(sc.drag_law), sc.restitution,
+                       np.array(exp.hole_lo), np.array(exp.hole_width),
+                       sc.max_collisions or NO_LIMIT, sc.max_time or np.inf, plan.n_edges,
+                       plan.t_edges, "collisions" in sc.clocks, "time" in sc.clocks, slot,
+                       target, esc_n, esc_t, cens_n, cens_t, stuck_n, stuck_t, collisions,
+                       flags, flag_state, samples)
+            out.stuck_n += stuck_n.sum(axis=0)
+            out.stuck_t += stuck_t.sum(axis=0)
         out.esc_n[:holes] += esc_n.sum(axis=0)
         out.esc_t[:holes] += esc_t.sum(axis=0)
         out.cens_n += cens_n.sum(axis=0)
@@ -92,10 +125,11 @@ def _kernel(plan, exp, state, slot, target, samples, out):
     return flags, flag_state
 
 
-def settle(phi, v, eps):
-    """The collision float64 could not decide, by ``verify.step``: floats (phi1, v1, tau)."""
+def settle(phi, v, eps, physics=None):
+    """The collision float64 could not decide, by ``verify.step`` (with the scene's ``physics``
+    keywords, none for the elastic model): floats (phi1, v1, tau)."""
     try:
-        phi1, v1, tau = verify.step(phi, v, eps, dps=VERIFY_DPS)
+        phi1, v1, tau = verify.step(phi, v, eps, dps=VERIFY_DPS, **(physics or {}))
     except (verify.UndecidableCollision, ValueError) as err:
         raise RunFailed(f"verify could not settle the flagged collision from phi={phi!r},"
                         f" v={v!r}: {err}") from None
@@ -120,7 +154,8 @@ def simulate_chunk(plan, e, k):
         resume = []
         for i in np.flatnonzero(flags):
             phi_i, v_i, t_i, n_i = flag_state[i]
-            phi1, v1, tau = settle(phi_i, v_i, sc.eps)
+            phi1, v1, tau = (settle(phi_i, v_i, sc.eps, sc.physics()) if not sc.elastic
+                             else settle(phi_i, v_i, sc.eps))
             out.settled += 1
             t1, n1 = t_i + tau, int(n_i) + 1
             if t1 > max_t:  # as the kernel: censored before this collision
@@ -173,7 +208,7 @@ def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
     empty = Counts(*(np.zeros(0, np.int64) for _ in range(5)))
     try:
         counts, rows = simulate_chunk(plan, curve, chunk)
-        bad = verify_rows(rows, scene.eps)
+        bad = verify_rows(rows, scene.eps, scene.physics())
     except RunFailed as err:
         return ChunkResult(curve, chunk, empty, [], [], str(err),
                            time.perf_counter() - t0, CODE_DIGEST)
@@ -182,8 +217,8 @@ def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
 
 
 # the verify modules behind verify.step and verify.condition_number (what a chunk calls)
-_VERIFY_SOURCES = ("_inputs", "_precision", "certify", "collision", "conditioning", "errors",
-                   "gap", "phase")
+_VERIFY_SOURCES = ("_inputs", "_precision", "certify", "collision", "conditioning", "drag",
+                   "drag_certify", "errors", "gap", "phase")
 
 
 def _code_digest():
@@ -203,22 +238,47 @@ def _code_digest():
 CODE_DIGEST = _code_digest()
 
 
-def check_sample(phi, v, tau, eps):
-    """verify's flight time from the same float64 state: (tau_ref, error in kappa*u, overstep)."""
-    tau_ref = verify.step(phi, v, eps, dps=VERIFY_DPS)[2]
-    kappa = verify.condition_number(phi, v, eps, tau_ref)
+def dissipative_kappa(phi, v, eps, tau_ref, phi1_ref, v1_ref, restitution):
+    """The elastic condition number's scale with the dissipative impact speed:
+
+        kappa = (|v| + tau + |eps|*(1 + |phi| + tau)) / |d'(tau)|,
+        |d'(tau)| = |v_in - u| = |v1 - u| / r,   u = -eps*sin(phi1)
+
+    (``verify.condition_number`` with ``d'(tau) = V(tau) + eps*sin(phi + tau)`` the relative
+    impact speed of the drag flight, read off the certified impact ``v1 - u = -r*(v_in - u)``).
+    The numerator is the size of the gap's terms as in the elastic case (with drag the
+    particle's part ``Y(t)`` is no larger than ``v*t``, ``t**2``)."""
+    with mpmath.mp.workdps(VERIFY_DPS):
+        u = -eps * mpmath.sin(phi1_ref)
+        rate = abs(v1_ref - u) / restitution
+        num = abs(v) + tau_ref + abs(eps) * (1 + abs(phi) + tau_ref)
+        return mpmath.inf if rate == 0 else num / rate
+
+
+def check_sample(phi, v, tau, eps, physics=None):
+    """verify's flight time from the same float64 state: (tau_ref, error in kappa*u, overstep).
+    ``physics``: the scene's keywords (``Scene.physics()``), none for the elastic model."""
+    if physics:
+        phi1_ref, v1_ref, tau_ref = verify.step(phi, v, eps, dps=VERIFY_DPS, **physics)
+        kappa = dissipative_kappa(phi, v, eps, tau_ref, phi1_ref, v1_ref,
+                                  physics["restitution"])
+    else:
+        tau_ref = verify.step(phi, v, eps, dps=VERIFY_DPS)[2]
+        kappa = verify.condition_number(phi, v, eps, tau_ref)
     rel = (tau - tau_ref) / tau_ref
     error = float(abs(rel) / (kappa * UNIT_ROUNDOFF))
     return float(tau_ref), error, bool(rel > OVERSTEP_TOLERANCE * kappa * UNIT_ROUNDOFF)
 
 
-def verify_rows(rows, eps):
+def verify_rows(rows, eps, physics=None):
     """Recompute the chunk's sample; rows gain tau_ref and error. Returns overstepped rows."""
     bad = []
     for row in rows:
         _, _, _, n, phi, v, phi1, v1, tau = row
         try:
-            tau_ref, error, overstep = check_sample(phi, v, tau, eps)
+            # the elastic call is the one it always was (no physics argument)
+            tau_ref, error, overstep = (check_sample(phi, v, tau, eps, physics) if physics
+                                        else check_sample(phi, v, tau, eps))
         except (verify.UndecidableCollision, ValueError) as err:
             raise RunFailed(f"verify could not decide sampled collision {int(n)} from "
                             f"phi={phi!r}, v={v!r} that fastpath converged: {err}") from None

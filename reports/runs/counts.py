@@ -6,6 +6,9 @@ bookkeeping of the checkpoint (finished chunks, verified sample rows, elapsed ti
 
     esc_n[e, j, b], esc_t[e, j, b]   escapes through hole j in collision / time bin b
     cens_n[e, b], cens_t[e, b]       particles censored at the horizon, by bin
+    stuck_n[e, b], stuck_t[e, b]     particles stuck on the plate for good (restitution < 1,
+                                     |eps| <= 1), by the collision index / time of sticking;
+                                     zero for the elastic model
     portrait[p, q]                   phase-space visits (phase-space scenes only)
 
 Merging (``Tally.merge``) is keyed by the chunk index (curve, chunk): a chunk already merged is
@@ -35,7 +38,8 @@ from reports.runs.provenance import now
 
 @dataclass
 class Counts:
-    """Escape and censoring histograms, phase-space visits, collisions, settled flights."""
+    """Escape, censoring and sticking histograms, phase-space visits, collisions, settled
+    flights. ``stuck_n``/``stuck_t`` default to zeros shaped like ``cens_n``/``cens_t``."""
 
     esc_n: np.ndarray
     esc_t: np.ndarray
@@ -44,6 +48,14 @@ class Counts:
     portrait: np.ndarray
     collisions: int = 0
     settled: int = 0
+    stuck_n: np.ndarray | None = None
+    stuck_t: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.stuck_n is None:
+            self.stuck_n = np.zeros_like(self.cens_n)
+        if self.stuck_t is None:
+            self.stuck_t = np.zeros_like(self.cens_t)
 
     @classmethod
     def zeros(cls, plan, holes, experiments=None, **extra):
@@ -63,6 +75,8 @@ class Counts:
         self.esc_t[at][:holes] += other.esc_t
         self.cens_n[at] += other.cens_n
         self.cens_t[at] += other.cens_t
+        self.stuck_n[at] += other.stuck_n
+        self.stuck_t[at] += other.stuck_t
         if portrait:
             self.portrait += other.portrait
         self.collisions += other.collisions
@@ -127,12 +141,14 @@ class Finished:
 
 
 _ARRAYS = ("esc_n", "esc_t", "cens_n", "cens_t", "portrait")
+_STUCK = ("stuck_n", "stuck_t")  # saved only when a particle stuck: elastic checkpoints unchanged
 
 
 def _digest(arrays, meta_json):
-    """SHA-256 over each array's name, dtype, shape and bytes, then the bookkeeping JSON."""
+    """SHA-256 over each array's name, dtype, shape and bytes (``_ARRAYS``, then ``_STUCK`` where
+    present), then the bookkeeping JSON."""
     h = hashlib.sha256()
-    for name in _ARRAYS:
+    for name in (*_ARRAYS, *(n for n in _STUCK if n in arrays)):
         a = np.ascontiguousarray(arrays[name])
         h.update(f"{name}|{a.dtype.str}|{a.shape}|".encode())
         h.update(a.tobytes())
@@ -161,6 +177,8 @@ class Tally(Counts):
                            "finished": self.finished.to_json(), "samples": self.samples,
                            "elapsed": self.elapsed, "started": self.started})
         arrays = {name: getattr(self, name) for name in _ARRAYS}
+        if self.stuck_n.any() or self.stuck_t.any():
+            arrays.update(stuck_n=self.stuck_n, stuck_t=self.stuck_t)
         return rundir.save_npz_atomic(path, **arrays, meta=np.array(meta),
                                       digest=np.array(_digest(arrays, meta)))
 
@@ -169,16 +187,17 @@ class Tally(Counts):
         """The checkpoint at ``path``; CheckpointError if it is unreadable or fails its digest."""
         try:
             with np.load(path) as z:
-                arrays = {name: z[name] for name in _ARRAYS}
+                arrays = {name: z[name] for name in (*_ARRAYS, *_STUCK) if name in z.files}
                 meta_json, digest = str(z["meta"]), str(z["digest"])
             meta = json.loads(meta_json)
             if _digest(arrays, meta_json) != digest:
                 raise CheckpointError(f"checkpoint {path} fails its content hash (edited or"
                                       " corrupted)")
             return cls(*(arrays[name] for name in _ARRAYS), int(meta["collisions"]),
-                       int(meta["settled"]), Finished.from_json(meta["finished"]),
-                       sorted(meta["samples"], key=_sample_key), float(meta["elapsed"]),
-                       str(meta["started"]))
+                       int(meta["settled"]), arrays.get("stuck_n"), arrays.get("stuck_t"),
+                       finished=Finished.from_json(meta["finished"]),
+                       samples=sorted(meta["samples"], key=_sample_key),
+                       elapsed=float(meta["elapsed"]), started=str(meta["started"]))
         except CheckpointError:
             raise
         except (OSError, EOFError, zipfile.BadZipFile, KeyError, TypeError, ValueError) as err:

@@ -217,12 +217,15 @@ def _manifest(out, plan, tally, status, ctx, failure=None, verification=None):
         esc = getattr(tally, clock)[e]
         cens = tally.cens_n[e] if clock == "esc_n" else tally.cens_t[e]
         done = tally.finished.particles_done(plan, e)
-        curves[exp.name] = {"particles_done": done, "censored": int(cens.sum()), "stuck": 0,
+        stuck = tally.stuck_n[e] if clock == "esc_n" else tally.stuck_t[e]
+        curves[exp.name] = {"particles_done": done, "censored": int(cens.sum()),
+                            "stuck": int(stuck.sum()),
                             "escaped": {c: int(esc[j].sum()) for j, c in enumerate(exp.curves)}}
     manifest = {
         "status": status,
         "scene": {"name": sc.name, "kind": sc.kind, "file": "scene.toml", "eps": sc.eps,
-                  "horizon": {"collisions": sc.max_collisions, "time": sc.max_time}},
+                  "horizon": {"collisions": sc.max_collisions, "time": sc.max_time},
+                  **({"physics": sc.physics()} if not sc.elastic else {})},
         "seed": plan.seed,
         "particles": plan.particles,
         "particles_total": plan.particles * len(plan.experiments),
@@ -263,11 +266,14 @@ def survival_rows(plan, tally):
         for clock in plan.scene.clocks:
             if clock == "collisions":
                 edges, esc, cens = plan.n_edges, tally.esc_n[e], tally.cens_n[e]
+                stuck = tally.stuck_n[e]
             else:
                 edges, esc, cens = plan.t_edges, tally.esc_t[e], tally.cens_t[e]
+                stuck = tally.stuck_t[e]
             for j, curve in enumerate(exp.curves):
                 x, surv, p = survival_curve(esc[j], cens, edges, plan.particles, clock,
-                                            add_censored=plan.scene.kind == "escape")
+                                            add_censored=plan.scene.kind == "escape",
+                                            stuck=stuck)
                 lo, hi = wilson(surv, plan.particles)
                 for xi, pi, li, hi_ in zip(x, p, lo, hi, strict=True):
                     xs = str(int(xi)) if clock == "collisions" else repr(float(xi))
@@ -302,7 +308,9 @@ def counts_rows(plan, tally):
             edges = plan.n_edges if clock == "collisions" else plan.t_edges
             esc = tally.esc_n[e] if clock == "collisions" else tally.esc_t[e]
             cens = tally.cens_n[e] if clock == "collisions" else tally.cens_t[e]
+            stuck = tally.stuck_n[e] if clock == "collisions" else tally.stuck_t[e]
             outcomes = [(c, esc[j]) for j, c in enumerate(exp.curves)] + [("censored", cens)]
+            outcomes.append(("stuck", stuck))  # only non-zero bins: none in elastic runs
             for name, counts in outcomes:
                 for b in np.flatnonzero(counts):
                     rows.append([exp.name, clock, name, repr(float(edges[b])), int(counts[b])])

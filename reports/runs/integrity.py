@@ -20,7 +20,7 @@ import numpy as np
 
 from reports.runs.counts import Counts, Tally
 
-ARRAYS = ("esc_n", "esc_t", "cens_n", "cens_t", "portrait")
+ARRAYS = ("esc_n", "esc_t", "cens_n", "cens_t", "portrait", "stuck_n", "stuck_t")
 
 
 def _clock_arrays(tally, e, clock):
@@ -29,8 +29,13 @@ def _clock_arrays(tally, e, clock):
     return tally.esc_t[e], tally.cens_t[e]
 
 
+def _stuck_array(tally, e, clock):
+    return tally.stuck_n[e] if clock == "collisions" else tally.stuck_t[e]
+
+
 def curve_problems(plan, counts, done, stuck=None):
-    """Per experiment e and recorded clock: escapes + censored + stuck == done[e].
+    """Per experiment e and recorded clock: escapes + censored + stuck == done[e], ``stuck``
+    from the dict {(e, clock): count} if given, else from ``counts.stuck_n``/``stuck_t``.
     Returns [(e, clock, message)]."""
     out = []
     if plan.scene.kind == "phase-space":
@@ -39,7 +44,8 @@ def curve_problems(plan, counts, done, stuck=None):
         for clock in plan.scene.clocks:
             esc, cens = _clock_arrays(counts, e, clock)
             n_esc, n_cens = int(esc.sum()), int(cens.sum())
-            n_stuck = 0 if stuck is None else int(stuck.get((e, clock), 0))
+            n_stuck = (int(_stuck_array(counts, e, clock).sum()) if stuck is None
+                       else int(stuck.get((e, clock), 0)))
             total = n_esc + n_cens + n_stuck
             if total != done[e]:
                 out.append((e, clock, f"curve {exp.name!r}, clock {clock}: {n_esc} escaped +"
@@ -113,6 +119,7 @@ def parse_counts(plan, text, name="counts.csv"):
             cens[b] += c
         elif outcome == "stuck":
             stuck[e, clock] += c
+            _stuck_array(counts, e, clock)[b] += c
         elif outcome in curves:
             esc[curves.index(outcome), b] += c
         else:

@@ -134,8 +134,10 @@ def _manifest_figures(manifest, plan, tally, worst):
         clock = "collisions" if "collisions" in plan.scene.clocks else "time"
         esc = tally.esc_n[e] if clock == "collisions" else tally.esc_t[e]
         cens = tally.cens_n[e] if clock == "collisions" else tally.cens_t[e]
+        stuck = tally.stuck_n[e] if clock == "collisions" else tally.stuck_t[e]
         curve = manifest.get("curves", {}).get(exp.name, {})
         pairs.append((f"curves.{exp.name}.censored", curve.get("censored"), int(cens.sum())))
+        pairs.append((f"curves.{exp.name}.stuck", curve.get("stuck"), int(stuck.sum())))
         for j, c in enumerate(exp.curves):
             pairs.append((f"curves.{exp.name}.escaped.{c}", curve.get("escaped", {}).get(c),
                           int(esc[j].sum())))
@@ -160,10 +162,12 @@ def _sample(run_dir, scene, progress):
         except (KeyError, TypeError, ValueError):
             out.append(f"sample.csv:{line}: not a sample row")
             continue
-        if tuple(fastpath.step(phi, v, scene.eps)) != stored:
-            out.append(f"sample.csv:{line}: fastpath.step gives {fastpath.step(phi, v, scene.eps)}"
+        fast = tuple(fastpath.step(phi, v, scene.eps, **scene.physics()))
+        if fast != stored:
+            out.append(f"sample.csv:{line}: fastpath.step gives {fast}"
                        f", the file {stored} (not reproduced bit for bit)")
-        ref, err, overstep = check_sample(phi, v, stored[2], scene.eps)
+        ref, err, overstep = (check_sample(phi, v, stored[2], scene.eps, scene.physics())
+                              if not scene.elastic else check_sample(phi, v, stored[2], scene.eps))
         worst = max(worst, err)
         if (ref, err) != (tau_ref, error):
             out.append(f"sample.csv:{line}: verify gives tau_ref {ref!r}, error {err!r}; the file"

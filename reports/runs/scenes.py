@@ -11,6 +11,12 @@ to record. Three kinds:
                  phase (``[start]`` gives only v) and leaves through hole j (Section 4).
 ``phase-space``  no holes: a (phi, v) histogram of ``horizon.collisions`` collisions per start.
 
+An optional ``[physics]`` table, for every kind, sets the dissipation (DESIGN fact 12): air drag
+``drag`` = k >= 0 with ``drag_law`` "linear" (eta(v) = k*v) or "quadratic" (eta(v) = k*v*|v|),
+and the coefficient of restitution ``restitution`` = r in (0, 1] (impacts v1 - u = -r*(v_in - u)).
+Left out, it is the elastic, drag-free model (drag = 0, "linear", r = 1), and ``Scene.elastic``
+is True: the scene runs the elastic kernels unchanged.
+
 Built-in scenes live in ``reports/scenes/*.toml`` (package data): ``paper-escape``,
 ``paper-transport``, ``paper-phase-space``. ``load_scene`` takes a built-in name or a path.
 """
@@ -30,13 +36,15 @@ CLOCKS = ("collisions", "time")
 MAX_CHUNK = 2**20
 
 _TOP = {"name", "kind", "description", "eps", "particles", "seed", "chunk_size", "start",
-        "holes", "horizon", "record"}
+        "holes", "horizon", "record", "physics"}
 _TABLES = {
     "start": {"phi", "v"},
     "holes": {"centres", "widths"},
     "horizon": {"collisions", "time"},
     "record": {"clocks", "bins_per_decade", "verify_samples", "phi_bins", "v_bins", "v_range"},
+    "physics": {"restitution", "drag", "drag_law"},
 }
+DRAG_LAWS = ("linear", "quadratic")
 
 
 @dataclass(frozen=True)
@@ -77,7 +85,21 @@ class Scene:
     v_bins: int = 480
     v_range: tuple[float, float] = (0.0, 12.0)
     description: str = ""
+    restitution: float = 1.0
+    drag: float = 0.0
+    drag_law: str = "linear"
     source: str = field(default="", compare=False, repr=False)
+
+    @property
+    def elastic(self) -> bool:
+        """True for the elastic, drag-free model (no ``[physics]``, or its defaults)."""
+        return self.restitution == 1.0 and self.drag == 0.0
+
+    def physics(self) -> dict:
+        """The keywords of ``fastpath``/``verify`` for this scene's physics (empty if elastic)."""
+        if self.elastic:
+            return {}
+        return {"drag": self.drag, "drag_law": self.drag_law, "restitution": self.restitution}
 
     def experiments(self) -> list[Experiment]:
         """The experiments of the run in their fixed order (it fixes the chunk numbering)."""
@@ -200,6 +222,7 @@ def _validate(data, text):
             _check_disjoint(centres, widths)
 
     max_n, max_t = _horizon(horizon, kind)
+    physics = _physics(data.get("physics", {}))
     if kind == "phase-space":
         if "clocks" in record:
             raise ValueError("a phase-space scene records no clocks (record.clocks)")
@@ -229,13 +252,28 @@ def _validate(data, text):
         start_v=v_box, hole_centres=centres, hole_widths=widths, max_collisions=max_n,
         max_time=max_t, clocks=tuple(c for c in CLOCKS if c in clocks), bins_per_decade=bins,
         verify_samples=samples, chunk_size=chunk, description=description, source=text,
-        **portrait,
+        **physics, **portrait,
     )
     for exp in scene.experiments():
         _check_departures(exp, eps)
         if kind == "escape":
             _check_outside(exp)
     return scene
+
+
+def _physics(table):
+    """[physics] -> {restitution, drag, drag_law}; the defaults are the elastic model."""
+    restitution = _real(table.get("restitution", 1.0), "physics.restitution")
+    if not 0.0 < restitution <= 1.0:
+        raise ValueError(f"physics.restitution must be in (0, 1], got restitution={restitution!r}")
+    drag = _real(table.get("drag", 0.0), "physics.drag")
+    if drag < 0.0:
+        raise ValueError(f"physics.drag must be >= 0, got drag={drag!r}")
+    law = table.get("drag_law", "linear")
+    if law not in DRAG_LAWS:
+        raise ValueError(f"physics.drag_law must be one of {', '.join(DRAG_LAWS)},"
+                         f" got drag_law={law!r}")
+    return {"restitution": restitution, "drag": drag, "drag_law": law}
 
 
 def _keys(table, allowed, where):

@@ -4,14 +4,16 @@ Counts come in fixed bins (``fastpath.ensemble``): bin k holds clock values x wi
 e_k <= x < e_{k+1}. With N particles, escapes E_k through the hole(s) of a curve and C particles
 censored at the horizon (all known to outlive the range where the curve is reported):
 
-    escape      P(x_k) = (sum_{m >= k} E_m + C) / N       fraction escaping later than x_k
+    escape      P(x_k) = (sum_{m >= k} E_m + C + S) / N   fraction escaping later than x_k
     transport   P_ij(x_k) = sum_{m >= k} E_m^(j) / N      entered by i, leave by j later than x_k
 
-so that sum_j P_ij(0) + C/N = 1. For the collision clock (integer escape index n >= 1) the point
-is x_k = e_k - 1, since #{n >= e_k} = #{n > e_k - 1}: P(n) is the fraction escaping at an index
-> n. For time x_k = e_k. A point is reported only where it is exact: x_k not beyond the lower
-edge of the first bin holding a censoring bound (the particles censored there are known to
-survive only that far). Points stop after the first zero.
+so that sum_j P_ij(0) + C/N + S/N = 1, with S the particles stuck on the plate for good
+(restitution < 1; they never escape; S = 0 for the elastic model). For the collision clock
+(integer escape index n >= 1) the point is x_k = e_k - 1, since #{n >= e_k} = #{n > e_k - 1}:
+P(n) is the fraction escaping at an index > n. For time x_k = e_k. A point is reported only
+where it is exact: x_k not beyond the lower edge of the first bin holding a censoring bound
+(the particles censored there are known to survive only that far). Points stop after the
+first zero.
 
 Bands: the Wilson score interval for k successes in N trials at z (95%: z = 1.96),
 
@@ -49,15 +51,17 @@ def valid_limit(censored, edges):
     return float(edges[hit[0]]) if len(hit) else np.inf
 
 
-def survival_curve(escapes, censored, edges, particles, clock, add_censored):
+def survival_curve(escapes, censored, edges, particles, clock, add_censored, stuck=0):
     """Points (x, survivors, p) of one curve; see the module docstring.
 
     ``escapes``: counts per bin of this curve's exit(s). ``censored``: the censoring bounds per
-    bin (they limit the range; they count as survivors when ``add_censored``).
+    bin (they limit the range; they count as survivors when ``add_censored``). ``stuck``:
+    particles stuck on the plate for good (restitution < 1), which never escape: survivors at
+    every x when ``add_censored`` (an escape curve), no range limit; 0 for the elastic model.
     """
     escapes = np.asarray(escapes, dtype=np.int64)
     later = np.cumsum(escapes[::-1])[::-1]  # sum over m >= k
-    survivors = later + (int(np.sum(censored)) if add_censored else 0)
+    survivors = later + (int(np.sum(censored)) + int(np.sum(stuck)) if add_censored else 0)
     x = edges - 1.0 if clock == "collisions" else edges.astype(np.float64)
     keep = x <= valid_limit(censored, edges)
     x, survivors = x[keep], survivors[keep]
