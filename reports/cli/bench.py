@@ -1,6 +1,12 @@
 """``bouncer bench``: ns per collision against the Holmes map, ensemble throughput, memory."""
 
-from reports.precision.bench import ensemble_throughput, orbit_table, peak_memory_mib, time_orbits
+from reports.precision.bench import (
+    dissipative_section,
+    ensemble_throughput,
+    orbit_table,
+    peak_memory_mib,
+    time_orbits,
+)
 
 
 def bench_command(args):
@@ -19,6 +25,7 @@ def bench_command(args):
               f"(all cores, verification included: {v['sampled']} sampled, worst error "
               f"{v['worst_error']:.3g} kappa*u, {v['overstepped']} overstepped)")
     print(f"\npeak memory: {peak_memory_mib():.0f} MiB")
+    print("\n" + dissipative_section(args.collisions, args.repeats))
     return 0
 
 
