@@ -236,9 +236,10 @@ def saturation_verdict(elastic, curves):
     """Verdict of "dissipation makes <v_n> saturate" from the slopes over the plateau window.
 
     U = 1.96 sigma (bootstrap over particle blocks) + the window family's half-range, per curve.
-    confirmed: every dissipative slope within U of 0 and the elastic slope above its U (the
-    reference still grows); refuted: some dissipative curve grows as fast as the elastic one
-    (slope >= elastic slope - U - U_elastic: no suppression seen); inconclusive otherwise.
+    inconclusive when the elastic slope is not above its U (no Fermi acceleration in the window
+    to suppress); else refuted: some dissipative curve grows as fast as the elastic one (slope
+    >= elastic slope - U - U_elastic: no suppression seen); confirmed: every dissipative slope
+    within U of 0; inconclusive otherwise.
     """
     def u(c):
         return 1.96 * c.slope_err + c.slope_sys
@@ -246,9 +247,11 @@ def saturation_verdict(elastic, curves):
     u_el = u(elastic)
     if not all(math.isfinite(u(c)) and math.isfinite(c.slope) for c in [elastic, *curves]):
         return INCONCLUSIVE
+    if not elastic.slope > u_el:
+        return INCONCLUSIVE
     if any(c.slope >= elastic.slope - u(c) - u_el for c in curves):
         return REFUTED
-    if all(abs(c.slope) <= u(c) for c in curves) and elastic.slope > u_el:
+    if all(abs(c.slope) <= u(c) for c in curves):
         return CONFIRMED
     return INCONCLUSIVE
 
