@@ -1,6 +1,7 @@
 """``bouncer bench``: ns per collision against the Holmes map, ensemble throughput, memory."""
 
 from reports.precision.bench import (
+    dissipative_section,
     ensemble_table,
     orbit_table,
     peak_memory_mib,
@@ -21,6 +22,8 @@ def bench_command(args):
               " the Holmes-map ensemble on the same starts\n")
     best = time_orbits(args.eps, args.collisions, args.repeats)
     print(orbit_table(best, args.collisions, args.eps, args.repeats))
+    # dissipative orbits cost ~1-3 us a collision at eps = 2: at most 10^6 of them
+    print("\n" + dissipative_section(min(args.collisions, 1_000_000), min(args.repeats, 3)))
     print(f"\npeak memory: {peak_memory_mib():.0f} MiB")
     return 0
 

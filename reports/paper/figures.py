@@ -10,10 +10,13 @@ through ``reports.runs.driver.run`` (or takes the larger included paper-scale ru
     paper_fig3_transport     P_ij(t) for h = 0.1, 0.4, 1, 2.2                       (seed Fig. 3)
     paper_fig4_h1            h = 1, 2x2: discrete/continuous, log-linear/log-log    (seed Fig. 4)
     paper_fermi              <v> against n and t at eps = 0.6, log-log
+    paper_dissipation        <v_n> with restitution r < 1 and drag at eps = 2, and V_sat
+                             against (1 - r) (``reports.paper.dissipation``)
 
 as PNG and PDF in ``out_dir``, and returns the Markdown and the seed's claims (``claims.Claim``),
 each with its verdict, uncertainties and the rule that produced it (in the docstrings of
-``fig2_escape``, ``fig3_transport``, ``fig4_h1`` and ``fermi.fermi_claims``). Survival laws are
+``fig2_escape``, ``fig3_transport``, ``fig4_h1``, ``fermi.fermi_claims`` and
+``dissipation``). Survival laws are
 fitted by maximum likelihood on the binned, censored counts (``reports.stats``).
 
 Every figure states its particle count, horizon and the run's verification summary.
@@ -25,6 +28,8 @@ import time
 from pathlib import Path
 
 from reports.paper.claims import claims_json, claims_markdown
+from reports.paper.dissipation import dissipation_claims, dissipation_study
+from reports.paper.dissipation_figure import dissipation_markdown, figure_dissipation
 from reports.paper.fermi import fermi_claims, fermi_ensemble
 from reports.paper.fermi_figure import fermi_markdown, figure_fermi
 from reports.paper.fig1_phase_space import figure_phase_space, phase_space_markdown
@@ -70,6 +75,8 @@ def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
     esc_run, tr_run = runs["paper-escape"], runs["paper-transport"]
     echo("paper figures: Fermi acceleration ensemble")
     fermi = fermi_ensemble(bool(quick))
+    echo("paper figures: dissipation (restitution and drag at eps = 2)")
+    dissipation = dissipation_study(bool(quick))
     echo("paper figures: survival-law inference (escape)")
     esc = escape_analysis(esc_run)
     echo("paper figures: survival-law inference (transport, h = 1)")
@@ -85,6 +92,8 @@ def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
     h1c = h1_claims(h1, tr_run)
     figure_fermi(fermi, out_dir)
     fc = fermi_claims(fermi)
+    figure_dissipation(dissipation, out_dir)
+    dc = dissipation_claims(dissipation)
     seconds = time.perf_counter() - t0
 
     def table(claims):
@@ -104,7 +113,9 @@ def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
         h1_markdown("paper_fig4_h1.png", table(h1c)),
         fermi_markdown(fermi, "paper_fermi.png"),
         table(fc),
+        dissipation_markdown(dissipation, "paper_dissipation.png"),
+        table(dc),
         f"(paper figures: {seconds:.0f} s)",
         "",
     ]
-    return "\n".join(md), esc_claims + tr_claims + h1c + fc
+    return "\n".join(md), esc_claims + tr_claims + h1c + fc + dc

@@ -17,6 +17,10 @@
    time of the exact ensemble over the Holmes ensemble's (the same particles to their exits;
    the two maps make slightly different numbers of collisions, so collisions/s are printed too).
 3. Peak resident memory of the process.
+4. Dissipation (``dissipative_section``): ns per collision of ``fastpath.orbit`` with linear
+   drag, quadratic drag and restitution r < 1, next to the elastic orbit at the same eps (2: at
+   eps <= 1 an r < 1 orbit sticks for good and stops) and start, interleaved as in 1, printed
+   as ratios to the elastic orbit.
 
 Printed as ratios measured in this run, never asserted in a test: machines are shared and noisy.
 """
@@ -180,3 +184,52 @@ def orbit_table(best, collisions, eps, repeats):
         lines.append(f"| {t.label} | {t.ns_per_collision:.1f} | "
                      f"{t.ns_per_collision / holmes:.2f} | {its} |")
     return "\n".join(lines)
+
+
+DISSIPATIVE_MODELS = (
+    ("elastic", {}),
+    ("linear drag k = 0.01", {"drag": 0.01, "drag_law": "linear"}),
+    ("quadratic drag k = 0.001", {"drag": 0.001, "drag_law": "quadratic"}),
+    ("restitution r = 0.95", {"restitution": 0.95}),
+)
+DISSIPATIVE_EPS = 2.0  # r < 1 at eps <= 1 sticks for good: the orbit would stop early
+
+
+def time_dissipative_orbits(collisions=1_000_000, repeats=3, eps=DISSIPATIVE_EPS, start=START):
+    """{label: (ns per collision, collisions made)}, best of ``repeats`` interleaved
+    ``fastpath.orbit`` runs of the elastic model and the dissipative ones
+    (``DISSIPATIVE_MODELS``) at the same eps and start; per collision made (an r < 1 orbit
+    counts the impacts of its chattering; an orbit stopped early counts what it made)."""
+    for _, physics in DISSIPATIVE_MODELS:  # compile (or load from the cache) outside the timing
+        fastpath.orbit(*start, eps, 10, **physics)
+    best = {}
+    for _ in range(repeats):
+        for label, physics in DISSIPATIVE_MODELS:
+            t0 = time.perf_counter()
+            orb = fastpath.orbit(*start, eps, collisions, on_uncertain="stop", **physics)
+            made = max(1, len(orb.v) - 1)
+            ns = (time.perf_counter() - t0) / made * 1e9
+            if label not in best or ns < best[label][0]:
+                best[label] = (ns, made)
+    return best
+
+
+def dissipative_table(best, collisions, eps, repeats, start=START):
+    """Markdown table of ``time_dissipative_orbits`` with the ratio to the elastic orbit."""
+    elastic = best["elastic"][0]
+    lines = [f"Dissipative `fastpath.orbit`, {collisions:,} collisions at eps = {eps:g} from "
+             f"(phi, v) = {start}, one core, best of {repeats} interleaved runs:", "",
+             "| physics | ns / collision | x elastic | collisions made |", "|---|---|---|---|"]
+    lines += [f"| {label} | {ns:.1f} | {ns / elastic:.2f} | {made:,} |"
+              for label, (ns, made) in best.items()]
+    return "\n".join(lines)
+
+
+DISSIPATIVE_MAX_COLLISIONS = 1_000_000
+
+
+def dissipative_section(collisions, repeats):
+    """The dissipative table of ``bouncer bench`` (at most 10^6 collisions per orbit)."""
+    collisions = min(int(collisions), DISSIPATIVE_MAX_COLLISIONS)
+    best = time_dissipative_orbits(collisions, repeats)
+    return dissipative_table(best, collisions, DISSIPATIVE_EPS, repeats)

@@ -7,7 +7,7 @@ from reports.paper.fig3_transport import transport_dominance
 from reports.paper.figures import paper_figures_section
 
 STEMS = ("paper_fig1_phase_space", "paper_fig2_escape", "paper_fig3_transport", "paper_fig4_h1",
-         "paper_fermi")
+         "paper_fermi", "paper_dissipation")
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +33,8 @@ def test_every_claim_of_figs_2_to_4_and_fermi_has_a_verdict(section):
         assert f"fig2-n-phi_c={hole}" in ids
     for h in ("0.1", "0.4", "1", "2.2"):
         assert f"fig3-h={h}" in ids
-    assert {"fig4-P11-collisions", "fig4-P11-time", "fermi-n", "fermi-t"} <= ids
+    assert {"fig4-P11-collisions", "fig4-P11-time", "fermi-n", "fermi-t",
+            "dissipation-saturates", "dissipation-exponent"} <= ids
     for c in claims:
         assert c.verdict in ("confirmed", "refuted", "inconclusive")
         assert c.rule and c.evidence and c.seed_says

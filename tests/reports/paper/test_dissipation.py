@@ -1,0 +1,119 @@
+"""The dissipation section: its estimators on curves of known shape, its verdict rules, and a
+small ensemble that must saturate (restitution) or stick (eps <= 1). No timing asserted."""
+
+import math
+
+import numpy as np
+import pytest
+
+from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, VERDICTS
+from reports.paper.dissipation import (
+    STUDY,
+    Curve,
+    Dissipation,
+    _beta_systematic,
+    _curve,
+    dissipation_claims,
+    exponent,
+    exponent_verdict,
+    log_slope,
+    plateau,
+    saturation_verdict,
+)
+from reports.paper.dissipation_figure import dissipation_markdown
+from reports.precision.bench import DISSIPATIVE_MODELS, dissipative_table, time_dissipative_orbits
+
+U = 2.0**-53
+N = np.unique(np.round(np.logspace(0, 4, 41))).astype(float)
+WINDOW = (1e3, 1e4)
+OMR = np.array([0.005, 0.01, 0.02, 0.05, 0.1])
+
+
+def fake_curve(label, slope, err=0.01, sys=0.0, mean_v=None):
+    mean_v = np.full(len(N), 5.0) if mean_v is None else mean_v
+    return Curve(label, {}, mean_v, np.zeros((1, len(N))), np.ones((1, len(N))), 0, 1, 1, 0,
+                 plateau(N, mean_v, *WINDOW), slope, err, sys)
+
+
+def test_plateau_is_the_mean_over_the_window_only():
+    v = np.where(N >= WINDOW[0], 7.0, 1.0)
+    assert plateau(N, v, *WINDOW) == 7.0
+    v[-1] = np.nan
+    assert plateau(N, v, *WINDOW) == 7.0  # a grid point nobody reached is left out
+    assert math.isnan(plateau(N, v, 2e4, 3e4))
+
+
+@pytest.mark.parametrize("beta", [-0.5, -0.618, -1.0])
+def test_exponent_recovers_a_power_law(beta):
+    # least squares on 5 points with |log| <= 8 and a log(x) spread of 3: a few hundred ulps
+    got, log_amp = exponent(OMR, 3.0 * OMR**beta)
+    assert abs(got - beta) <= 1000 * U * 8 / 3
+    assert abs(log_amp - math.log(3.0)) <= 1000 * U * 8
+    slope = log_slope(N, 2.0 * N**0.5, *WINDOW)
+    assert abs(slope - 0.5) <= 1000 * U * 10
+
+
+def test_beta_systematic_is_zero_for_an_exact_power_law_and_not_otherwise():
+    curves = [fake_curve(f"{x}", 0.0, mean_v=np.full(len(N), 4 * x**-0.5)) for x in OMR]
+    assert _beta_systematic(N, OMR, curves, WINDOW) <= 1000 * U
+    bent = [fake_curve(f"{x}", 0.0, mean_v=np.full(len(N), 4 * x**-0.5 + 10)) for x in OMR]
+    assert _beta_systematic(N, OMR, bent, WINDOW) > 0.01  # curvature: dropping ends moves beta
+
+
+def test_saturation_verdict_rules():
+    grows = fake_curve("elastic", 0.5)
+    flat = [fake_curve("a", 0.005), fake_curve("b", -0.01)]
+    assert saturation_verdict(grows, flat) == CONFIRMED
+    drifting = [*flat, fake_curve("c", 0.1)]
+    assert saturation_verdict(grows, drifting) == INCONCLUSIVE
+    as_fast = [*flat, fake_curve("d", 0.48)]
+    assert saturation_verdict(grows, as_fast) == REFUTED
+    assert saturation_verdict(fake_curve("elastic", 0.01), flat) == INCONCLUSIVE
+    assert saturation_verdict(grows, [fake_curve("e", math.nan)]) == INCONCLUSIVE
+
+
+def test_exponent_verdict_rules():
+    assert exponent_verdict(-0.52, 0.01, 0.01) == CONFIRMED
+    assert exponent_verdict(-0.62, 0.006, 0.025) == REFUTED
+    assert exponent_verdict(-0.545, 0.01, 0.01) == REFUTED  # off 0.045 > U = 0.0296
+    assert exponent_verdict(-0.525, 0.01, 0.01) == CONFIRMED  # off 0.025 <= U
+    assert exponent_verdict(-0.55, 0.1, 0.1) == INCONCLUSIVE  # U = 0.296 > 1/4
+    assert exponent_verdict(math.nan, 0.01, 0.01) == INCONCLUSIVE
+
+
+def test_claims_and_markdown_from_a_study():
+    rest = [fake_curve(f"1 - r = {x:g}", 0.0, mean_v=np.full(len(N), 4 * x**-0.5))
+            for x in OMR]
+    d = Dissipation(2.0, 10, N, WINDOW, fake_curve("elastic", 0.5), rest,
+                    [fake_curve("linear drag k = 0.01", 0.0)], OMR, -0.5, 0.01, 0.0, 4.0,
+                    [(0.5, 1.0, 10)], {"sampled": 3, "worst_error": 0.5, "overstepped": 0}, 1.0)
+    claims = dissipation_claims(d)
+    assert [c.id for c in claims] == ["dissipation-saturates", "dissipation-exponent"]
+    assert all(c.verdict in VERDICTS for c in claims)
+    assert [c.verdict for c in claims] == [CONFIRMED, CONFIRMED]
+    assert "NO PUBLISHED VALUE FOUND" in claims[1].seed_says
+    md = dissipation_markdown(d, "x.png")
+    assert "No published value of beta was found" in md and "r = 0.5: 100.0%" in md
+
+
+@pytest.mark.slow
+def test_restitution_saturates_and_eps_below_one_sticks():
+    rng = np.random.default_rng(5)
+    phi0, v0 = rng.uniform(3.85, 4.15, 32), rng.uniform(2.0, 4.0, 32)
+    n = np.unique(np.round(np.logspace(0, 3, 25)).astype(np.int64))
+    window = (100.0, 1000.0)
+    elastic = _curve("elastic", {}, phi0, v0, STUDY["eps"], n, window)
+    lossy = _curve("r = 0.9", {"restitution": 0.9}, phi0, v0, STUDY["eps"], n, window)
+    assert saturation_verdict(elastic, [lossy]) == CONFIRMED
+    assert lossy.plateau < elastic.plateau and lossy.stuck == 0  # eps > 1: never stuck
+    assert lossy.reached == 32
+    stuck = _curve("r = 0.5", {"restitution": 0.5}, phi0, v0, 0.6, n, window)
+    assert stuck.stuck + stuck.reached + stuck.flagged <= 32 and stuck.stuck > 0
+
+
+def test_bench_dissipative_rows_make_every_collision():
+    best = time_dissipative_orbits(collisions=2000, repeats=1)
+    assert list(best) == [label for label, _ in DISSIPATIVE_MODELS]
+    assert all(made == 2000 and ns > 0 for ns, made in best.values())
+    table = dissipative_table(best, 2000, 2.0, 1)
+    assert "| elastic |" in table and "| 1.00 |" in table
