@@ -1,5 +1,7 @@
 """Where the chunks of a run are computed: here, one after another, or on a Dask cluster."""
 
+from collections import deque
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import ExitStack
 
 from reports.runs import cluster
@@ -7,8 +9,28 @@ from reports.runs.chunk import run_chunk
 
 
 def local(jobs):
-    for key, args in jobs:
-        yield key, run_chunk(*args)
+    """The chunks here, two in flight, yielded in order.
+
+    ``run_chunk`` is a pure function of its arguments; numba's kernels run one at a time
+    (``chunk._KERNEL_LOCK``) and so do verify's computations (``chunk._VERIFY_LOCK``: mpmath's
+    precision is process-wide). So one chunk's verification sample (Python, holding the GIL)
+    runs while the next chunk's kernel runs (numba threads, without the GIL), and the results
+    are those of the chunks one after another.
+    """
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        pending = deque()
+        try:
+            for key, args in jobs:
+                pending.append((key, pool.submit(run_chunk, *args)))
+                if len(pending) == 2:
+                    first, future = pending.popleft()
+                    yield first, future.result()
+            while pending:
+                first, future = pending.popleft()
+                yield first, future.result()
+        finally:
+            for _, future in pending:
+                future.cancel()
 
 
 class Executor:
