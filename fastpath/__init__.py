@@ -1,10 +1,20 @@
 """Fast float64 integrator of the bouncer model (numba).
 
 Public API (DESIGN section 4): ``flight_time``, ``step``, ``holmes_step``, ``orbit``, plus
-``flight`` (times with iteration counts and status codes). Kernels live in the submodules.
+``flight`` (times with iteration counts and status codes) and ``carried_step`` (one step of a
+chattering orbit from its carried state, as the kernels made it). Kernels live in the submodules.
 """
 
-from fastpath.api import FlightResult, Orbit, flight, flight_time, holmes_step, orbit, step
+from fastpath.api import (
+    FlightResult,
+    Orbit,
+    carried_step,
+    flight,
+    flight_time,
+    holmes_step,
+    orbit,
+    step,
+)
 from fastpath.status import FlightStatus, UncertainCollision
 
 __all__ = [
@@ -12,6 +22,7 @@ __all__ = [
     "FlightStatus",
     "Orbit",
     "UncertainCollision",
+    "carried_step",
     "flight",
     "flight_time",
     "holmes_step",

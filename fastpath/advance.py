@@ -28,6 +28,14 @@ hole's lower edge lies in that arc (within T plus a rounding margin), the tail i
 the impacts go on one by one, each tested against the holes by the caller; a run whose next
 flight no longer moves the clock (the edge within rounding of the accumulation point) is
 UNCERTAIN.
+
+The carried departure. Without drag and r < 1 a step depends on more than the departure point
+(phi, v) = ``departure_point(state)``: on the run's base phase and the time s since it (the
+phase of the impact is base + (s + tau), not phi + tau), on the sine and cosine carried from
+the last impact and on the carried relative velocity w (v + eps*sin(phi) recomputed would lose
+the digits of a chattering w), and on whether the departure is a detachment. ``CARRIED`` names
+these state entries; ``carried_state`` rebuilds a state from (phi, v) and them, from which
+``advance`` repeats the step bit for bit (the audit of a run's sample, ``fastpath.carried_step``).
 """
 
 import math
@@ -35,7 +43,7 @@ import math
 import numpy as np
 
 from fastpath._jit import jit
-from fastpath.flight import CONVERGED, NOT_DEPARTING, UNCERTAIN, flight_from, phase_error_of
+from fastpath.flight import AUTO, CONVERGED, NOT_DEPARTING, UNCERTAIN, flight_from, phase_error_of
 from fastpath.gap import UNIT_ROUNDOFF, departure
 from fastpath.impact import dissipative_collide
 from fastpath.phase import TWO_PI, centre_phase, reduce_phase
@@ -55,6 +63,7 @@ BASE_PHASE, BASE_TIME, S = 3, 4, 5  # the run's base and the time since it (depa
 SIN, COS, W = 6, 7, 8  # sine, cosine of the departure phase; relative departure velocity
 VK, DETACHED = 9, 10  # absolute departure velocity; 1.0 when departing from a detachment
 STATE_SIZE = 11
+CARRIED = (BASE_PHASE, S, SIN, COS, W, DETACHED)  # what a step reads beyond (phi, v)
 
 # what follows the impact of a step
 NO_STICKING = 0
@@ -101,6 +110,17 @@ def departure_point(state):
     if state[DETACHED] != 0.0:
         return reduce_phase(state[BASE_PHASE]), state[VK], state[BASE_TIME]
     return state[PHI], state[V], state[T]
+
+
+@jit
+def carried_state(phi, v, carried):
+    """A state departing from (phi, v) with the ``CARRIED`` entries ``carried`` (in that order);
+    the times (absolute time, base time) are 0: a step's (phi1, v1, tau) does not read them."""
+    state = np.zeros(STATE_SIZE)
+    state[PHI], state[V], state[VK] = phi, v, v
+    for j in range(len(CARRIED)):
+        state[CARRIED[j]] = carried[j]
+    return state
 
 
 @jit
@@ -203,3 +223,15 @@ def _inelastic_advance(state, eps, r, method, detach, hole_lo):
     state[BASE_PHASE], state[BASE_TIME], state[S] = base_phase, base_time, s
     state[SIN], state[COS], state[W], state[VK] = sin_th, cos_th, w, vk
     return CONVERGED, its, tau, sticking, t_start, t_end
+
+
+@jit
+def carried_collide(phi, v, eps, restitution, carried):
+    """(phi1, v1, tau, status) of one ``advance`` without drag from the departure (phi, v) with
+    the ``CARRIED`` entries ``carried``: the step an ensemble kernel made from that state."""
+    state = carried_state(phi, v, carried)
+    detach = detachment(eps, 0.0, restitution)
+    status, _, tau, _, _, _ = advance(
+        state, eps, 0.0, 0, restitution, AUTO, detach, np.empty(0)
+    )
+    return state[PHI], state[V], tau, status

@@ -7,6 +7,7 @@ from numba import prange
 
 from fastpath._jit import jit, parallel_jit
 from fastpath._validate import check_dissipation, count, float_inputs, physics, scalar_inputs
+from fastpath.advance import CARRIED, carried_collide
 from fastpath.collision import collide
 from fastpath.drag_flight import solve_drag_flight
 from fastpath.flight import (
@@ -18,9 +19,11 @@ from fastpath.flight import (
     departure_of,
     solve_flight,
 )
+from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.holmes import holmes_collide
 from fastpath.impact import dissipative_collide
 from fastpath.orbit import dissipative_orbit, exact_orbit, holmes_orbit
+from fastpath.phase import reduce_phase
 from fastpath.status import FlightStatus, UncertainCollision
 
 # The defaults of the physics keywords: the elastic call passes these very objects, which
@@ -251,6 +254,67 @@ def step(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
         _dissipative_steps(phi_a, v_a, eps_a, drag, law, restitution, phi1, v1, tau, status)
     _raise_on_status(status, phi_a, v_a, eps_a)
     return _shaped(shape, scalar, phi1, v1, tau)
+
+
+CARRIED_NAMES = ("base_phase", "s", "sin", "cos", "w", "detached")  # ``advance.CARRIED``
+
+
+def _check_carried(phi, v, eps, carried):
+    """ValueError unless ``carried`` is a departure state of (phi, v) (``carried_step``)."""
+    if len(carried) != len(CARRIED):
+        raise ValueError(f"carried must hold {len(CARRIED)} numbers {CARRIED_NAMES}, got"
+                         f" {len(carried)}")
+    values = scalar_inputs(**dict(zip(CARRIED_NAMES, carried, strict=True)))
+    if values is None:
+        raise ValueError(f"carried must hold real scalars, got {tuple(carried)!r}")
+    base, s, sin, _, w, detached = values
+    if detached not in (0.0, 1.0):
+        raise ValueError(f"carried detached must be 0 or 1, got detached={detached!r}")
+    if detached == 1.0:
+        if not (s == 0.0 and w == 0.0 and reduce_phase(base) == phi):
+            raise ValueError(f"carried s={s!r}, w={w!r}, base_phase={base!r} is not the"
+                             f" detachment (s = w = 0, base_phase = phi) at phi={phi!r}")
+        return
+    if reduce_phase(base + s) != phi:
+        raise ValueError(f"carried base_phase={base!r} + s={s!r} is not the departure phase"
+                         f" phi={phi!r} (mod 2*pi)")
+    # v = fl(u + w), u = fl(-eps*sin): v + eps*sin gives w back to u*(|v| + |w0|)/(1 - u);
+    # twice that covers the second-order terms
+    w0 = v + eps * sin
+    if not abs(w - w0) <= 2.0 * UNIT_ROUNDOFF * (abs(v) + abs(w0)):
+        raise ValueError(f"carried w={w!r} is not v + eps*sin = {w0!r} to rounding (v={v!r},"
+                         f" sin={sin!r}, eps={eps!r})")
+
+
+def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
+                 restitution=ELASTIC):
+    """One collision of a chattering orbit (r < 1, no drag) from its carried state: (phi1, v1,
+    tau), the step an orbit or ensemble kernel made (``fastpath.advance``), bit for bit.
+
+    Such a step reads more than (phi, v): ``carried`` = (base_phase, s, sin, cos, w, detached),
+    the phase of the impact being base_phase + (s + tau), sin and cos those of the last impact,
+    w the carried relative velocity v + eps*sin (kept to full relative precision while the
+    impacts accumulate), detached 1.0 for a departure from a sticking episode (w = 0).
+    ValueError for scalars that are not finite, a restitution of 1 or a drag (their steps are
+    ``step``'s), and a ``carried`` that is not a departure from (phi, v): base_phase + s must
+    reduce to phi, and w equal v + eps*sin to the rounding of v = u + w. Flights float64 cannot
+    decide raise ``UncertainCollision`` as for ``step``.
+    """
+    drag, _, restitution = physics(drag, drag_law, restitution)
+    if drag != 0.0 or restitution == 1.0:
+        raise ValueError(f"carried_step needs restitution < 1 and no drag (otherwise a step"
+                         f" reads (phi, v) only: use step), got drag={drag!r},"
+                         f" restitution={restitution!r}")
+    scalars = scalar_inputs(phi=phi, v=v, eps=eps)
+    if scalars is None:
+        raise ValueError("carried_step takes scalar phi, v and eps")
+    phi, v, eps = scalars
+    _check_carried(phi, v, eps, tuple(carried))
+    phi1, v1, tau, status = carried_collide(phi, v, eps, restitution,
+                                            np.array(carried, dtype=float))
+    if status != CONVERGED:
+        _raise_on_status(np.array([status]), [phi], [v], [eps])
+    return phi1, v1, tau
 
 
 def holmes_step(phi, v, eps):

@@ -20,6 +20,10 @@ impact's time, as for a long flight.
 
 Flags and samples refer to the departure of the flight concerned (``advance.departure_point``):
 the last impact, or after an episode the detachment state (theta*, u(theta*)) with w0 = 0.
+A ``samples`` array of 6 + len(CARRIED) columns gets, after the six of
+``fastpath.ensemble``, the departure's carried entries (``fastpath.advance.CARRIED``), from
+which ``fastpath.carried_step`` repeats the sampled step bit for bit (r < 1: the step depends
+on them, not on (phi, v) alone).
 The particles are split into ``len(collisions)`` fixed blocks; ``prange`` runs the blocks,
 each by the serial ``run_block``, so the counts do not depend on the number of threads.
 """
@@ -29,6 +33,7 @@ from numba import prange
 
 from fastpath._jit import jit, parallel_jit
 from fastpath.advance import (
+    CARRIED,
     PHI,
     STATE_SIZE,
     STUCK,
@@ -52,12 +57,20 @@ def _censor(cens_n, cens_t, b, n, t, n_edges, t_edges, record_n, record_t):
 
 
 @jit
+def _store_carried(samples, slot, carried):
+    for j in range(len(carried)):
+        samples[slot, 6 + j] = carried[j]
+
+
+@jit
 def run_block(b, first, last, phi0, v0, t0, n0, eps, drag, law, restitution, detach, hole_lo,
               hole_width, max_collisions, max_time, n_edges, t_edges, record_n, record_t,
               sample_slot, sample_target, esc_n, esc_t, cens_n, cens_t, stuck_n, stuck_t,
               flags, flag_state, samples):
     """Run particles first .. last-1 into the rows of block b; return the collisions made."""
     state = np.empty(STATE_SIZE)
+    carried = np.empty(len(CARRIED))
+    keep_carried = samples.shape[1] >= 6 + len(CARRIED)
     done = 0
     for i in range(first, last):
         n = n0[i]
@@ -73,6 +86,9 @@ def run_block(b, first, last, phi0, v0, t0, n0, eps, drag, law, restitution, det
                         record_n, record_t)
                 break
             phi, v, t = departure_point(state)
+            if keep_carried and slot >= 0 and n < target:
+                for j in range(len(CARRIED)):
+                    carried[j] = state[CARRIED[j]]
             status, _, tau, kind, t_start, _ = advance(
                 state, eps, drag, law, restitution, AUTO, detach, hole_lo
             )
@@ -86,6 +102,8 @@ def run_block(b, first, last, phi0, v0, t0, n0, eps, drag, law, restitution, det
             done += 1
             if slot >= 0 and n <= target:
                 _store_sample(samples, slot, n, phi, v, state[PHI], state[V], tau)
+                if keep_carried:
+                    _store_carried(samples, slot, carried)
             j = exit_hole(state[PHI], hole_lo, hole_width)
             if j >= 0:
                 if record_n:

@@ -3,7 +3,9 @@
 Elastic scenes (no ``[physics]``) run ``fastpath.ensemble.escape_chunk`` unchanged. Scenes with
 restitution < 1 or drag run ``fastpath.dissipative_ensemble.dissipative_escape_chunk`` (the
 same contract plus the histograms of particles stuck on the plate for good), and their flagged
-and sampled collisions are recomputed by ``verify.step`` with the same physics.
+and sampled collisions are recomputed by ``verify.step`` with the same physics. With
+restitution < 1 a sample row also records the departure's carried state (``CARRIED_COLUMNS``),
+from which ``fastpath.carried_step`` repeats the kernel's step in ``bouncer verify``.
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ from fastpath.ensemble import (
 )
 from reports.runs.counts import Counts
 from reports.runs.plan import BLOCKS, PORTRAIT_BLOCKS, chunk_starts, make_plan
-from reports.runs.rundir import RunFailed
+from reports.runs.rundir import CARRIED_COLUMNS, RunFailed
 
 UNIT_ROUNDOFF = 2.0**-53
 
@@ -147,7 +149,8 @@ def simulate_chunk(plan, e, k):
     m = len(phi)
     holes = max(len(exp.hole_lo), 1)
     out = Counts.zeros(plan, holes)
-    samples = np.zeros((len(picks), 6))
+    # (n, phi, v, phi1, v1, tau), then the carried state (``rundir.sample_columns``)
+    samples = np.zeros((len(picks), 6 + (len(CARRIED_COLUMNS) if sc.carries else 0)))
     state = (phi, v, np.zeros(m), np.zeros(m, np.int64))
     max_n = sc.max_collisions or NO_LIMIT
     max_t = sc.max_time or np.inf
@@ -274,10 +277,11 @@ def check_sample(phi, v, tau, eps, physics=None):
 
 
 def verify_rows(rows, eps, physics=None):
-    """Recompute the chunk's sample; rows gain tau_ref and error. Returns overstepped rows."""
+    """Recompute the chunk's sample; rows gain tau_ref and error (after tau, before a carried
+    state: ``rundir.sample_columns``). Returns overstepped rows."""
     bad = []
     for row in rows:
-        _, _, _, n, phi, v, phi1, v1, tau = row
+        _, _, _, n, phi, v, phi1, v1, tau = row[:9]
         try:
             # the elastic call is the one it always was (no physics argument)
             with _VERIFY_LOCK:
@@ -287,7 +291,7 @@ def verify_rows(rows, eps, physics=None):
             raise RunFailed(f"verify could not decide sampled collision {int(n)} from "
                             f"phi={phi!r}, v={v!r} that fastpath converged: {err}") from None
         row[3] = int(n)
-        row.extend([tau_ref, error])
+        row[9:9] = [tau_ref, error]
         if overstep:
             bad.append(row)
     return bad

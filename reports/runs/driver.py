@@ -55,7 +55,7 @@ from reports.runs.signals import deferred_interrupt
 from reports.runs.survival import survival_curve, wilson
 
 
-def summary(tally):
+def summary(tally, scene):
     """The verification summary of the manifest."""
     worst = max(tally.samples, key=lambda r: r[10], default=None)
     out = {"sampled": len(tally.samples),
@@ -66,7 +66,7 @@ def summary(tally):
            "overstep_tolerance": OVERSTEP_TOLERANCE,
            "verify_dps": VERIFY_DPS}
     if worst:
-        out["worst_at"] = dict(zip(rundir.SAMPLE_COLUMNS, worst, strict=True))
+        out["worst_at"] = dict(zip(rundir.sample_columns(scene), worst, strict=True))
     return out
 
 
@@ -185,10 +185,10 @@ def _run_locked(plan, out, resume, force, progress, threads, scheduler):
 
 
 def _fail(out, plan, tally, ctx, bad):
-    row = dict(zip(rundir.SAMPLE_COLUMNS, bad[0], strict=True))
+    row = dict(zip(rundir.sample_columns(plan.scene), bad[0], strict=True))
     msg = (f"OVERSTEP: {len(bad)} sampled collision(s) where the fast flight time exceeds"
            f" verify's first root by more than {OVERSTEP_TOLERANCE:g}*kappa*u, first: {row}")
-    ver = summary(tally)
+    ver = summary(tally, plan.scene)
     ver["overstepped"] = len(bad)
     ctx["hashes"].update(write_results(out, plan, tally))
     _manifest(out, plan, tally, "failed", ctx, failure=msg, verification=ver)
@@ -241,7 +241,7 @@ def _manifest(out, plan, tally, status, ctx, failure=None, verification=None):
         "wall_time_s": round(tally.elapsed, 3),
         "collisions": tally.collisions,
         "collisions_per_s": round(tally.collisions / tally.elapsed) if tally.elapsed else None,
-        "verification": verification or summary(tally),
+        "verification": verification or summary(tally, sc),
         "curves": curves,
         "bins": {"collisions": {"first": 1, "decades": COLLISION_DECADES,
                                 "per_decade": sc.bins_per_decade, "integer": True},
@@ -296,7 +296,8 @@ def result_files(plan, tally):
         files["counts.csv"] = rundir.csv_text(COUNTS_COLUMNS, counts_rows(plan, tally))
     samples = sorted(tally.samples, key=lambda r: (r[0], r[1], r[2]))
     files["sample.csv"] = rundir.csv_text(
-        rundir.SAMPLE_COLUMNS, [[*map(int, r[:4]), *map(repr, map(float, r[4:]))] for r in samples])
+        rundir.sample_columns(sc),
+        [[*map(int, r[:4]), *map(repr, map(float, r[4:]))] for r in samples])
     return files
 
 

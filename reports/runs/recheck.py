@@ -13,8 +13,10 @@ Discrepancies are reported by file and line; any one fails the audit (exit statu
    escaped and censored per curve, sampled, uncertain settled, worst error) agree with the
    checkpoint and the sample;
 5. for every row of sample.csv (a pre-collision state (phi, v) and the fast result):
-   ``fastpath.step(phi, v, eps)`` gives the stored (phi1, v1, tau) bit for bit, and
-   ``verify.step`` gives the stored tau_ref and error again; an overstep
+   ``fastpath.step(phi, v, eps)`` gives the stored (phi1, v1, tau) bit for bit (with
+   restitution < 1 ``fastpath.carried_step`` from (phi, v) and the row's carried state, which
+   it checks is a departure from (phi, v): the step the kernel made), and ``verify.step`` from
+   (phi, v) gives the stored tau_ref and error again; an overstep
    tau - tau_ref > 16*kappa*u*tau_ref fails the check.
 """
 
@@ -33,6 +35,7 @@ from reports.runs.counts import CheckpointError, Tally
 from reports.runs.driver import result_files, survival_rows
 from reports.runs.integrity import curve_problems, parse_counts, survival_problems, tally_problems
 from reports.runs.plan import make_plan
+from reports.runs.rundir import CARRIED_COLUMNS
 from reports.runs.scenes import parse_scene
 
 SHOWN = 5  # discrepancies shown per check; the count of all of them is reported
@@ -159,13 +162,19 @@ def _sample(run_dir, scene, progress):
             phi, v = float(row["phi"]), float(row["v"])
             stored = (float(row["phi1"]), float(row["v1"]), float(row["tau"]))
             tau_ref, error = float(row["tau_ref"]), float(row["error"])
+            carried = [float(row[c]) for c in CARRIED_COLUMNS] if scene.carries else None
         except (KeyError, TypeError, ValueError):
             out.append(f"sample.csv:{line}: not a sample row")
             continue
-        fast = tuple(fastpath.step(phi, v, scene.eps, **scene.physics()))
-        if fast != stored:
-            out.append(f"sample.csv:{line}: fastpath.step gives {fast}"
-                       f", the file {stored} (not reproduced bit for bit)")
+        name = "fastpath.carried_step" if scene.carries else "fastpath.step"
+        try:
+            fast = tuple(fastpath.carried_step(phi, v, scene.eps, carried, **scene.physics())
+                         if scene.carries else fastpath.step(phi, v, scene.eps, **scene.physics()))
+            if fast != stored:
+                out.append(f"sample.csv:{line}: {name} gives {fast}"
+                           f", the file {stored} (not reproduced bit for bit)")
+        except (ValueError, fastpath.UncertainCollision) as err:
+            out.append(f"sample.csv:{line}: {name} refuses the row: {err}")
         ref, err, overstep = (check_sample(phi, v, stored[2], scene.eps, scene.physics())
                               if not scene.elastic else check_sample(phi, v, stored[2], scene.eps))
         worst = max(worst, err)

@@ -50,6 +50,14 @@ def os_error_text(err):
 
 SAMPLE_COLUMNS = ("experiment", "chunk", "particle", "n", "phi", "v", "phi1", "v1", "tau",
                   "tau_ref", "error")
+# after those, scenes with restitution < 1 record the departure's carried state, the argument
+# ``carried`` of ``fastpath.carried_step`` in its order
+CARRIED_COLUMNS = ("base_phase", "s", "sin", "cos", "w", "detached")
+
+
+def sample_columns(scene):
+    """The columns of ``scene``'s sample rows (sample.csv, the checkpoint)."""
+    return SAMPLE_COLUMNS + (CARRIED_COLUMNS if scene.carries else ())
 
 
 def sha256_bytes(data):

@@ -95,6 +95,12 @@ class Scene:
         """True for the elastic, drag-free model (no ``[physics]``, or its defaults)."""
         return self.restitution == 1.0 and self.drag == 0.0
 
+    @property
+    def carries(self) -> bool:
+        """True for restitution < 1: a step of the dissipative kernel then reads a carried state
+        beyond (phi, v) (``fastpath.carried_step``), which the sample records."""
+        return self.restitution < 1.0
+
     def physics(self) -> dict:
         """The keywords of ``fastpath``/``verify`` for this scene's physics (empty if elastic)."""
         if self.elastic:

@@ -211,7 +211,7 @@ def _sweep_locked(base, out, axes, values, points, live, n_star, particles, thre
                 settled += result.counts.settled
                 samples.extend([i, *r] for r in result.rows)
                 if result.bad:
-                    row = dict(zip(("point", *rundir.SAMPLE_COLUMNS), [i, *result.bad[0]],
+                    row = dict(zip(("point", *rundir.sample_columns(base)), [i, *result.bad[0]],
                                    strict=True))
                     raise RunFailed(f"OVERSTEP at sweep point {i}: {len(result.bad)} sampled"
                                     " collision(s) where the fast flight time exceeds verify's"
@@ -229,7 +229,7 @@ def _sweep_locked(base, out, axes, values, points, live, n_star, particles, thre
     rows = _rows(points, survivors, collisions, n_star, particles)
     rundir.write_csv(out / "sweep.csv", COLUMNS, rows)
     samples.sort(key=lambda r: (int(r[0]), int(r[1]), int(r[2]), int(r[3])))
-    rundir.write_csv(out / "sample.csv", ("point", *rundir.SAMPLE_COLUMNS),
+    rundir.write_csv(out / "sample.csv", ("point", *rundir.sample_columns(base)),
                      [[*map(int, r[:5]), *map(repr, map(float, r[5:]))] for r in samples])
     plot_map(out / "escape-rate.png", base, axes, values, rows, n_star)
     manifest = _manifest(base, axes, values, points, n_star, particles, session, "complete")

@@ -116,7 +116,7 @@ def test_merge_is_keyed_by_chunk_index(scene):
         np.testing.assert_array_equal(getattr(ordered, name), getattr(shuffled, name))
     assert ordered.samples == shuffled.samples and ordered.finished == shuffled.finished
     assert ordered.collisions == shuffled.collisions
-    assert driver.summary(ordered) == driver.summary(shuffled)
+    assert driver.summary(ordered, scene) == driver.summary(shuffled, scene)
 
 
 def test_cluster_run_is_bit_identical_to_local(scene, reference, local_cluster, tmp_path,
