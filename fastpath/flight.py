@@ -50,6 +50,7 @@ from fastpath.concave import concave_flight
 from fastpath.gap import UNIT_ROUNDOFF, departure, gap, gap_error, gap_rate, rate_error
 from fastpath.lockstep import lockstep_flight_one
 from fastpath.phase import centre_phase
+from fastpath.sincos import sin_cos, sin_cos_error
 from fastpath.status import FlightStatus
 
 CONVERGED = int(FlightStatus.CONVERGED)
@@ -123,7 +124,8 @@ def phase_error_of(phi_given, phi_centred):
 def departure_of(phi, v, eps):
     """(w0, bound): w0 = v + eps*sin(phi) as the flight kernels compute it, with its error bound."""
     centred = centre_phase(phi)
-    return departure(centred, math.sin(centred), v, eps, phase_error_of(phi, centred))
+    return departure(centred, sin_cos(centred)[0], v, eps,
+                     phase_error_of(phi, centred) + sin_cos_error(centred))
 
 
 @jit
@@ -133,9 +135,10 @@ def solve_flight(phi, v, eps, method=AUTO):
     tau is the smallest positive root of the gap; ``status`` is a FlightStatus code.
     """
     centred = centre_phase(phi)
+    sin_phi, cos_phi = sin_cos(centred)  # as collide: flight and step give the same tau
     tau, _, _, iterations, status = flight_from(
-        centred, math.sin(centred), math.cos(centred), v, eps, method,
-        phase_error_of(phi, centred),
+        centred, sin_phi, cos_phi, v, eps, method, phase_error_of(phi, centred)
+        + sin_cos_error(centred),
     )
     return tau, iterations, status
 

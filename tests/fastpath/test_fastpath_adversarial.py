@@ -196,6 +196,7 @@ def test_huge_phases(log_phi, sign, w0, eps):
 @example(phi=-1e300, v=3.0, eps=0.6, w0=None)  # step returned phi1 = -1e300
 @example(phi=-1e-5, v=1e-5, eps=1.0, w0=None)
 @example(phi=0.0, v=2.225073858507e-311, eps=2.225073858507e-311, w0=None)  # subnormal v1
+@example(phi=-1e7, v=0.0, eps=-0.25, w0=None)  # flight's sine was libm's, step's sin_cos's
 def test_any_input_is_bounded_and_never_negative(phi, v, eps, w0):
     """Any finite input: <= 60 iterations; CONVERGED tau > 0; step's phase in [0, 2*pi) and the
     impact rule: v1 = 2u - v_in, with u - v_in = -d'(tau) > 0 (the particle leaves the plate)."""
