@@ -23,15 +23,9 @@ branch-free:
   The caller then runs ``concave_flight``'s general loop. About 1 flight in 25 of the seed's
   escape ensemble (measured in the benchmark's report).
 
-Final step. ``concave_flight`` answers at a point where |d| <= d_err (the gap's rounding bound)
-and d' < -d1_err, with the Newton correction h = -d/d'. Its error: the root t* = t + h* solves
-0 = d + d'*h* + d''(xi)*h***2/2 with |d''| <= a = 1 + |eps|, so |h* - h| <= a*h***2/(2|d'|), and
-the rounding of d and d' adds (d_err + |h|*d1_err)/(|d'| - d1_err): in all at most
-(d_err + |h|*d1_err + a*h**2/2)/(|d'| - d1_err) (to first order in h). A Newton step from a point
-with |d| > d_err has the same bound; where |h|*d1_err + a*h**2/2 <= d_err/16 it exceeds the
-bound at |d| <= d_err by at most 1/16 of it. ``lockstep_flight`` then answers at once instead of
-evaluating once more at t + h (after a Halley step from an error ~1e-3 the next error is ~1e-9,
-and |h| <= ~4e-8 is final): one evaluation fewer in most flights, the answer as good.
+Final step: as ``concave_flight``, the Newton correction is taken at a point where |d| is within
+its rounding bound, or where it is provably as good (``fastpath.concave.newton_is_final``): one
+evaluation fewer in most flights.
 
 The answer is a pure function of the inputs, so ``concave_flight`` (one flight) and the
 ensemble (a batch) return the same bits for the same departure.
@@ -40,7 +34,7 @@ ensemble (a batch) return the same bits for the same departure.
 import math
 
 from fastpath._jit import inline_jit, jit
-from fastpath.concave import two_sum
+from fastpath.concave import newton_is_final, two_sum
 from fastpath.gap import UNIT_ROUNDOFF, departure, gap_error, rate_error
 from fastpath.sincos import SIN_COS_LIMIT, sin_cos
 
@@ -80,13 +74,6 @@ def _classify(phi, v, eps, t, d, d1):
 
 
 @inline_jit
-def _newton_is_final(newton, d_err, d1_err, eps):
-    """Whether the Newton correction h = -d/d' from a point after the maximum (d' < -its error)
-    is as good as one from a point where |d| <= d_err (module docstring, "Final step")."""
-    return (0.5 * (1.0 + abs(eps)) * newton * newton + abs(newton) * d1_err) <= d_err / 16.0
-
-
-@inline_jit
 def _rotate(s, c, h):
     """(sin, cos) of the angle moved on by h: first order below 1e-8, else angle addition."""
     sh, ch = sin_cos(h)
@@ -117,7 +104,7 @@ def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
     halley_denominator = 2.0 * d1 * d1 - d * (-1.0 + eps * c)
     reciprocal = 1.0 / (d1 * halley_denominator)
     newton = -d * halley_denominator * reciprocal
-    if d1 < -d1_err and (abs(d) <= d_err or _newton_is_final(newton, d_err, d1_err, eps)):
+    if d1 < -d1_err and (abs(d) <= d_err or newton_is_final(newton, d_err, d1_err, eps)):
         # at the root: the Newton correction, clamped into the certified bracket
         answer = min(max(t + newton, lo), hi)
         if d > d_err:

@@ -28,7 +28,7 @@ from fastpath.advance import (
 )
 from fastpath.collision import collide_from
 from fastpath.drag import NONE
-from fastpath.flight import CONVERGED
+from fastpath.flight import AUTO, CONVERGED, GENERAL
 from fastpath.holmes import holmes_collide
 from fastpath.phase import reduce_phase
 
@@ -45,6 +45,10 @@ def exact_orbit(phi0, v0, eps, phi, v, t, iterations, method):
     v[0] = v0
     t[0] = 0.0
     sin_phi, cos_phi = math.sin(phi[0]), math.cos(phi[0])
+    # An orbit carries its sines from collision to collision (its collisions are not step's
+    # bit for bit anyway), so it skips the lockstep flight, which pays for its straight-line
+    # code when it runs one flight at a time, and takes the concave solver's early exits.
+    method = GENERAL if method == AUTO else method
     for k in range(len(iterations)):
         phi1, sin_phi, cos_phi, v1, tau, its, status = collide_from(
             phi[k], sin_phi, cos_phi, v[k], eps, method
