@@ -28,7 +28,7 @@ from fastpath._jit import parallel_jit
 from fastpath._validate import check_dissipation, count, float_inputs, physics
 from fastpath.collision import collide_from
 from fastpath.dissipative_moments import dissipative_moments_kernel
-from fastpath.flight import AUTO, CONVERGED
+from fastpath.flight import CONVERGED, GENERAL
 from fastpath.holmes import holmes_collide
 from fastpath.phase import reduce_phase
 
@@ -76,8 +76,9 @@ def moments_kernel(phi0, v0, eps, model, n_grid, t_grid, max_collisions, count_n
                     phi1, v1 = holmes_collide(phi, v, eps)
                     tau = 2.0 * v
                 else:
+                    # GENERAL as fastpath.orbit: the same collisions, bit for bit
                     phi1, sin_phi, cos_phi, v1, tau, _, status = collide_from(
-                        phi, sin_phi, cos_phi, v, eps, AUTO)
+                        phi, sin_phi, cos_phi, v, eps, GENERAL)
                     if status != CONVERGED:
                         flags[i] = status
                         break
