@@ -240,21 +240,21 @@ def test_certify_candidate_refuses_the_third_root_for_eps_in_one_to_two():
 
 
 def test_certify_candidate_default_is_50_digits():
-    """An enclosure of relative half-width 10**-59.5 around the root is provable at
-    50 + 10 = 60 working digits only just; it is at 61 and not at 58."""
-    tau = verify.certify_flight(0.3, 1 / 3, 0.5, dps=80).tau
-    with mp.workdps(100):
-        delta = tau * mp.mpf(10) ** mp.mpf(-59.5)
+    """An enclosure of relative half-width 10**-60.8 around the root: d's sign at its ends is
+    decided at 61 working digits (dps = 51) but not at 60 (dps = 50, the default)."""
+    tau = verify.certify_flight(0.3, 1 / 3, 0.5, dps=90).tau
+    with mp.workdps(110):
+        delta = tau * mp.mpf(10) ** mp.mpf(-60.8)
         lo_, hi_ = tau - delta, tau + delta
-    results = {dps: certify.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_, dps=dps)
-               for dps in (48, 49, 50, 51)}
-    assert results[51]
-    assert certify.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_) == results[50]
-    assert results[50] != results[51] or results[49] != results[50]
+    assert certify.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_, dps=51)
+    assert not certify.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_, dps=50)
+    assert not certify.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_)
 
 
 @pytest.mark.parametrize(("lo_", "hi_", "needle"), [
-    (math.nan, 1.0, "lo"), (0.5, math.inf, "hi"), (0.0, 1.0, "lo=0"), (1.0, 1.0, "hi=1"),
+    (math.nan, 1.0, "^lo must be finite, got lo=nan"),
+    (0.5, math.inf, "^hi must be finite, got hi=inf"),
+    (0.0, 1.0, "^need 0 < lo < hi, got lo=0"), (1.0, 1.0, "^need 0 < lo < hi, got lo=1.0, hi=1.0"),
 ])
 def test_certify_candidate_rejects_bad_enclosures(lo_, hi_, needle):
     with pytest.raises(ValueError, match=needle):
@@ -384,7 +384,7 @@ def _budget_message(message, phi, v, eps):
     m = re.fullmatch(_BUDGET.format(n=NUMBER), message)
     assert m, message
     assert [m.group(i) for i in (3, 4, 5)] == [mp.nstr(mp.mpf(x), 8) for x in (phi, v, eps)]
-    assert _significant_digits(m.group(2)) <= 8 and mp.mpf(m.group(2)) > 0
+    assert _significant_digits(m.group(2)) == 8 and mp.mpf(m.group(2)) > 0
     return m.group(1), mp.mpf(m.group(2))
 
 
@@ -430,3 +430,61 @@ def test_concave_bracket_budget_message(monkeypatch):
     with pytest.raises(verify.UndecidableCollision) as info:
         verify.certify_flight(4.0, 3.0, 0.6, dps=30, max_dps=40)
     assert info.value.what == "no enclosure of the root in 3 bracket steps"
+
+
+# --- the concave bracket: ends already proved, and a check point exactly on the root ---------
+
+@pytest.mark.parametrize("side", [-1, 1])
+def test_concave_candidate_just_off_the_root(monkeypatch, side):
+    """phi = -x, v = x, eps = 1: the root is exactly 2x. A first candidate 1.5 deltas off the
+    root proves one bracket end next to it; Newton's next candidate then has that end within
+    delta, so the end's known sign is used (no evaluation): still one attempt at 60 digits."""
+    x = 3e-5
+    real, calls = certify._newton_from_right, []
+
+    def first_off(ctx, t):
+        calls.append(t)
+        if len(calls) == 1:
+            return 2 * mp.mpf(x) * (1 + side * mp.mpf(1.5) * mp.mpf(10) ** -50)
+        return real(ctx, t)
+
+    monkeypatch.setattr(certify, "_newton_from_right", first_off)
+    cert = verify.certify_flight(-x, x, 1.0)
+    lo_, hi_ = cert.enclosure
+    assert lo_ < 2 * mp.mpf(x) < hi_ and cert.dps_used == 60 and len(calls) == 2
+    assert (hi_ - lo_) / hi_ <= 3 * mp.mpf(10) ** -50
+
+
+def _candidate_with_an_end_on(root, side):
+    """A candidate c whose check point c + side*c*10**-dps rounds exactly to ``root`` at the
+    working precision (searched among the neighbours of root/(1 + side*10**-dps))."""
+
+    def candidate(ctx, t):
+        scale = mp.mpf(10) ** (-ctx.dps)
+        c0 = root / (1 + side * scale)
+        ulp = mp.mpf(2) ** (mp.mag(c0) - mp.prec)
+        for k in range(-8, 9):
+            c = c0 + k * ulp
+            if c + side * (c * scale) == root:
+                return c
+        raise AssertionError("no candidate found")
+
+    return candidate
+
+
+@pytest.mark.parametrize("side", [-1, 1])
+def test_concave_check_point_exactly_on_the_root(monkeypatch, side):
+    """eps = 0, v = 1: d(t) = t*(1 - t/2) is evaluated exactly and d(2) = [0, 0]. A candidate
+    whose check point is exactly 2 decides no sign there (the attempt is undecided); the next
+    attempt encloses 2 strictly."""
+    real, calls = certify._newton_from_right, []
+    on_root = _candidate_with_an_end_on(mp.mpf(2), side)
+
+    def first_on_root(ctx, t):
+        calls.append(t)
+        return on_root(ctx, t) if len(calls) == 1 else real(ctx, t)
+
+    monkeypatch.setattr(certify, "_newton_from_right", first_on_root)
+    cert = verify.certify_flight(0.0, 1.0, 0.0, dps=30)
+    lo_, hi_ = cert.enclosure
+    assert lo_ < 2 < hi_ and cert.dps_used == 80
