@@ -488,3 +488,26 @@ def test_concave_check_point_exactly_on_the_root(monkeypatch, side):
     cert = verify.certify_flight(0.0, 1.0, 0.0, dps=30)
     lo_, hi_ = cert.enclosure
     assert lo_ < 2 < hi_ and cert.dps_used == 80
+
+
+def test_general_candidate_with_a_small_positive_gap_is_passed(monkeypatch):
+    """|eps| > 1: a first candidate just before the first root r1 (d ~ 2e-4 > 0 there, well
+    decided) is a near-tangency that does not touch: the proof covers it and the search goes
+    on to r1, in the same attempt (a positive d(right) is never taken for a landing)."""
+    g = verify.grazing_contact(3.0, 0.2, 4.0, -1e-3)
+    with mp.workdps(80):
+        f = lambda t: mp_gap(g.phi, g.v, mp.mpf(3), t)  # noqa: E731
+        r1 = mp.findroot(f, g.T - mp.sqrt(2e-3 / (3 * mp.cos(0.2) - 1)))
+        early = r1 * (1 - mp.mpf(10) ** -3)
+        assert 0 < f(early) < 1e-2
+    real, calls = certify._candidate, []
+
+    def first_early(ctx, curv, t):
+        calls.append(t)
+        return early if len(calls) == 1 else real(ctx, curv, t)
+
+    monkeypatch.setattr(certify, "_candidate", first_early)
+    cert = verify.certify_flight(g.phi, g.v, 3.0)
+    assert cert.dps_used == 60 and len(calls) == 2
+    with mp.workdps(80):
+        assert abs(cert.tau - r1) < mp.mpf(10) ** -45 * r1
