@@ -490,16 +490,20 @@ def test_concave_check_point_exactly_on_the_root(monkeypatch, side):
     assert lo_ < 2 < hi_ and cert.dps_used == 80
 
 
-def test_general_candidate_with_a_small_positive_gap_is_passed(monkeypatch):
-    """|eps| > 1: a first candidate just before the first root r1 (d ~ 2e-4 > 0 there, well
-    decided) is a near-tangency that does not touch: the proof covers it and the search goes
-    on to r1, in the same attempt (a positive d(right) is never taken for a landing)."""
+def _early_candidate():
+    """The two-roots departure (eps = 3) and a point just before its first root r1 where
+    d ~ 2e-4 > 0 (well decided at any precision)."""
     g = verify.grazing_contact(3.0, 0.2, 4.0, -1e-3)
     with mp.workdps(80):
         f = lambda t: mp_gap(g.phi, g.v, mp.mpf(3), t)  # noqa: E731
         r1 = mp.findroot(f, g.T - mp.sqrt(2e-3 / (3 * mp.cos(0.2) - 1)))
         early = r1 * (1 - mp.mpf(10) ** -3)
         assert 0 < f(early) < 1e-2
+    return g, r1, early
+
+
+def _offer_first(monkeypatch, early):
+    """Make ``early`` the first candidate of the search; the later ones are the real ones."""
     real, calls = certify._candidate, []
 
     def first_early(ctx, curv, t):
@@ -507,7 +511,100 @@ def test_general_candidate_with_a_small_positive_gap_is_passed(monkeypatch):
         return early if len(calls) == 1 else real(ctx, curv, t)
 
     monkeypatch.setattr(certify, "_candidate", first_early)
+    return calls
+
+
+def test_general_candidate_with_a_small_positive_gap_is_passed(monkeypatch):
+    """|eps| > 1: a first candidate just before the first root r1 is a near-tangency that
+    does not touch: the proof covers it and the search goes on to r1, in the same attempt (a
+    positive d(right) is never taken for a landing), counting every evaluation in ``boxes``."""
+    g, r1, early = _early_candidate()
+    calls = _offer_first(monkeypatch, early)
+    counted = _count_interval_evaluations(monkeypatch)
     cert = verify.certify_flight(g.phi, g.v, 3.0)
     assert cert.dps_used == 60 and len(calls) == 2
+    assert cert.boxes == counted["n"]
     with mp.workdps(80):
         assert abs(cert.tau - r1) < mp.mpf(10) ** -45 * r1
+
+
+def test_box_budget_counts_every_box_of_the_flight(monkeypatch):
+    """The budget check after a near-tangency counts the boxes so far (B: the proof up to the
+    candidate, d(right), the proof across it): a limit of B - 1 stops there, naming
+    right = c + c*10**-50; a limit of B passes it (and stops later, in a longer stretch)."""
+    g, r1, early = _early_candidate()
+    proofs = []
+    real_prove = certify._prove_positive
+
+    def recording(ctx, a, end):
+        proofs.append(real_prove(ctx, a, end))
+        return proofs[-1]
+
+    monkeypatch.setattr(certify, "_prove_positive", recording)
+    _offer_first(monkeypatch, early)
+    verify.certify_flight(g.phi, g.v, 3.0)
+    budget = proofs[0] + 1 + proofs[1]  # boxes at the check: proof to left, d(right), across
+    assert max(proofs[:2]) < budget - 1 < proofs[2]
+    with working_dps(60):
+        right = mp.nstr(early + early * mp.mpf(10) ** -50, 8)
+    reached = {}
+    for limit in (budget - 1, budget):  # the check at the near-tangency fails, then passes
+        _offer_first(monkeypatch, early)
+        monkeypatch.setattr(certify, "_MAX_BOXES", limit)
+        with pytest.raises(ValueError) as info:
+            verify.certify_flight(g.phi, g.v, 3.0)
+        what, tau = _budget_message(str(info.value), g.phi, g.v, 3.0)
+        assert what == f"{limit} proof boxes"
+        reached[limit] = tau
+    assert mp.nstr(reached[budget - 1], 8) == right  # stopped at the near-tangency
+    assert reached[budget] > reached[budget - 1]  # stopped later, in the next stretch
+
+
+def test_near_tangency_step_budget(monkeypatch):
+    """At most _MAX_STEPS candidates per search: with one allowed, the near-tangency that
+    does not touch ends the search (the budget error names the point reached)."""
+    g, r1, early = _early_candidate()
+    _offer_first(monkeypatch, early)
+    monkeypatch.setattr(certify, "_MAX_STEPS", 1)
+    with pytest.raises(ValueError) as info:
+        verify.certify_flight(g.phi, g.v, 3.0)
+    what, _ = _budget_message(str(info.value), g.phi, g.v, 3.0)
+    assert what == "1 near-tangencies"
+
+
+def test_box_loop_budget_is_per_stretch(monkeypatch):
+    """A stretch proved with exactly _MAX_BOXES evaluations passes (the limit is > not >=)."""
+    g = verify.grazing_contact(3.0, 0.2, 4.0, -1e-3)
+    proofs = []
+    real_prove = certify._prove_positive
+
+    def recording(ctx, a, end):
+        proofs.append(real_prove(ctx, a, end))
+        return proofs[-1]
+
+    monkeypatch.setattr(certify, "_prove_positive", recording)
+    verify.certify_flight(g.phi, g.v, 3.0)
+    assert len(proofs) == 1 and proofs[0] > 2
+    monkeypatch.setattr(certify, "_MAX_BOXES", proofs[0])
+    with working_dps(60):
+        ctx = certify._context(g.phi, g.v, mp.mpf(3), 50, 60)
+        free = lo(ctx.iv_v + ctx.ieps * iv.sin(ctx.iphi)) / 4
+        tau = verify.certify_flight(g.phi, g.v, 3.0).tau
+        left = tau * (1 - mp.mpf(10) ** -50)
+        assert real_prove(ctx, free, left) == proofs[0]
+
+
+def test_general_graze_message_when_the_stretch_is_proved(monkeypatch):
+    """Forced (the stretch before the candidate taken as proved): the exact tangency's
+    candidate then meets an undecided d(c + delta); the message states |d| there (3 digits)
+    and the candidate (20 digits), with the precision hint."""
+    g = verify.grazing_contact(3.0, 0.2, 4.0, 0, dps=500)
+    monkeypatch.setattr(certify, "_prove_positive", lambda ctx, a, end: 1)
+    with working_dps(40), pytest.raises(certify._Undecided) as info:
+        certify._attempt(g.phi, g.v, mp.mpf(3), 30, 40)
+    m = re.fullmatch(rf"d has a minimum within {NUMBER} of 0 near tau={NUMBER}: graze or not",
+                     info.value.what)
+    assert m, info.value.what
+    assert _significant_digits(m.group(1)) == 3 and _significant_digits(m.group(2)) == 20
+    assert 0 < mp.mpf(m.group(1)) < 1e-35 and abs(mp.mpf(m.group(2)) - g.T) < 1e-15
+    assert info.value.needed > 40
