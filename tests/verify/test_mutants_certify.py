@@ -594,11 +594,12 @@ def test_box_loop_budget_is_per_stretch(monkeypatch):
         assert real_prove(ctx, free, left) == proofs[0]
 
 
-def test_general_graze_message_when_the_stretch_is_proved(monkeypatch):
+@pytest.mark.parametrize(("psi", "t_guess"), [(0.2, 4.0), (0.25, 3.0)])
+def test_general_graze_message_when_the_stretch_is_proved(monkeypatch, psi, t_guess):
     """Forced (the stretch before the candidate taken as proved): the exact tangency's
     candidate then meets an undecided d(c + delta); the message states |d| there (3 digits)
     and the candidate (20 digits), with the precision hint."""
-    g = verify.grazing_contact(3.0, 0.2, 4.0, 0, dps=500)
+    g = verify.grazing_contact(3.0, psi, t_guess, 0, dps=500)
     monkeypatch.setattr(certify, "_prove_positive", lambda ctx, a, end: 1)
     with working_dps(40), pytest.raises(certify._Undecided) as info:
         certify._attempt(g.phi, g.v, mp.mpf(3), 30, 40)
