@@ -16,6 +16,7 @@ import pytest
 
 import fastpath
 import verify
+from fastpath.phase import TWO_PI
 from reports.runs import chunk
 from reports.runs.counts import CheckpointError, Finished, Tally
 from reports.runs.plan import SAMPLE_DEPTH, chunk_starts, make_plan
@@ -319,3 +320,26 @@ def test_load_messages(tmp_path):
                        match=r"fails its content hash \(edited or corrupted\)$"):
         Tally.load(path)
 
+
+
+def test_settled_states_on_the_portrait_edges_land_in_the_last_bins(monkeypatch):
+    """verify's phase is rounded to float64 and may be TWO_PI itself (a phase just below 2*pi),
+    and (v - lo)/(hi - lo) may round to 1 for v < hi: both are clamped into the last bin, as in
+    the kernel. Every collision is settled here at (TWO_PI, 2.0), with v_range = (-2**60, the
+    float after 2.0)."""
+    plan = make_plan(parse_scene(PORTRAIT), particles=5)
+    plan.scene = dataclasses.replace(plan.scene, v_range=(-(2.0**60), np.nextafter(2.0, 3.0)))
+    monkeypatch.setattr(chunk, "portrait_chunk",
+                        flagging_portrait(chunk.portrait_chunk, lambda n: np.ones(len(n), bool)))
+    monkeypatch.setattr(chunk, "settle", lambda phi, v, eps: (TWO_PI, 2.0, 1.0))
+    out, _ = chunk.simulate_chunk(plan, 0, 0)
+    assert out.portrait[-1, -1] == out.portrait.sum() == 5 * 12
+
+
+def test_a_sample_departing_at_phase_zero_is_kept():
+    """The sample row of a particle that departs at phi = 0.0 exactly (eps = 0: tau = 2, the
+    landing at phase 2 is in the hole [1.9, 2.1)): rows are kept by their collision index."""
+    plan = _one_particle_plan("time = 10.0")
+    out, rows = chunk.simulate_chunk(plan, 0, 0)
+    assert out.esc_n.sum() == 1
+    assert rows == [[0, 0, 0, 1.0, 0.0, 1.0, 2.0, 1.0, 2.0]]
