@@ -32,7 +32,7 @@ run_mutmut() {  # $1: group name (scripts/mutation/$1.cfg)
     local t0=$SECONDS
     local names=()  # optional scripts/mutation/<group>.names: mutant-name globs to run, one a line
     [ -f "$root/scripts/mutation/$1.names" ] && mapfile -t names < "$root/scripts/mutation/$1.names"
-    nice -n 10 mutmut run --max-children 1 "${names[@]}" > mutmut-run.log 2>&1 || { tail -20 mutmut-run.log; return 1; }
+    nice -n 15 mutmut run --max-children 1 "${names[@]}" > mutmut-run.log 2>&1 || { tail -20 mutmut-run.log; return 1; }
     mutmut results --all true > results.txt 2>&1
     echo "== $1: wall $((SECONDS - t0)) s (log: $dest/mutmut-run.log)"
     python - results.txt <<'EOF'
@@ -62,7 +62,7 @@ for g in $groups; do
         verify|runs|certify) run_mutmut "$g" ;;
         ensemble)
             scratch_copy "$work/ensemble"
-            nice -n 10 python "$root/scripts/mutation/ensemble.py" "$work/ensemble" ;;
+            nice -n 15 python "$root/scripts/mutation/ensemble.py" "$work/ensemble" ;;
         *) echo "unknown group: $g (verify, runs, ensemble, certify, all)" >&2; exit 2 ;;
     esac
 done

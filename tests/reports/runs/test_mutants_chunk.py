@@ -1,0 +1,345 @@
+"""Tests that kill mutants of the ensemble bookkeeping (scripts/mutation.sh runs):
+``chunk.simulate_chunk`` (the settled path of phase-space scenes, the time horizon of a settled
+flight, which sample rows are kept), ``chunk.run_chunk`` (its arguments, the failure result,
+threads, seconds), ``plan.chunk_starts`` (the verification picks) and ``Tally.load``.
+"""
+
+import dataclasses
+import io
+import math
+import time
+import zipfile
+
+import numba
+import numpy as np
+import pytest
+
+import fastpath
+import verify
+from fastpath.phase import TWO_PI
+from reports.runs import chunk
+from reports.runs.counts import CheckpointError, Finished, Tally
+from reports.runs.plan import SAMPLE_DEPTH, chunk_starts, make_plan
+from reports.runs.scenes import parse_scene
+
+PORTRAIT = """
+name = "portrait-settle"
+kind = "phase-space"
+eps = 0.6
+particles = 300
+seed = 5
+[start]
+phi = [0.0, 6.283185307179586]
+v = [1.0, 6.0]
+[horizon]
+collisions = 12
+[record]
+phi_bins = 36
+v_bins = 24
+v_range = [0.0, 8.0]
+"""
+
+
+def fast_settle(phi, v, eps):
+    """``settle`` with the kernel's own arithmetic (fastpath.step)."""
+    phi1, v1, tau = fastpath.step(phi, v, eps)
+    return float(phi1), float(v1), float(tau)
+
+
+def flagging_portrait(real, choose):
+    """A stand-in for ``portrait_chunk`` that flags the next collision of the particles picked
+    by ``choose(n)`` (before the horizon) and runs the real kernel on the others."""
+
+    def kernel(phi, v, n, eps, max_collisions, v_lo, v_hi, slot, target, counts, collisions,
+               flags, flag_state, samples):
+        flag = choose(n) & (n < max_collisions)
+        rest = ~flag
+        sub_flags = np.zeros(int(rest.sum()), np.int8)
+        sub_state = np.zeros((int(rest.sum()), 4))
+        real(phi[rest], v[rest], n[rest], eps, max_collisions, v_lo, v_hi, slot[rest],
+             target[rest], counts, collisions, sub_flags, sub_state, samples)
+        flags[rest] = sub_flags
+        flag_state[rest] = sub_state
+        flags[flag] = 1
+        flag_state[flag] = np.column_stack([phi, v, np.zeros(len(phi)), n])[flag]
+
+    return kernel
+
+
+def _portrait_plan():
+    """The scene with v_range's ends set to two velocities the orbits actually take: the lower
+    end is a collision velocity (counted: lo <= v), the upper one another (not counted)."""
+    plan = make_plan(parse_scene(PORTRAIT))
+    phi, v, *_ = chunk_starts(plan, 0, 0)
+    velocities = []
+    for p, w in zip(phi[:40], v[:40], strict=True):
+        for _ in range(12):
+            p, w, _tau = fast_settle(p, w, 0.6)
+            velocities.append(w)
+    velocities.sort()
+    lo, hi = velocities[len(velocities) // 10], velocities[-len(velocities) // 10]
+    plan.scene = dataclasses.replace(plan.scene, v_range=(lo, hi))
+    return plan, lo, hi
+
+
+@pytest.mark.parametrize("which", ["every", "random half"])
+def test_settled_portrait_equals_the_fast_portrait_bin_for_bin(monkeypatch, which):
+    plan, lo, hi = _portrait_plan()
+    base, _ = chunk.simulate_chunk(plan, 0, 0)
+    assert base.portrait.sum() > 1000 and base.settled == 0
+    rng = np.random.default_rng(1)
+    choose = {"every": lambda n: np.ones(len(n), bool),
+              "random half": lambda n: rng.random(len(n)) < 0.5}[which]
+    monkeypatch.setattr(chunk, "portrait_chunk", flagging_portrait(chunk.portrait_chunk, choose))
+    monkeypatch.setattr(chunk, "settle", fast_settle)
+    settled, _ = chunk.simulate_chunk(plan, 0, 0)
+    np.testing.assert_array_equal(settled.portrait, base.portrait)
+    assert settled.collisions == base.collisions == 300 * 12
+    assert settled.settled > 0
+
+
+def test_portrait_edges_are_hit_by_the_settled_path(monkeypatch):
+    """The precondition of the bin-for-bin test: some collision lands exactly on v_range's
+    lower end (counted in the first v bin) and some on its upper end (not counted)."""
+    plan, lo, hi = _portrait_plan()
+    hits = {"lo": 0, "hi": 0}
+    real = fast_settle
+
+    def watching(phi, v, eps):
+        out = real(phi, v, eps)
+        hits["lo"] += out[1] == lo
+        hits["hi"] += out[1] == hi
+        return out
+
+    monkeypatch.setattr(chunk, "portrait_chunk",
+                        flagging_portrait(chunk.portrait_chunk, lambda n: np.ones(len(n), bool)))
+    monkeypatch.setattr(chunk, "settle", watching)
+    chunk.simulate_chunk(plan, 0, 0)
+    assert hits["lo"] >= 1 and hits["hi"] >= 1
+
+
+def _one_particle_plan(horizon, eps=0.0):
+    """One particle from (phi, v) = (0, 1) (a start box of zero width) with ``eps``; with
+    eps = 0 every flight is exactly tau = 2 and phi advances by 2 into the hole [1.9, 2.1)."""
+    text = f"""
+name = "one"
+kind = "escape"
+eps = 0.6
+particles = 1
+seed = 1
+[start]
+phi = [3.0, 4.0]
+v = [1.0, 2.0]
+[holes]
+centres = [2.0]
+widths = [0.2]
+[horizon]
+{horizon}
+"""
+    plan = make_plan(parse_scene(text))
+    plan.scene = dataclasses.replace(plan.scene, eps=eps)
+    plan.experiments[0] = dataclasses.replace(plan.experiments[0], phi=(0.0, 0.0), v=(1.0, 1.0))
+    return plan
+
+
+def test_settled_collision_exactly_at_the_time_horizon_is_made(monkeypatch):
+    """As in the kernel, censoring needs t1 > max_time: the flight lands at t1 = 2 = max_time
+    in the hole [1.9, 2.1) and escapes."""
+    plan = _one_particle_plan("time = 2.0")
+    monkeypatch.setattr(chunk, "escape_chunk", _flag_everything)
+    monkeypatch.setattr(chunk, "settle", fast_settle)
+    out, _ = chunk.simulate_chunk(plan, 0, 0)
+    assert out.esc_n.sum() == 1 and out.cens_n.sum() == 0 and out.collisions == 1
+
+
+def _flag_everything(phi, v, t, n, eps, hole_lo, hole_width, max_collisions, max_time, n_edges,
+                     t_edges, record_n, record_t, slot, target, esc_n, esc_t, cens_n, cens_t,
+                     collisions, flags, flag_state, samples):
+    flags[:] = 1
+    flag_state[:] = np.column_stack([phi, v, t, n])
+
+
+def test_rows_are_the_reached_samples_only():
+    """max_collisions = 1: every pick's target is collision 1; all rows have n = 1. With a
+    time horizon before the first landing no particle makes a collision: no rows at all."""
+    one = make_plan(parse_scene(PORTRAIT.replace("collisions = 12", "collisions = 1")))
+    _, rows = chunk.simulate_chunk(one, 0, 0)
+    assert len(rows) == one.samples_per_chunk > 0
+    assert all(row[3] == 1 for row in rows)
+    none = _one_particle_plan("time = 1.0", eps=0.6)
+    out, rows = chunk.simulate_chunk(none, 0, 0)
+    assert out.cens_n.sum() == 1 and out.collisions == 0 and rows == []
+
+
+# --- run_chunk ------------------------------------------------------------------------------
+
+def test_run_chunk_passes_particles_and_seed():
+    sc = parse_scene(PORTRAIT)
+    result = chunk.run_chunk(sc, 11, 0, 0, particles=40)
+    counts, rows = chunk.simulate_chunk(make_plan(sc, 40, 11), 0, 0)
+    assert result.failure is None and result.code == chunk.CODE_DIGEST
+    np.testing.assert_array_equal(result.counts.portrait, counts.portrait)
+    assert result.counts.collisions == 40 * 12 and [r[:9] for r in result.rows] == rows
+
+
+@pytest.mark.parametrize(("curve", "chunk_index", "needle"), [
+    (1, 0, "no chunk \\(1, 0\\) in a run of 1 curves x 1 chunks"),
+    (0, 1, "no chunk \\(0, 1\\)"), (-1, 0, "no chunk"), (0, -1, "no chunk"),
+])
+def test_run_chunk_refuses_a_chunk_outside_the_run(curve, chunk_index, needle):
+    with pytest.raises(ValueError, match=needle):
+        chunk.run_chunk(parse_scene(PORTRAIT), 1, curve, chunk_index, particles=10)
+
+
+def test_run_chunk_failure_is_data(monkeypatch):
+    """A collision verify cannot settle: the result carries the message, empty integer counts,
+    no rows, the elapsed seconds and the code digest."""
+
+    def undecidable(phi, v, eps, dps=50):
+        raise verify.UndecidableCollision(phi, v, eps, dps, "forced")
+
+    monkeypatch.setattr(chunk, "portrait_chunk",
+                        flagging_portrait(chunk.portrait_chunk, lambda n: np.ones(len(n), bool)))
+    monkeypatch.setattr(verify, "step", undecidable)
+    t0 = time.perf_counter()
+    result = chunk.run_chunk(parse_scene(PORTRAIT), 1, 0, 0, particles=10)
+    wall = time.perf_counter() - t0
+    assert (result.curve, result.chunk) == (0, 0)
+    assert result.failure.startswith("verify could not settle the flagged collision from phi=")
+    assert "forced" in result.failure
+    assert result.rows == [] and result.bad == [] and result.code == chunk.CODE_DIGEST
+    assert 0 <= result.seconds <= wall
+    for name in ("esc_n", "esc_t", "cens_n", "cens_t", "portrait"):
+        a = getattr(result.counts, name)
+        assert a.shape == (0,) and a.dtype == np.int64, name
+    assert (result.counts.collisions, result.counts.settled) == (0, 0)
+    with pytest.raises(chunk.RunFailed, match="forced"):
+        chunk.check_result(result)
+
+
+def test_run_chunk_seconds_are_its_wall_time():
+    t0 = time.perf_counter()
+    result = chunk.run_chunk(parse_scene(PORTRAIT), 1, 0, 0, particles=10)
+    assert 0 <= result.seconds <= time.perf_counter() - t0
+
+
+@pytest.mark.parametrize(("threads", "expected"), [
+    (1, 1), (0, 1), (10**6, numba.config.NUMBA_NUM_THREADS), (1.0, 1)])
+def test_run_chunk_sets_the_numba_threads(threads, expected):
+    before = numba.get_num_threads()
+    try:
+        result = chunk.run_chunk(parse_scene(PORTRAIT), 1, 0, 0, particles=10, threads=threads)
+        assert numba.get_num_threads() == expected
+    finally:
+        numba.set_num_threads(before)
+    assert result.failure is None
+
+
+def test_verify_rows_failure_names_the_sampled_collision(monkeypatch):
+    def undecidable(phi, v, tau, eps):
+        raise verify.UndecidableCollision(phi, v, eps, 30, "forced")
+
+    monkeypatch.setattr(chunk, "check_sample", undecidable)
+    row = [0, 0, 3, 7.0, 0.25, 1.5, 1.0, 2.0, 0.5]
+    with pytest.raises(chunk.RunFailed) as info:
+        chunk.verify_rows([row], 0.6)
+    assert str(info.value).startswith(
+        "verify could not decide sampled collision 7 from phi=0.25, v=1.5 that fastpath"
+        " converged: ")
+    assert "forced" in str(info.value)
+
+
+# --- chunk_starts: the verification picks ---------------------------------------------------
+
+def test_picks_are_distinct_particles():
+    """Every start of a small chunk is picked (samples_per_chunk >= chunk size): the picks are
+    a permutation of the chunk, never a particle twice."""
+    plan = make_plan(parse_scene(PORTRAIT), particles=12)
+    plan.samples_per_chunk = 12
+    phi, v, slot, target, picks = chunk_starts(plan, 0, 0)
+    assert sorted(picks.tolist()) == list(range(12))
+    assert sorted(slot.tolist()) == list(range(12)) and (target >= 1).all()
+
+
+def test_sampled_collision_indices_are_log_uniform():
+    """targets = floor(depth**U), U uniform: log-uniform in [1, depth]. For depth = 10**6
+    (escape horizon without a collision limit) P(target < 1000) = 1/2; 2000 picks give
+    1000 +- 22.4 (binomial sd); an accepted range of +-5 sd."""
+    text = PORTRAIT.replace('kind = "phase-space"', 'kind = "escape"').replace(
+        "phi = [0.0, 6.283185307179586]", "phi = [3.0, 5.0]").replace(
+        "[horizon]\ncollisions = 12", "[holes]\ncentres = [1.0]\nwidths = [0.1]\n[horizon]\n"
+        "time = 1e6").replace("[record]\nphi_bins = 36\nv_bins = 24\nv_range = [0.0, 8.0]",
+                              "[record]\nverify_samples = 2000")
+    plan = make_plan(parse_scene(text), particles=20000)
+    assert plan.scene.max_collisions is None and plan.samples_per_chunk == 2000
+    _, _, slot, target, picks = chunk_starts(plan, 0, 0)
+    t = target[picks]
+    assert t.min() >= 1 and t.max() <= SAMPLE_DEPTH
+    assert len(np.unique(t)) > 500
+    below = int((t < math.sqrt(SAMPLE_DEPTH)).sum())
+    assert abs(below - 1000) <= 5 * math.sqrt(2000 * 0.25)
+
+
+# --- Tally.load ---------------------------------------------------------------------------------
+
+def _tally():
+    return Tally(np.zeros((1, 1, 3), np.int64), np.zeros((1, 1, 4), np.int64),
+                 np.zeros((1, 3), np.int64), np.zeros((1, 4), np.int64),
+                 np.zeros((0, 0), np.int64), collisions=5, settled=1,
+                 finished=Finished([1]), samples=[[0, 0, 2, 1.0], [0, 0, 1, 2.0]],
+                 elapsed=3.5, started="2026-11-23T16:00:00Z")
+
+
+def test_load_keeps_every_bookkeeping_field(tmp_path):
+    t = _tally()
+    t.samples.sort()
+    t.save(tmp_path / "c.npz")
+    back = Tally.load(tmp_path / "c.npz")
+    assert (back.collisions, back.settled, back.elapsed, back.started) == (
+        5, 1, 3.5, "2026-11-23T16:00:00Z")
+    assert back.samples == [[0, 0, 1, 2.0], [0, 0, 2, 1.0]] and back.finished == Finished([1])
+
+
+def test_load_messages(tmp_path):
+    path = tmp_path / "c.npz"
+    path.write_bytes(b"not a zip file")
+    with pytest.raises(CheckpointError, match=r"is unreadable \(ValueError: "):
+        Tally.load(path)
+    t = _tally()
+    t.save(path)
+    with zipfile.ZipFile(path) as z:
+        members = {n: z.read(n) for n in z.namelist()}
+    with zipfile.ZipFile(path, "w") as z:  # a count edited, the digest kept
+        for name, data in members.items():
+            if name == "esc_n.npy":
+                buf = io.BytesIO()
+                np.save(buf, np.ones((1, 1, 3), np.int64))
+                data = buf.getvalue()
+            z.writestr(name, data)
+    with pytest.raises(CheckpointError,
+                       match=r"fails its content hash \(edited or corrupted\)$"):
+        Tally.load(path)
+
+
+
+def test_settled_states_on_the_portrait_edges_land_in_the_last_bins(monkeypatch):
+    """verify's phase is rounded to float64 and may be TWO_PI itself (a phase just below 2*pi),
+    and (v - lo)/(hi - lo) may round to 1 for v < hi: both are clamped into the last bin, as in
+    the kernel. Every collision is settled here at (TWO_PI, 2.0), with v_range = (-2**60, the
+    float after 2.0)."""
+    plan = make_plan(parse_scene(PORTRAIT), particles=5)
+    plan.scene = dataclasses.replace(plan.scene, v_range=(-(2.0**60), np.nextafter(2.0, 3.0)))
+    monkeypatch.setattr(chunk, "portrait_chunk",
+                        flagging_portrait(chunk.portrait_chunk, lambda n: np.ones(len(n), bool)))
+    monkeypatch.setattr(chunk, "settle", lambda phi, v, eps: (TWO_PI, 2.0, 1.0))
+    out, _ = chunk.simulate_chunk(plan, 0, 0)
+    assert out.portrait[-1, -1] == out.portrait.sum() == 5 * 12
+
+
+def test_a_sample_departing_at_phase_zero_is_kept():
+    """The sample row of a particle that departs at phi = 0.0 exactly (eps = 0: tau = 2, the
+    landing at phase 2 is in the hole [1.9, 2.1)): rows are kept by their collision index."""
+    plan = _one_particle_plan("time = 10.0")
+    out, rows = chunk.simulate_chunk(plan, 0, 0)
+    assert out.esc_n.sum() == 1
+    assert rows == [[0, 0, 0, 1.0, 0.0, 1.0, 2.0, 1.0, 2.0]]
