@@ -367,6 +367,8 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
     if on_uncertain not in ("raise", "stop"):
         raise ValueError(f"on_uncertain must be 'raise' or 'stop', got {on_uncertain!r}")
     phi0, v0, eps = float(phi_a[0]), float(v_a[0]), float(eps_a[0])
+    if drag != 0.0 or restitution != 1.0:
+        return _dissipative(phi0, v0, eps, drag, law, restitution, n, on_uncertain, code)
     phi, v, t = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
     if model == "holmes":
         status = departure_status(phi0, v0, eps)
@@ -375,18 +377,22 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
         holmes_orbit(phi0, v0, eps, phi, v, t)
         return Orbit(phi, v, t, None, FlightStatus.CONVERGED, model, eps)
     iterations = np.zeros(n, np.int32)
-    if drag != 0.0 or restitution != 1.0:
-        return _dissipative(phi0, v0, eps, drag, law, restitution, n, on_uncertain, code)
     done, status = exact_orbit(phi0, v0, eps, phi, v, t, iterations, code)
-    if status != CONVERGED:
-        at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])
-        if status == NOT_DEPARTING or on_uncertain == "raise":
-            try:
-                _raise_on_status(np.array([status]), *at)
-            except (ValueError, UncertainCollision) as err:
-                raise type(err)(f"collision {done} of the orbit: {err}") from None
-        phi, v, t, iterations = phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done]
-    return Orbit(phi, v, t, iterations, FlightStatus(status), model, eps)
+    _raise_for_orbit(status, done, phi, v, eps, on_uncertain)
+    return Orbit(phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done],
+                 FlightStatus(status), model, eps)
+
+
+def _raise_for_orbit(status, done, phi, v, eps, on_uncertain):
+    """Raise for the flight that stopped an orbit after ``done`` collisions: always for a state
+    that does not depart, for an undecided flight when on_uncertain is "raise"."""
+    if status == CONVERGED or not (status == NOT_DEPARTING or on_uncertain == "raise"):
+        return
+    try:
+        _raise_on_status(np.array([status]), np.array([phi[done]]), np.array([v[done]]),
+                         np.array([eps]))
+    except (ValueError, UncertainCollision) as err:
+        raise type(err)(f"collision {done} of the orbit: {err}") from None
 
 
 def _dissipative(phi0, v0, eps, drag, law, restitution, n, on_uncertain, code):
@@ -397,13 +403,7 @@ def _dissipative(phi0, v0, eps, drag, law, restitution, n, on_uncertain, code):
     done, episodes, status, stuck = dissipative_orbit(
         phi0, v0, eps, drag, law, restitution, phi, v, t, iterations, sticking, code
     )
-    if status != CONVERGED:
-        at = np.array([phi[done]]), np.array([v[done]]), np.array([eps])
-        if status == NOT_DEPARTING or on_uncertain == "raise":
-            try:
-                _raise_on_status(np.array([status]), *at)
-            except (ValueError, UncertainCollision) as err:
-                raise type(err)(f"collision {done} of the orbit: {err}") from None
+    _raise_for_orbit(status, done, phi, v, eps, on_uncertain)
     return Orbit(phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done],
                  FlightStatus(status), "exact", eps, sticking[:episodes].copy(),
                  "stuck" if stuck else "collisions")

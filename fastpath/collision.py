@@ -8,10 +8,10 @@ incoming velocity v_in = v - tau, the elastic impact gives
 
 
 from fastpath._jit import jit
-from fastpath.flight import AUTO, flight_from, phase_error_of
+from fastpath.flight import AUTO, departure_phase, flight_from, phase_error_of
 from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.phase import centre_phase, reduce_phase
-from fastpath.sincos import sin_cos, sin_cos_error
+from fastpath.sincos import sin_cos
 
 CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rotation, Newton)
 
@@ -23,9 +23,8 @@ def collide(phi, v, eps, method=AUTO):
     The sine and cosine are computed here from the centred phase by ``fastpath.sincos`` (the
     ensembles' lanes do the same): its error beyond libm's and the centring's are added.
     """
-    centred = centre_phase(phi)
+    centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)
-    phase_error = phase_error_of(phi, centred) + sin_cos_error(centred)
     phi1, _, _, v1, tau, iterations, status = collide_from(
         centred, sin_phi, cos_phi, v, eps, method, phase_error
     )

@@ -52,7 +52,7 @@ Both return sin and cos of phi + tau, which the collision needs and the next fli
 
 import math
 
-from fastpath._jit import jit
+from fastpath._jit import inline_jit, jit
 from fastpath.gap import UNIT_ROUNDOFF, gap_error, rate_error
 from fastpath.rotation import rotate
 from fastpath.status import FlightStatus
@@ -73,17 +73,24 @@ _BEFORE, _AFTER, _AT_ROOT, _FLAT = 0, 1, 2, 3
 @jit
 def bracket(v, w0, w0_error, eps):
     """Certified (lo, hi) for the root (module docstring), rounded outwards."""
+    if 1e-150 < abs(v) < 1e150:
+        root = math.sqrt(v * v + 4.0 * abs(eps))
+    else:  # v**2 would underflow or overflow
+        root = math.hypot(v, 2.0 * math.sqrt(abs(eps)))
+    return bracket_from_root(v, w0, w0_error, eps, root)
+
+
+@inline_jit
+def bracket_from_root(v, w0, w0_error, eps, root):
+    """``bracket`` given root = sqrt(v**2 + 4|eps|), in selects only (the lanes of
+    ``fastpath.lockstep`` vectorise it): both upper bounds are computed, the energy bound
+    (<= 2|v| + 2) is used only where the concave one is not already below 2|v| + 2."""
     a = 1.0 + abs(eps)
-    lo = 2.0 * max(w0 - w0_error, 0.0) / a * (1.0 - 4.0 * UNIT_ROUNDOFF)
-    hi = math.inf
-    if abs(eps) < 1.0:
-        hi = 2.0 * (w0 + w0_error) / (1.0 - abs(eps))
-    if not hi <= 2.0 * abs(v) + 2.0:  # the bound below is <= 2|v| + 2: it can only help here
-        if 1e-150 < abs(v) < 1e150:
-            root = math.sqrt(v * v + 4.0 * abs(eps))
-        else:  # v**2 would underflow or overflow
-            root = math.hypot(v, 2.0 * math.sqrt(abs(eps)))
-        hi = min(hi, v + root if v >= 0.0 else 4.0 * abs(eps) / (root - v))
+    lo = 2.0 * (w0 - w0_error if w0 - w0_error > 0.0 else 0.0) / a * (1.0 - 4.0 * UNIT_ROUNDOFF)
+    hi_concave = 2.0 * (w0 + w0_error) / (1.0 - abs(eps)) if abs(eps) < 1.0 else math.inf
+    hi_energy = v + root if v >= 0.0 else 4.0 * abs(eps) / (root - v)
+    use_energy = not hi_concave <= 2.0 * abs(v) + 2.0
+    hi = hi_energy if use_energy and hi_energy < hi_concave else hi_concave
     return lo, hi * (1.0 + 4.0 * UNIT_ROUNDOFF)
 
 

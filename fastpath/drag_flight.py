@@ -51,12 +51,11 @@ from fastpath.flight import (
     AUTO,
     ITERATION_LIMIT,
     certified_step,
+    departure_phase,
     lower_bound_step,
-    phase_error_of,
 )
 from fastpath.gap import UNIT_ROUNDOFF, departure
-from fastpath.phase import centre_phase
-from fastpath.sincos import sin_cos, sin_cos_error
+from fastpath.sincos import sin_cos
 from fastpath.status import FlightStatus
 
 CONVERGED = int(FlightStatus.CONVERGED)
@@ -209,9 +208,8 @@ def may_be_graze(phi, vel, v_err, eps, drag, law, t, r, d_err):
 @jit
 def solve_drag_flight(phi, v, eps, drag, law, method=AUTO):
     """(tau, iterations, status) for a departure at any real phase phi (as ``solve_flight``)."""
-    centred = centre_phase(phi)
+    centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)  # as dissipative_collide: flight and step agree
-    phase_error = phase_error_of(phi, centred) + sin_cos_error(centred)
     _, w0_error = departure(centred, sin_phi, v, eps, phase_error)
     tau, _, _, iterations, status = drag_flight(
         centred, sin_phi, cos_phi, v, eps, drag, law, w0_error, method

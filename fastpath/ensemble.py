@@ -33,11 +33,11 @@ from numba import prange
 from fastpath._jit import inline_jit, jit, parallel_jit
 from fastpath.collision import collide
 from fastpath.concave import two_sum
-from fastpath.flight import CONVERGED, GENERAL, phase_error_of
+from fastpath.flight import CONVERGED, GENERAL, departure_phase
 from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.holmes import holmes_collide
 from fastpath.lockstep import _select, lockstep_collide
-from fastpath.phase import TWO_PI, centre_moderate, centre_phase, reduce_moderate
+from fastpath.phase import TWO_PI, centre_moderate, reduce_moderate
 from fastpath.sincos import sin_cos, sin_cos_error
 
 NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only
@@ -100,14 +100,7 @@ def _load(i, lane, phi0, v0, t0, n0, sample_slot, sample_target, flags, idx, phi
     phi[lane], v[lane], t[lane], n[lane] = phi0[i], v0[i], t0[i], n0[i]
     slot[lane], target[lane] = sample_slot[i], sample_target[i]
     flags[i] = 0
-    _aim(lane, phi, centred, phase_error)
-
-
-@jit
-def _aim(lane, phi, centred, phase_error):
-    """The centred phase of a lane's next departure and the error its sine will carry."""
-    centred[lane] = centre_phase(phi[lane])
-    phase_error[lane] = phase_error_of(phi[lane], centred[lane]) + sin_cos_error(centred[lane])
+    centred[lane], phase_error[lane] = departure_phase(phi[lane])
 
 
 @inline_jit
@@ -202,9 +195,7 @@ def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_wi
                     phi1_l, v1_l, tau_l, status = phi1[lane], v1[lane], tau[lane], CONVERGED
                 else:  # what the lanes do not answer: collide's general path, the same function
                     phi1_l, v1_l, tau_l, _, status = collide(phi[lane], v[lane], eps, GENERAL)
-                    centred1[lane] = centre_phase(phi1_l)
-                    phase_error1[lane] = (phase_error_of(phi1_l, centred1[lane])
-                                          + sin_cos_error(centred1[lane]))
+                    centred1[lane], phase_error1[lane] = departure_phase(phi1_l)
                 t1 = t[lane] + tau_l
                 if status != CONVERGED:
                     _flag(flags, flag_state, i, status, phi[lane], v[lane], t[lane], n[lane])

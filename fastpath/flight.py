@@ -121,11 +121,18 @@ def phase_error_of(phi_given, phi_centred):
 
 
 @jit
+def departure_phase(phi):
+    """(centred phase, bound on its error) of a departure at any real phi, with its sine taken
+    from ``fastpath.sincos``: the centring's error plus what ``sin_cos`` adds beyond libm."""
+    centred = centre_phase(phi)
+    return centred, phase_error_of(phi, centred) + sin_cos_error(centred)
+
+
+@jit
 def departure_of(phi, v, eps):
     """(w0, bound): w0 = v + eps*sin(phi) as the flight kernels compute it, with its error bound."""
-    centred = centre_phase(phi)
-    return departure(centred, sin_cos(centred)[0], v, eps,
-                     phase_error_of(phi, centred) + sin_cos_error(centred))
+    centred, phase_error = departure_phase(phi)
+    return departure(centred, sin_cos(centred)[0], v, eps, phase_error)
 
 
 @jit
@@ -134,11 +141,10 @@ def solve_flight(phi, v, eps, method=AUTO):
 
     tau is the smallest positive root of the gap; ``status`` is a FlightStatus code.
     """
-    centred = centre_phase(phi)
+    centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)  # as collide: flight and step give the same tau
     tau, _, _, iterations, status = flight_from(
-        centred, sin_phi, cos_phi, v, eps, method, phase_error_of(phi, centred)
-        + sin_cos_error(centred),
+        centred, sin_phi, cos_phi, v, eps, method, phase_error
     )
     return tau, iterations, status
 

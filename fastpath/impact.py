@@ -17,10 +17,10 @@ from fastpath._jit import jit
 from fastpath.collision import collide
 from fastpath.drag import particle
 from fastpath.drag_flight import drag_flight
-from fastpath.flight import AUTO, CONVERGED, flight_from, phase_error_of
+from fastpath.flight import AUTO, CONVERGED, departure_phase, flight_from
 from fastpath.gap import departure
-from fastpath.phase import centre_phase, reduce_phase
-from fastpath.sincos import sin_cos, sin_cos_error
+from fastpath.phase import reduce_phase
+from fastpath.sincos import sin_cos
 
 
 @jit
@@ -35,9 +35,8 @@ def dissipative_collide(phi, v, eps, drag, law, restitution):
     ``fastpath.drag``) and one impact with restitution r; phi any real, phi1 in [0, 2*pi)."""
     if drag == 0.0 and restitution == 1.0:
         return collide(phi, v, eps)
-    centred = centre_phase(phi)
+    centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)  # as collide: the same flight when drag == 0
-    phase_error = phase_error_of(phi, centred) + sin_cos_error(centred)
     if drag == 0.0:
         tau, sin1, _, iterations, status = flight_from(
             centred, sin_phi, cos_phi, v, eps, AUTO, phase_error

@@ -34,8 +34,8 @@ ensemble (a batch) return the same bits for the same departure.
 import math
 
 from fastpath._jit import inline_jit, jit
-from fastpath.concave import newton_is_final, two_sum
-from fastpath.gap import UNIT_ROUNDOFF, departure, gap_error, rate_error
+from fastpath.concave import bracket_from_root, newton_is_final, two_sum
+from fastpath.gap import departure, gap_error, rate_error
 from fastpath.sincos import SIN_COS_LIMIT, sin_cos
 
 LOCKSTEP_EVALUATIONS = 4
@@ -53,15 +53,8 @@ def _select(condition, a, b):
 @inline_jit
 def moderate_bracket(v, w0, w0_error, eps):
     """``fastpath.concave.bracket`` for 1e-150 < |v| < 1e150 (v**2 neither under- nor overflows),
-    without branches: both upper bounds are computed and the same one is chosen."""
-    a = 1.0 + abs(eps)
-    lo = 2.0 * _select(w0 - w0_error > 0.0, w0 - w0_error, 0.0) / a * (1.0 - 4.0 * UNIT_ROUNDOFF)
-    hi_concave = _select(abs(eps) < 1.0, 2.0 * (w0 + w0_error) / (1.0 - abs(eps)), math.inf)
-    root = math.sqrt(v * v + 4.0 * abs(eps))
-    hi_energy = _select(v >= 0.0, v + root, 4.0 * abs(eps) / (root - v))
-    use_energy = not hi_concave <= 2.0 * abs(v) + 2.0
-    hi = _select(use_energy and hi_energy < hi_concave, hi_energy, hi_concave)
-    return lo, hi * (1.0 + 4.0 * UNIT_ROUNDOFF)
+    without the branch to hypot."""
+    return bracket_from_root(v, w0, w0_error, eps, math.sqrt(v * v + 4.0 * abs(eps)))
 
 
 @inline_jit
