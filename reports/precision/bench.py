@@ -36,7 +36,9 @@ import numba
 import numpy as np
 
 import fastpath
-from fastpath.ensemble import NO_LIMIT, escape_chunk, holmes_escape_chunk
+from fastpath.ensemble import NO_LIMIT, holmes_escape_chunk
+from reports.runs.chunk import kernel
+from reports.runs.counts import Counts
 from reports.runs.driver import run
 from reports.runs.plan import BLOCKS, chunk_starts, make_plan
 from reports.runs.scenes import load_scene
@@ -88,28 +90,27 @@ def _chunks(plan):
 
 
 def _kernel_pass(plan, chunks, model):
-    """All chunks through the exact escape kernel (no sample) or the Holmes one: collisions."""
+    """All chunks through the run's exact kernel call (``chunk.kernel``, no sample) or the
+    Holmes kernel on the same bins and blocks: collisions."""
     sc = plan.scene
-    nb, tb = len(plan.n_edges), len(plan.t_edges)
     total = 0
     for e, (phi, v, *_rest) in chunks:
         exp = plan.experiments[e]
-        lo, width = np.array(exp.hole_lo), np.array(exp.hole_width)
-        m, holes = len(phi), len(lo)
-        esc_n, esc_t = np.zeros((BLOCKS, holes, nb), np.int64), np.zeros((BLOCKS, holes, tb),
-                                                                         np.int64)
-        cens_n, cens_t = np.zeros((BLOCKS, nb), np.int64), np.zeros((BLOCKS, tb), np.int64)
-        collisions = np.zeros(BLOCKS, np.int64)
-        max_n, max_t = sc.max_collisions or NO_LIMIT, sc.max_time or np.inf
+        m, holes = len(phi), len(exp.hole_lo)
         if model == "holmes":
-            holmes_escape_chunk(phi, v, sc.eps, lo, width, max_n, max_t, plan.n_edges,
-                                plan.t_edges, esc_n, esc_t, cens_n, cens_t, collisions)
+            nb, tb = len(plan.n_edges), len(plan.t_edges)
+            collisions = np.zeros(BLOCKS, np.int64)
+            holmes_escape_chunk(
+                phi, v, sc.eps, np.array(exp.hole_lo), np.array(exp.hole_width),
+                sc.max_collisions or NO_LIMIT, sc.max_time or np.inf, plan.n_edges, plan.t_edges,
+                np.zeros((BLOCKS, holes, nb), np.int64), np.zeros((BLOCKS, holes, tb), np.int64),
+                np.zeros((BLOCKS, nb), np.int64), np.zeros((BLOCKS, tb), np.int64), collisions)
+            total += int(collisions.sum())
         else:
-            escape_chunk(phi, v, np.zeros(m), np.zeros(m, np.int64), sc.eps, lo, width, max_n,
-                         max_t, plan.n_edges, plan.t_edges, True, True, np.full(m, -1),
-                         np.zeros(m, np.int64), esc_n, esc_t, cens_n, cens_t, collisions,
-                         np.zeros(m, np.int8), np.zeros((m, 4)), np.zeros((1, 6)))
-        total += int(collisions.sum())
+            out = Counts.zeros(plan, holes)
+            kernel(plan, exp, (phi, v, np.zeros(m), np.zeros(m, np.int64)), np.full(m, -1),
+                   np.zeros(m, np.int64), np.zeros((0, 6)), out)
+            total += int(out.collisions)
     return total
 
 

@@ -80,7 +80,7 @@ def _law_code(name):
     return LAWS[name]
 
 
-def _kernel(plan, exp, state, slot, target, samples, out):
+def kernel(plan, exp, state, slot, target, samples, out):
     """One pass of the fast kernel over the particles in ``state`` = (phi, v, t, n)."""
     sc = plan.scene
     phi, v, t, n = state
@@ -156,7 +156,7 @@ def simulate_chunk(plan, e, k):
     max_t = sc.max_time or np.inf
     hole_lo, hole_w = np.array(exp.hole_lo), np.array(exp.hole_width)
     while len(state[0]):
-        flags, flag_state = _kernel(plan, exp, state, slot, target, samples, out)
+        flags, flag_state = kernel(plan, exp, state, slot, target, samples, out)
         resume = []
         for i in np.flatnonzero(flags):
             phi_i, v_i, t_i, n_i = flag_state[i]
