@@ -142,6 +142,7 @@ def test_resume_local_run_on_the_cluster(scene, reference, client, tmp_path, mon
             yield item
 
     monkeypatch.setattr(executor, "local", three_then_killed)
+    monkeypatch.setattr(driver, "CHECKPOINT_INTERVAL_S", 0.0)  # a checkpoint after every chunk
     with pytest.raises(Interrupt):
         driver.run(scene, tmp_path / "r", progress=False)
     monkeypatch.setattr(executor, "local", real)
@@ -150,6 +151,33 @@ def test_resume_local_run_on_the_cluster(scene, reference, client, tmp_path, mon
     submitted = counting(client, monkeypatch)
     manifest = driver.run(scene, tmp_path / "r", resume=True, progress=False, scheduler=client)
     assert len(submitted) == CHUNKS - 3 == manifest["session"]["chunks_computed"]
+    same_results(reference, tmp_path / "r")
+
+
+@pytest.mark.parametrize("stop", [Interrupt, KeyboardInterrupt])
+def test_checkpoint_cadence(scene, reference, tmp_path, monkeypatch, stop):
+    """With the default interval the checkpoint after the first chunk is the only one in a
+    short run: a crash after three chunks leaves one chunk checkpointed; Ctrl-C writes the three
+    merged chunks on its way out. Both resume to the uninterrupted result."""
+    real = executor.local
+
+    def three_then_stopped(jobs):
+        for i, item in enumerate(real(jobs)):
+            if i == 3:
+                raise stop
+            yield item
+
+    monkeypatch.setattr(executor, "local", three_then_stopped)
+    with pytest.raises(Interrupt if stop is Interrupt else driver.RunInterrupted):
+        driver.run(scene, tmp_path / "r", progress=False)
+    monkeypatch.setattr(executor, "local", real)
+    partial = json.loads((tmp_path / "r" / "manifest.json").read_text())
+    assert partial["status"] == "partial"
+    assert partial["chunks_done"] == (1 if stop is Interrupt else 3)
+    assert len(counts.Tally.load(tmp_path / "r" / "checkpoint.npz").finished) == (
+        partial["chunks_done"])
+    manifest = driver.run(scene, tmp_path / "r", resume=True, progress=False)
+    assert manifest["session"]["chunks_computed"] == CHUNKS - partial["chunks_done"]
     same_results(reference, tmp_path / "r")
 
 
@@ -163,6 +191,7 @@ def test_resume_cluster_run_locally(scene, reference, client, tmp_path, monkeypa
             yield item
 
     monkeypatch.setattr(cluster, "map_chunks", killed_after_five)
+    monkeypatch.setattr(driver, "CHECKPOINT_INTERVAL_S", 0.0)  # a checkpoint after every chunk
     with pytest.raises(Interrupt):
         driver.run(scene, tmp_path / "r", progress=False, scheduler=client)
     monkeypatch.setattr(cluster, "map_chunks", real_map)
