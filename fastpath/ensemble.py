@@ -57,13 +57,21 @@ def exit_hole(phi, hole_lo, hole_width):
     (phi - lo) + 2*pi first misplaces phases up to ~14 ulps from the wrapped upper edge.
     """
     for j in range(len(hole_lo)):
-        d_hi, d_lo = two_sum(phi, -hole_lo[j])
-        if d_hi < 0.0:
-            d_hi, carry = two_sum(d_hi, TWO_PI)
-            d_lo += carry
-        if (d_hi - hole_width[j]) + d_lo < 0.0:
+        if in_hole(phi, hole_lo[j], hole_width[j]):
             return j
     return -1
+
+
+@inline_jit
+def in_hole(phi, lo, width):
+    """phi in [0, 2*pi) lies in the arc [lo, lo + width) mod 2*pi (``exit_hole``), with selects
+    instead of branches (also used in the vectorised loop of the lanes)."""
+    d_hi, d_lo = two_sum(phi, -lo)
+    wrapped, carry = two_sum(d_hi, TWO_PI)
+    wraps = d_hi < 0.0
+    d_hi = _select(wraps, wrapped, d_hi)
+    d_lo = _select(wraps, d_lo + carry, d_lo)
+    return (d_hi - width) + d_lo < 0.0
 
 
 @jit
@@ -170,19 +178,28 @@ def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_wi
     tau, phi1, v1 = np.empty(LANES), np.empty(LANES), np.empty(LANES)
     centred1, phase_error1 = np.empty(LANES), np.empty(LANES)
     answered = np.empty(LANES, np.bool_)
+    hole, block = np.empty(LANES, np.int64), np.empty(LANES, np.int64)
     active = max(min(LANES, end - first), 0)
     for lane in range(active):
         _load(first + lane, lane, phi0, v0, t0, n0, sample_slot, sample_target, flags, idx, phi,
               centred, phase_error, v, t, n, slot, target)
+        block[lane] = (first + lane) // per_block
     following = first + active
     while active > 0:
         for lane in range(active):  # vectorised: no calls, no branches but selects
             tau[lane], phi1[lane], v1[lane], centred1[lane], phase_error1[lane], answered[lane] = (
                 lane_collide(centred[lane], v[lane], eps, phase_error[lane]))
+        for lane in range(active):
+            hole[lane] = -1
+        for h in range(len(hole_lo)):  # exit_hole of every lane, vectorised over the lanes
+            lo_h, width_h = hole_lo[h], hole_width[h]
+            for lane in range(active):
+                hole[lane] = _select(hole[lane] < 0 and in_hole(phi1[lane], lo_h, width_h), h,
+                                     hole[lane])
         idle = False
         for lane in range(active):
             i = idx[lane]
-            b = i // per_block
+            b = block[lane]
             finished = False
             if n[lane] >= max_collisions:
                 if record_n:
@@ -213,7 +230,7 @@ def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_wi
                         _store_sample(samples, slot[lane], n[lane], phi[lane], v[lane], phi1_l,
                                       v1_l, tau_l)
                     phi[lane], v[lane], t[lane] = phi1_l, v1_l, t1
-                    j = exit_hole(phi1_l, hole_lo, hole_width)
+                    j = hole[lane] if answered[lane] else exit_hole(phi1_l, hole_lo, hole_width)
                     if j >= 0:
                         if record_n:
                             esc_n[b, j, bin_index(n_edges, n[lane])] += 1
@@ -226,6 +243,7 @@ def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_wi
                 if following < end:
                     _load(following, lane, phi0, v0, t0, n0, sample_slot, sample_target,
                           flags, idx, phi, centred, phase_error, v, t, n, slot, target)
+                    block[lane] = following // per_block
                     following += 1
                 else:
                     idx[lane] = -1
@@ -237,6 +255,7 @@ def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_wi
                     idx[busy], phi[busy], centred[busy] = idx[lane], phi[lane], centred[lane]
                     phase_error[busy], v[busy], t[busy] = phase_error[lane], v[lane], t[lane]
                     n[busy], slot[busy], target[busy] = n[lane], slot[lane], target[lane]
+                    block[busy] = block[lane]
                     busy += 1
             active = busy
 

@@ -78,19 +78,24 @@ def _rotate(s, c, h):
 
 @inline_jit
 def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
-    """One evaluation of a lane that has neither answered nor given up; else unchanged.
+    """Evaluation k of a lane that has neither answered nor given up; else unchanged.
 
+    The iterate's sine and cosine are rotated on by the step the previous evaluation chose
+    (``h``, pending: a lane that answers needs no rotation, and the last evaluation's step
+    is never taken); the first evaluation starts from the Holmes start's own sine and cosine.
     At the root the answer is the Newton correction clamped into the certified bracket; its
     sine and cosine are rotated from (t_root, s_root, c_root) once, after the last evaluation.
     The branches only skip work: a vectorised loop computes both sides and selects.
     """
-    t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, done, failed = state
+    t, delta, s, c, h, lo, hi, tau, t_root, s_root, c_root, evaluations, done, failed = state
     if done or failed:
         return state
+    if k > 1:
+        s, c = _rotate(s, c, h)
     d = eps * (cos_phi - c) - 0.5 * t * delta
     d1 = -v - delta + eps * s
     if not (abs(d) < math.inf and abs(d1) < math.inf):
-        return t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
+        return t, delta, s, c, 0.0, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
     d_err = gap_error(phi, v, eps, t)
     d1_err = rate_error(phi, v, eps, t)
     # one division for both steps: Newton -d/d1 and Halley -2*d*d1/(2*d1**2 - d*d2)
@@ -104,23 +109,24 @@ def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
             lo = t
         elif d < -d_err:
             hi = t
-        return t, delta, s, c, lo, hi, answer, t, s, c, k, True, False
+        return t, delta, s, c, 0.0, lo, hi, answer, t, s, c, k, True, False
     if d > d_err:
         lo = t
     elif d < -d_err:
         hi = t
     else:
         if not d1 > d1_err:  # a flat top
-            return t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
+            return (t, delta, s, c, 0.0, lo, hi, tau, t_root, s_root, c_root, evaluations, False,
+                    True)
         lo = t
     t_next = t - 2.0 * d * d1 * d1 * reciprocal
     if not lo < t_next < hi:  # the bisection guard (the Holmes start is within a factor 4)
         t_next = 0.5 * (lo + hi)
     if t_next == lo or t_next == hi:  # the bracket closed to adjacent floats
-        return t, delta, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
+        return t, delta, s, c, 0.0, lo, hi, tau, t_root, s_root, c_root, evaluations, False, True
     delta_next = t_next - two_v
-    s, c = _rotate(s, c, delta_next - delta)
-    return t_next, delta_next, s, c, lo, hi, tau, t_root, s_root, c_root, evaluations, False, False
+    return (t_next, delta_next, s, c, delta_next - delta, lo, hi, tau, t_root, s_root, c_root,
+            evaluations, False, False)
 
 
 @inline_jit
@@ -134,7 +140,7 @@ def _start(phi, sin_phi, v, eps, w0_error):
     lo, hi = moderate_bracket(v, w0, w0_error, eps)
     s, c = sin_cos(_select(eligible, theta0, 0.0))
     s, c = s + c * theta0_error, c - s * theta0_error  # |theta0_error| <= ulp: first order
-    state = (two_v, 0.0, s, c, lo, hi, math.nan, 0.0, 0.0, 1.0, 0, False,
+    state = (two_v, 0.0, s, c, 0.0, lo, hi, math.nan, 0.0, 0.0, 1.0, 0, False,
              not (eligible and hi < math.inf))
     return state, two_v
 
@@ -142,7 +148,7 @@ def _start(phi, sin_phi, v, eps, w0_error):
 @inline_jit
 def _answer(state):
     """(tau, sin(phi + tau), cos(phi + tau), evaluations, done) of a lane's final state."""
-    _, _, _, _, _, _, tau, t_root, s_root, c_root, evaluations, done, failed = state
+    _, _, _, _, _, _, _, tau, t_root, s_root, c_root, evaluations, done, failed = state
     s1, c1 = _rotate(s_root, c_root, tau - t_root)
     return tau, s1, c1, evaluations, done and not failed
 
@@ -163,23 +169,21 @@ def lockstep_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
     return _answer(state)
 
 
+@inline_jit
+def _running(state):
+    """The lane has neither answered nor given up."""
+    return not (state[12] or state[13])
+
+
 @jit
 def lockstep_flight_one(phi, sin_phi, cos_phi, v, eps, w0_error):
     """``lockstep_flight`` for one flight: the same evaluations, the same bits, but it stops
     at the first answer (or give-up) instead of running all LOCKSTEP_EVALUATIONS."""
     state, two_v = _start(phi, sin_phi, v, eps, w0_error)
-    if state[12]:
-        return _answer(state)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 1)
-    if state[11] or state[12]:  # done or failed
-        return _answer(state)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 2)
-    if state[11] or state[12]:
-        return _answer(state)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 3)
-    if state[11] or state[12]:
-        return _answer(state)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 4)
+    for k in range(1, LOCKSTEP_EVALUATIONS + 1):
+        if not _running(state):
+            break
+        state = _evaluation(state, phi, cos_phi, v, eps, two_v, k)
     return _answer(state)
 
 
