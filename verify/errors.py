@@ -33,7 +33,8 @@ class ChatteringDetected(ArithmeticError):
     Raised by :func:`verify.orbit` after collision ``n`` (at time ``t``, state ``phi``, ``v``)
     when the velocity relative to the plate, ``w = v + eps*sin(phi)``, fell below the threshold
     ``w_min`` while the gap's curvature ``d''(0)`` is negative (the plate pulls the particle
-    back). verify does not yet compute the accumulation time and the sticking phase.
+    back), with drag > 0: verify computes the accumulation and sticking only without drag
+    (:mod:`verify.sticking`).
     """
 
     def __init__(self, n: int, t, phi, v, w, w_min) -> None:
@@ -41,5 +42,5 @@ class ChatteringDetected(ArithmeticError):
         super().__init__(
             f"chattering: after collision {n} (t={_short(t)}, phi={_short(phi)}, v={_short(v)}) "
             f"the velocity relative to the plate is w={_short(w)} < {_short(w_min)} and falling: "
-            "impacts accumulate; verify.orbit does not compute sticking phases"
+            "impacts accumulate; verify.orbit computes sticking phases only without drag"
         )

@@ -13,6 +13,7 @@ from ._precision import hi, working_dps
 from .collision import step
 from .drag import DragFlight
 from .errors import ChatteringDetected
+from .sticking import accumulation, can_detach, detachment_step, stay
 
 
 @dataclass(frozen=True)
@@ -21,10 +22,12 @@ class Orbit:
     (``t[0] = 0``); tuples of ``mpf`` of length ``n + 1``. ``phi[0]`` is the input phase as
     given (unreduced); later phases lie in ``[0, 2*pi)``.
 
-    ``sticking``: ``(t_start, t_end)`` pairs of sticking episodes (the dissipation spec);
-    ``stopped``: ``"collisions"`` (made the ``n`` collisions) or ``"stuck"``. verify does not
-    compute sticking yet: it raises :class:`verify.errors.ChatteringDetected` when impacts
-    accumulate, so ``sticking`` is always empty and ``stopped`` is ``"collisions"``.
+    ``sticking``: ``(t_start, t_end)`` pairs of sticking episodes (the dissipation spec,
+    :mod:`verify.sticking`): the particle rides the plate from the accumulation time
+    ``t_start`` and leaves at ``t_end`` (``mp.inf``: never, stuck for good). ``stopped``:
+    ``"collisions"`` (made the ``n`` collisions) or ``"stuck"`` (stuck for good before that).
+    ``phi``/``v``/``t`` record the impacts computed; a summed tail is not an entry, and the entry
+    after an episode is the impact ending the flight from detachment.
     """
 
     phi: tuple[mpmath.mpf, ...]
@@ -40,13 +43,21 @@ def orbit(phi0, v0, eps, n: int, dps: int = 50, *, drag=0.0, drag_law: str = "li
 
     ``t[k] = tau_0 + ... + tau_{k-1}``.
 
-    Each step is certified for its (rounded to ``dps`` digits) input state. With
-    ``restitution < 1``, chattering is detected after each collision: the relative velocity
-    ``w = v + eps*sin(phi)`` below ``w_min = 10**(-dps//3) * (1 + |v| + |eps|)`` with
-    ``d''(0) = -1 - eta(v) + eps*cos(phi) < 0`` proved raises
-    :class:`verify.errors.ChatteringDetected` (a geometric run of impacts, ratio ~ r, reaches
-    it after about ``dps/3 / log10(1/r)`` collisions; ``w_min`` stays far above the rounding of
-    the state to ``dps`` digits, so the next flight could still be certified).
+    Each step is certified for its (rounded to ``dps`` digits) input state.
+
+    Restitution ``r < 1`` without drag (:mod:`verify.sticking`): after each impact, when the
+    impacts from it accumulate (relative velocity ``w`` down to ~``10**(-dps/3)``, the tail's
+    second-order term ``q*T0 <= 10**-dps`` and its enclosure proved), the tail is summed:
+    ``t_acc = t + T``. Then the particle rides the plate; for ``|eps| <= 1`` it never leaves
+    (``sticking`` ends with ``(t_acc, inf)``, ``stopped = "stuck"``, the orbit ends early);
+    otherwise it leaves at the next phase ``theta*`` (``2*pi - arccos(1/eps)``, or
+    ``pi - arccos(1/|eps|)`` for ``eps < -1``) at ``t_detach``, the episode ``(t_acc,
+    t_detach)`` is recorded and the next entry is the impact of the certified flight from
+    ``(theta*, u(theta*))`` (``w0 = 0``). The number of chattering impacts recorded depends on
+    this threshold: compare implementations by their episodes and the impacts after them.
+
+    Drag with ``r < 1``: not covered; when ``w`` falls below ``w_min = 10**(-dps//3) *
+    (1 + |v| + |eps|)`` with ``d''(0) < 0`` proved, :class:`verify.errors.ChatteringDetected`.
     """
     phys = check_physics(drag, drag_law, restitution)
     phi, v, eps_, _, dps = check_state(phi0, v0, eps, dps=dps, names=("phi0", "v0", "eps"),
@@ -55,18 +66,36 @@ def orbit(phi0, v0, eps, n: int, dps: int = 50, *, drag=0.0, drag_law: str = "li
         raise ValueError(f"n must be a non-negative integer, got n={n!r}")
     kwargs = {} if phys.is_default else {"drag": phys.drag, "drag_law": phys.drag_law,
                                          "restitution": phys.restitution}
-    phis, vs, ts = [phi], [v], [mp.zero]
+    sticks = phys.restitution < 1 and phys.drag == 0
+    phis, vs, ts, episodes = [phi], [v], [mp.zero], []
     t = mp.zero
+    detached = False
     for k in range(int(n)):
-        phi, v, tau = step(phi, v, eps, dps, **kwargs)
+        if detached:
+            phi, v, tau = detachment_step(eps_, phys.restitution, dps)
+            detached = False
+        else:
+            phi, v, tau = step(phi, v, eps, dps, **kwargs)
         with working_dps(dps + 10):
             t = t + tau
         phis.append(phi)
         vs.append(v)
         ts.append(t)
-        if phys.restitution < 1:
+        if sticks:
+            acc = accumulation(phi, v, eps_, phys.restitution, dps)
+            if acc is None:
+                continue
+            with working_dps(dps + 10):
+                t_acc = t + acc.tail
+                if not can_detach(eps_):
+                    episodes.append((t_acc, mp.inf))
+                    return Orbit(tuple(phis), tuple(vs), tuple(ts), tuple(episodes), "stuck")
+                t = t_acc + stay(acc.phase, eps_)
+            episodes.append((t_acc, t))
+            detached = True
+        elif phys.restitution < 1:
             _check_chattering(k + 1, t, phi, v, eps_, phys, dps)
-    return Orbit(tuple(phis), tuple(vs), tuple(ts))
+    return Orbit(tuple(phis), tuple(vs), tuple(ts), tuple(episodes))
 
 
 def _check_chattering(n, t, phi, v, eps, phys, dps):

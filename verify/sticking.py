@@ -1,0 +1,243 @@
+"""Chattering, accumulation and sticking with restitution r < 1 and no drag (the dissipation spec).
+
+Relative motion. Between impacts the gap x (particle minus plate) obeys x'' = A(theta) =
+-1 + eps*cos(theta); an impact maps the relative velocity w_in < 0 to w = -r*w_in.
+
+Accumulation (:func:`accumulation`). After an impact at phase theta with relative velocity
+w > 0, write a = -A(theta) = 1 - eps*cos(theta) and J = A'(theta) = -eps*sin(theta). With A
+frozen at -a every flight lasts 2*w/a and the impacts accumulate after the geometric sum
+T0 = 2*w/(a*(1 - r)); the first correction from the jerk J gives (the model of
+``fastpath.sticking``, derived independently in the project notes)
+
+    T = T0 + J*T0**2/(3*a) + R,     |R| <= C*q*T0,   q = T0**2*(J**2/a**2 + |eps|/a),
+
+with C <= 1/2 (not proved: measured here against impacts iterated to a 30 digits smaller w at
+a higher precision, tests/verify/test_sticking.py). The tail is summed once q*T0 <= 10**-dps
+(``w ~ 10**(-dps/3)``, about (dps/3)*ln(10)/ln(1/r) impacts), so R is below the last digit of
+the orbit's times. Independently of the model, a RIGOROUS enclosure [T_lo, T_hi] of the time to
+the accumulation point is proved in interval arithmetic (and T is required to lie in it):
+
+    on a window [theta, theta + H] let a_lo <= -A <= a_hi (iv enclosure of eps*cos), a_lo > 0,
+    rho = a_hi/a_lo. A flight from w > 0 on which a_lo <= -A <= a_hi lasts tau with
+    2*w/a_hi <= tau <= 2*w/a_lo (w*t - a_hi*t**2/2 <= x(t) <= w*t - a_lo*t**2/2), and returns
+    with -w_in = -w - integral(A) in [a_lo*tau - w, a_hi*tau - w], so the next w' = -r*w_in
+    lies in [r*w*(2/rho - 1), r*w*(2*rho - 1)]. Summing the geometric bounds,
+
+        T_lo = 2*w/(a_hi*(1 - r*max(2/rho - 1, 0))) <= T <= T_hi = 2*w/(a_lo*(1 - r*(2*rho - 1)))
+
+    provided r*(2*rho - 1) < 1 and T_hi <= H (then every flight lies in the window, by
+    induction). Its width is O(T0**2): with w ~ 10**(-dps/3), ~10**(-2*dps/3), a certificate of
+    accumulation and a bound far below float64's rounding (the model's T is the value used).
+
+Where A < 0 is not proved over the window (a chattering run reaching a phase where the plate
+pulls away, eps*cos(theta) -> 1), no tail is summed: the impacts go on one by one and the
+particle leaves with an ordinary flight. So the accumulation point always lies where
+eps*cos(theta) < 1 and sticking starts there; it never lands where the plate already pulls away.
+
+Sticking and detachment (:func:`detachment_phase`). From the accumulation point the particle
+rides the plate (w = 0) while A <= 0, i.e. eps*cos(theta) <= 1. It leaves where A turns
+positive: theta* = 2*pi - arccos(1/eps) for eps > 1, pi - arccos(1/|eps|) for eps < -1 (there
+A' = -eps*sin(theta*) > 0), the first such phase after the accumulation phase; for |eps| <= 1
+never (stuck for good).
+
+Flight from detachment (:func:`detachment_step`). Departure at theta* with v = u(theta*) =
+sqrt(eps**2 - 1) and w0 = 0 exactly. With eps*cos(theta*) = 1 the gap is, for either sign of eps,
+
+    d(t) = s*(t - sin(t)) - (t**2/2 - 2*sin(t/2)**2),          s = sqrt(eps**2 - 1),
+    d'(t) = 2*s*sin(t/2)**2 - (t - sin(t)),   d''(t) = -1 + cos(t) + s*sin(t).
+
+d(0) = d'(0) = d''(0) = 0 and d'' = -1 + eps*cos(theta* + t) > 0 on (0, t_c),
+t_c = 2*arccos(1/|eps|) (eps*cos returns to 1 there), so d(t) = integral_0^t (t - x)*d''(x) dx > 0
+on (0, t_c]. The certificate (:func:`verify.certify._search`, the proof boxes and candidate search
+of every other flight) starts from the proved part (0, lo(t_c)] and encloses the first root. The
+exact closed form is used, so no rounded (phase, velocity) pair with a w0 that is only nearly 0
+enters the proof.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import mpmath
+from mpmath import iv, mp
+
+from ._precision import hi, lo, working_dps
+from .certify import _local_candidate, _search, _Undecided
+from .drag import NotDecided
+from .errors import UndecidableCollision
+from .phase import reduce_phase
+
+_GUARD_DPS = 10
+_WINDOW = 2  # the window H of the rigorous enclosure, in units of T0
+
+
+class Accumulation(NamedTuple):
+    """The impacts from an impact state accumulate ``tail`` after it (the model's ``T``);
+    ``enclosure`` = ``(T_lo, T_hi)`` is proved (module docstring); ``phase`` = theta + T."""
+
+    tail: mpmath.mpf
+    enclosure: tuple[mpmath.mpf, mpmath.mpf]
+    phase: mpmath.mpf
+
+
+def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
+    """The summed tail from the impact state ``(phi, v)`` (exact ``mpf``), or None when the
+    module docstring's conditions (``q*T0 <= 10**-dps``, the enclosure proved) do not hold.
+
+    Computed at ``dps + 10`` digits; ``tail`` and ``phase`` are returned at that precision.
+    """
+    with working_dps(dps + _GUARD_DPS) as prec:
+        iphi = reduce_phase(phi, prec).enclosure
+        ieps, ir = iv.mpf(eps), iv.mpf(r)
+        iw = iv.mpf(v) + ieps * iv.sin(iphi)
+        ia = 1 - ieps * iv.cos(iphi)
+        if not (lo(iw) > 0 and lo(ia) > 0 and r < 1):
+            return None
+        w, a, jerk = _mid(iw), _mid(ia), _mid(-ieps * iv.sin(iphi))
+        t0 = 2 * w / (a * (1 - r))
+        q = t0**2 * (jerk**2 / a**2 + abs(eps) / a)
+        if not q * t0 <= mp.mpf(10) ** (-dps):
+            return None
+        enclosure = _enclosure(iphi, iw, ieps, ir, _WINDOW * t0)
+        if enclosure is None:
+            return None
+        tail = t0 + jerk * t0**2 / (3 * a)
+        if not enclosure[0] <= tail <= enclosure[1]:
+            raise ArithmeticError(
+                f"accumulation tail {mp.nstr(tail, 20)} outside its proved enclosure "
+                f"[{mp.nstr(enclosure[0], 20)}, {mp.nstr(enclosure[1], 20)}] (phi={phi}, v={v})"
+            )
+        return Accumulation(tail, enclosure, _mid(iphi) + tail)
+
+
+def _enclosure(iphi, iw, ieps, ir, window):
+    """``(T_lo, T_hi)`` proved on the window ``[0, window]`` (module docstring), or None."""
+    accel = -1 + ieps * iv.cos(iphi + iv.mpf([0, window]))
+    a_lo, a_hi = iv.mpf(-hi(accel)), iv.mpf(-lo(accel))
+    if not lo(a_lo) > 0:
+        return None
+    rho = a_hi / a_lo
+    growth = ir * (2 * rho - 1)
+    if not hi(growth) < 1:
+        return None
+    t_hi = hi(2 * iw / (a_lo * (1 - growth)))
+    if not t_hi <= window:
+        return None
+    shrink = max(lo(ir * (2 / rho - 1)), mp.zero)
+    t_lo = lo(2 * iw / (a_hi * (1 - iv.mpf(shrink))))
+    return t_lo, t_hi
+
+
+def _mid(x):
+    return (lo(x) + hi(x)) / 2
+
+
+def can_detach(eps) -> bool:
+    """A particle riding the plate ever leaves it: ``|eps| > 1`` (module docstring)."""
+    return abs(eps) > 1
+
+
+def detachment_phase(eps):
+    """theta* in [0, 2*pi): ``2*pi - arccos(1/eps)`` (eps > 1), ``pi - arccos(1/|eps|)``
+    (eps < -1), at the current precision; ``ValueError`` for ``|eps| <= 1`` (never leaves)."""
+    if not can_detach(eps):
+        raise ValueError(f"no detachment for |eps| <= 1, got eps={eps}")
+    alpha = mp.acos(1 / abs(eps))
+    return 2 * mp.pi - alpha if eps > 0 else mp.pi - alpha
+
+
+def detachment_velocity(eps):
+    """``u(theta*) = -eps*sin(theta*) = sqrt(eps**2 - 1)`` at the current precision."""
+    return mp.sqrt(eps * eps - 1)
+
+
+class _DetachedGap:
+    """The gap of the flight from detachment in closed form (module docstring): the interface
+    that :func:`verify.certify._search` runs on (``d``, ``d_and_slope``, ``curvature``,
+    ``point``, ``needed``), with ``phi_exact``, ``v``, ``eps`` for its messages."""
+
+    def __init__(self, eps, dps, wdps):
+        self.eps, self.dps, self.wdps = eps, dps, wdps
+        self.s = iv.sqrt(iv.mpf(eps) ** 2 - 1)
+        self.phi_exact, self.v = detachment_phase(eps), detachment_velocity(eps)
+
+    def _at(self, it):
+        half_sin = iv.sin(it / 2)
+        rate_sin = it - iv.sin(it)
+        d = self.s * rate_sin - (it * it / 2 - 2 * half_sin**2)
+        slope = 2 * self.s * half_sin**2 - rate_sin
+        return d, slope
+
+    def d(self, t):
+        return self._at(iv.mpf(t))[0]
+
+    def d_and_slope(self, ia):
+        if lo(ia) != hi(ia):
+            raise NotDecided("a box end is not representable at this precision")
+        return self._at(ia)
+
+    def curvature(self, a, b):
+        box = iv.mpf([a, b])
+        return -1 + iv.cos(box) + self.s * iv.sin(box)
+
+    def point(self, t):
+        d_iv, p_iv = self._at(iv.mpf(t))
+        return _mid(d_iv), _mid(p_iv)
+
+    def needed(self, t):
+        return 0
+
+
+def detachment_flight(eps, dps: int, max_dps: int | None = None):
+    """``(lo, hi)``: proved enclosure of the first root of the detachment gap (module docstring),
+    raising the precision as :func:`verify.certify_flight` does; :class:`UndecidableCollision`
+    when it stays undecided at ``max_dps`` (default ``max(4*dps, 400)``: ``|eps|`` within
+    ~10**(-dps/2) of 1, where d(t_c) ~ (8/3)*(|eps| - 1)**2 is below the working precision)."""
+    max_dps = max(4 * dps, 400) if max_dps is None else max_dps
+    wdps = dps + _GUARD_DPS
+    while True:
+        try:
+            with working_dps(wdps):
+                ctx = _DetachedGap(eps, dps, wdps)
+                free = lo(2 * iv.atan2(ctx.s, 1))  # lo(t_c): d > 0 on (0, free]
+                left, right, _, _ = _search(ctx, 1 + abs(eps), free, None,
+                                            candidate=_local_candidate)
+                return left, right
+        except (_Undecided, NotDecided) as und:
+            if wdps >= max_dps:
+                with working_dps(wdps):
+                    raise UndecidableCollision(detachment_phase(eps), detachment_velocity(eps),
+                                               eps, wdps, f"flight from detachment: {und}"
+                                               ) from None
+            wdps = min(max_dps, 2 * wdps)
+
+
+def detachment_step(eps, r, dps: int):
+    """``(phi1, v1, tau)``: the impact ending the flight from detachment (module docstring).
+
+    ``tau`` is the midpoint of the proved enclosure; phase ``theta* + tau`` reduced to
+    ``[0, 2*pi)``, ``v_in = sqrt(eps**2 - 1) - tau``, ``u = -eps*sin(theta* + tau)``,
+    ``v1 = (1 + r)*u - r*v_in``; all at ``dps + 10`` digits, rounded to ``dps``.
+    """
+    left, right = detachment_flight(eps, dps)
+    with working_dps(dps + 2 * _GUARD_DPS):
+        tau = (left + right) / 2
+        theta = detachment_phase(eps) + tau
+        u = -eps * mp.sin(theta)
+        v1 = (1 + r) * u - r * (detachment_velocity(eps) - tau)
+        two_pi = 2 * mp.pi
+        phi1 = theta - two_pi * mp.floor(theta / two_pi)
+    with working_dps(dps):
+        phi1, v1, tau = +phi1, +v1, +tau
+        if phi1 >= 2 * mp.pi:
+            phi1 = mp.zero
+    return phi1, v1, tau
+
+
+def stay(phase, eps):
+    """Time riding the plate from the accumulation phase to theta*: ``(theta* - phase) mod
+    2*pi`` in ``(0, 2*pi]`` at the current precision."""
+    two_pi = 2 * mp.pi
+    d = detachment_phase(eps) - phase
+    d -= two_pi * mp.floor(d / two_pi)
+    return d if d > 0 else two_pi
