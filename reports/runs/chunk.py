@@ -1,6 +1,7 @@
 """One chunk of a run, computed and verified: ``run_chunk``.
 
-Elastic scenes (no ``[physics]``) run ``fastpath.ensemble.escape_chunk`` unchanged. Scenes with
+Elastic scenes (no ``[physics]``) run ``fastpath.ensemble.escape_chunk`` unchanged; velocity
+scenes run ``reports.runs.velocity.simulate_chunk`` (the same settling and sample). Scenes with
 restitution < 1 or drag run ``fastpath.dissipative_ensemble.dissipative_escape_chunk`` (the
 same contract plus the histograms of particles stuck on the plate for good), and their flagged
 and sampled collisions are recomputed by ``verify.step`` with the same physics. With
@@ -213,8 +214,12 @@ def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
         numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
     empty = Counts(*(np.zeros(0, np.int64) for _ in range(5)))
     try:
-        counts, rows = simulate_chunk(plan, curve, chunk)
-        bad = verify_rows(rows, scene.eps, scene.physics())
+        if scene.kind == "velocity":  # imported here: reports.runs.velocity imports this module
+            from reports.runs.velocity import simulate_chunk as simulate
+        else:
+            simulate = simulate_chunk
+        counts, rows = simulate(plan, curve, chunk)
+        bad = verify_rows(rows, scene.eps, scene.curve_physics(curve))
     except RunFailed as err:
         return ChunkResult(curve, chunk, empty, [], [], str(err),
                            time.perf_counter() - t0, CODE_DIGEST)
