@@ -88,7 +88,8 @@ def test_run_outputs_and_invariants(small_run):
     assert all(int(r[2]) == 300 and int(r[3]) == 0 for r in rows)  # eps > 1: none sticks
     ok, lines = recheck(out)
     assert ok, lines
-    assert manifest["verification"]["sampled"] >= 30 and manifest["verification"]["overstepped"] == 0
+    ver = manifest["verification"]
+    assert ver["sampled"] >= 30 and ver["overstepped"] == 0
 
 
 def test_means_agree_with_fastpath_moments_on_the_same_starts():
@@ -289,3 +290,44 @@ def test_a_list_of_restitutions_only_in_velocity_scenes():
     with pytest.raises(ValueError, match=r"a list only in velocity scenes"):
         parse_scene(escape)
     assert parse_scene(escape.replace("[1.0, 0.9]", "0.9")).restitution == 0.9
+
+
+def test_flagged_particles_are_settled_by_verify_and_counted_once(monkeypatch):
+    """Pretend float64 could not decide any first flight: the kernel's first pass records the
+    starts (n = 0) and flags every particle; collision 1 is settled by verify and the particles
+    resume in the kernel from n = 1, each grid point counting every particle once."""
+    from reports.runs import velocity
+
+    scene = _fresh(SMALL)
+    plan = make_plan(scene)
+    base, _ = velocity.simulate_chunk(plan, 0, 0)
+    real = velocity._kernel()
+    calls = []
+
+    def undecided_first(phi, v, t, n, *args):
+        calls.append(len(phi))
+        if len(calls) > 1:
+            return real(phi, v, t, n, *args)
+        args = list(args)
+        args[5] = np.int64(0)  # max_collisions: record the start, make no collision
+        real(phi, v, t, n, *args)
+        flags, flag_state = args[-3], args[-2]
+        flags[:] = 1  # FlightStatus.UNCERTAIN
+        flag_state[:] = np.column_stack([phi, v, t, n])
+
+    monkeypatch.setattr(velocity, "_kernel", lambda: undecided_first)
+    settled, _ = velocity.simulate_chunk(plan, 0, 0)
+    m = len(chunk_starts(plan, 0, 0)[0])
+    assert settled.settled == m and len(calls) == 2
+    assert list(settled.moving) == [m] * len(plan.n_grid)
+    assert settled.sum_v[0] == base.sum_v[0]  # the starts, once
+    # collision 1 from verify (correctly rounded) against fastpath's (error ~ kappa*u each)
+    assert float(settled.sum_v[1]) == pytest.approx(float(base.sum_v[1]), rel=1e-12)
+    assert settled.collisions == base.collisions
+
+
+def test_plot_draws_the_velocity_curves(small_run, tmp_path):
+    out = tmp_path / "v.png"
+    assert main(["plot", str(small_run[0]), "--out", str(out)]) == 0
+    assert out.stat().st_size > 10_000
+    assert main(["plot", str(small_run[0]), "--fit", "power", "--window", "1", "10"]) == 2
