@@ -1,9 +1,11 @@
-"""Velocity scenes: <v_n> against the collision index n, one curve per restitution.
+"""Velocity scenes' results: <v_n> against the collision index n, one curve per restitution.
 
-A chunk runs ``fastpath.velocity_ensemble.velocity_chunk`` on its starts with its curve's
-physics (``Scene.curve_physics``); flagged collisions are settled by ``verify.step`` and the
-particle resumes in the kernel; the sampled collisions are those of escape runs (the same
-picks, rows and carried state), so ``bouncer verify`` re-derives them the same way.
+A chunk (``reports.runs.chunk.simulate_velocity_chunk``) runs
+``fastpath.velocity_ensemble.velocity_chunk`` on its starts with its curve's physics
+(``Scene.curve_physics``); flagged collisions are settled by ``verify.step`` and the particle
+resumes in the kernel; the sampled collisions are those of escape runs (the same picks, rows and
+carried state), so ``bouncer verify`` re-derives them the same way. This module turns the
+merged counts into velocity.csv and checks their invariants.
 
 Every particle ends at the horizon N = ``horizon.collisions`` or stuck on the plate for good
 (r < 1, |eps| <= 1). At each grid point n_grid[j] (``Plan.n_grid``):
@@ -31,76 +33,8 @@ import io
 import math
 from fractions import Fraction
 
-import numpy as np
-
-from fastpath.ensemble import NO_LIMIT
-from reports.runs.chunk import _KERNEL_LOCK, _law_code, settle
-from reports.runs.counts import Counts, exact_block_sums
-from reports.runs.plan import BLOCKS, chunk_starts
-from reports.runs.rundir import CARRIED_COLUMNS
-
 COLUMNS = ("curve", "n", "moving", "stuck", "mean_v", "mean_v2", "se_v")
 MEAN_SLACK = 8.0 * 2.0**-53  # file_problems: rounding of mean_v**2 against mean_v2
-
-
-def _kernel():
-    from fastpath.velocity_ensemble import velocity_chunk
-
-    return velocity_chunk
-
-
-def kernel(plan, e, state, slot, target, samples, out):
-    """One pass of the kernel over the particles in ``state`` = (phi, v, t, n), added into
-    ``out`` (a chunk's Counts); returns (flags, flag_state)."""
-    sc = plan.scene
-    phi, v, t, n = state
-    m, grid = len(phi), plan.n_grid
-    blocks = min(BLOCKS, m)
-    moving, stuck = np.zeros((blocks, len(grid)), np.int64), np.zeros((blocks, len(grid)),
-                                                                       np.int64)
-    sum_v, sum_v2 = np.zeros((blocks, len(grid))), np.zeros((blocks, len(grid)))
-    collisions = np.zeros(blocks, np.int64)
-    flags, flag_state = np.zeros(m, np.int8), np.zeros((m, 4))
-    physics = sc.curve_physics(e)
-    with _KERNEL_LOCK:
-        _kernel()(phi, v, t, n, sc.eps, sc.drag, _law_code(sc.drag_law),
-                  physics.get("restitution", 1.0), grid, sc.max_collisions or NO_LIMIT, slot,
-                  target, moving, sum_v, sum_v2, stuck, collisions, flags, flag_state, samples)
-    out.moving += moving.sum(axis=0)
-    out.stuck_at += stuck.sum(axis=0)
-    out.sum_v += exact_block_sums(sum_v)
-    out.sum_v2 += exact_block_sums(sum_v2)
-    out.collisions += int(collisions.sum())
-    return flags, flag_state
-
-
-def simulate_chunk(plan, e, k):
-    """Simulate chunk k of curve e, settling flagged collisions by verify: (Counts, sample rows
-    not yet verified), as ``reports.runs.chunk.simulate_chunk``."""
-    sc = plan.scene
-    phi, v, slot, target, picks = chunk_starts(plan, e, k)
-    m = len(phi)
-    out = Counts.zeros(plan, 1)
-    samples = np.zeros((len(picks), 6 + (len(CARRIED_COLUMNS) if sc.carries else 0)))
-    state = (phi, v, np.zeros(m), np.zeros(m, np.int64))
-    physics = sc.curve_physics(e)
-    while len(state[0]):
-        flags, flag_state = kernel(plan, e, state, slot, target, samples, out)
-        resume = []
-        for i in np.flatnonzero(flags):
-            phi_i, v_i, t_i, n_i = flag_state[i]
-            phi1, v1, tau = (settle(phi_i, v_i, sc.eps, physics) if physics
-                             else settle(phi_i, v_i, sc.eps))
-            out.settled += 1
-            out.collisions += 1
-            resume.append((i, phi1, v1, t_i + tau, int(n_i) + 1))  # its grid point: the kernel
-        idx = np.array([r[0] for r in resume], np.int64)
-        state = tuple(np.array([r[c] for r in resume], dtype)
-                      for c, dtype in ((1, float), (2, float), (3, float), (4, np.int64)))
-        slot, target = slot[idx], target[idx]
-    rows = [[e, k, int(picks[s]), *map(float, samples[s])] for s in range(len(picks))
-            if samples[s, 0] > 0]
-    return out, rows
 
 
 def _float(x):

@@ -296,12 +296,12 @@ def test_flagged_particles_are_settled_by_verify_and_counted_once(monkeypatch):
     """Pretend float64 could not decide any first flight: the kernel's first pass records the
     starts (n = 0) and flags every particle; collision 1 is settled by verify and the particles
     resume in the kernel from n = 1, each grid point counting every particle once."""
-    from reports.runs import velocity
+    from reports.runs import chunk
 
     scene = _fresh(SMALL)
     plan = make_plan(scene)
-    base, _ = velocity.simulate_chunk(plan, 0, 0)
-    real = velocity._kernel()
+    base, _ = chunk.simulate_velocity_chunk(plan, 0, 0)
+    real = chunk._velocity_kernel()
     calls = []
 
     def undecided_first(phi, v, t, n, *args):
@@ -315,8 +315,8 @@ def test_flagged_particles_are_settled_by_verify_and_counted_once(monkeypatch):
         flags[:] = 1  # FlightStatus.UNCERTAIN
         flag_state[:] = np.column_stack([phi, v, t, n])
 
-    monkeypatch.setattr(velocity, "_kernel", lambda: undecided_first)
-    settled, _ = velocity.simulate_chunk(plan, 0, 0)
+    monkeypatch.setattr(chunk, "_velocity_kernel", lambda: undecided_first)
+    settled, _ = chunk.simulate_velocity_chunk(plan, 0, 0)
     m = len(chunk_starts(plan, 0, 0)[0])
     assert settled.settled == m and len(calls) == 2
     assert list(settled.moving) == [m] * len(plan.n_grid)
