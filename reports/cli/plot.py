@@ -1,4 +1,4 @@
-"""``bouncer plot RUN_DIR``: the survival curves (or the portrait) of a run, as PNG."""
+"""``bouncer plot RUN_DIR``: the survival curves (the portrait, <v_n>) of a run, as PNG."""
 
 from reports.stats.plot import plot_run
 
@@ -11,9 +11,11 @@ def _plot(args):
 
 
 def add_parser(subparsers):
-    plot = subparsers.add_parser("plot", help="survival curves (or the portrait) of a run, as PNG")
+    plot = subparsers.add_parser(
+        "plot", help="survival curves (the portrait, <v_n>) of a run, as PNG")
     plot.add_argument("run_dir", metavar="RUN_DIR")
-    plot.add_argument("--out", help="image file (default: RUN_DIR/survival.png)")
+    plot.add_argument("--out", help="image file (default: RUN_DIR/survival.png, portrait.png"
+                                    " or velocity.png)")
     plot.add_argument("--fit", choices=["exponential", "stretched", "power"])
     plot.add_argument("--window", type=float, nargs=2, metavar=("LO", "HI"))
     plot.add_argument("--clock", choices=["collisions", "time"], default="time")

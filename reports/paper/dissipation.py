@@ -11,7 +11,10 @@ or stick, so there is no plateau to measure), starts uniform in the seed's escap
   leaves the plate) for a few r, from ``Moments.stuck_n``.
 
 <v_n> over the particles that reached collision n comes from ``fastpath.moments`` (64 blocks
-of consecutive particles). The plateau V_sat is the mean of <v_n> over the grid points (log
+of consecutive particles). The built-in scene ``dissipation-saturation`` (kind "velocity",
+``reports.runs.velocity``) runs r = 1 and three of these r through the trusted run engine
+(verification sample, ``bouncer verify``), with the same convention: stuck particles are
+counted apart, not in the means. The plateau V_sat is the mean of <v_n> over the grid points (log
 spaced) in the last decade of n, [n_max/10, n_max], and the saturation test is the slope of
 log<v_n> against log n over that window. The exponent beta of V_sat ~ (1 - r)^beta is the
 least-squares slope of log V_sat against log(1 - r).

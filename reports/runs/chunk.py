@@ -1,6 +1,7 @@
 """One chunk of a run, computed and verified: ``run_chunk``.
 
-Elastic scenes (no ``[physics]``) run ``fastpath.ensemble.escape_chunk`` unchanged. Scenes with
+Elastic scenes (no ``[physics]``) run ``fastpath.ensemble.escape_chunk`` unchanged; velocity
+scenes run ``simulate_velocity_chunk`` (the same settling and sample). Scenes with
 restitution < 1 or drag run ``fastpath.dissipative_ensemble.dissipative_escape_chunk`` (the
 same contract plus the histograms of particles stuck on the plate for good), and their flagged
 and sampled collisions are recomputed by ``verify.step`` with the same physics. With
@@ -28,7 +29,7 @@ from fastpath.ensemble import (
     exit_hole,
     portrait_chunk,
 )
-from reports.runs.counts import Counts
+from reports.runs.counts import Counts, exact_block_sums
 from reports.runs.plan import BLOCKS, PORTRAIT_BLOCKS, chunk_starts, make_plan
 from reports.runs.rundir import CARRIED_COLUMNS, RunFailed
 
@@ -193,6 +194,68 @@ def simulate_chunk(plan, e, k):
     return out, rows
 
 
+def _velocity_kernel():
+    from fastpath.velocity_ensemble import velocity_chunk
+
+    return velocity_chunk
+
+
+def velocity_kernel(plan, e, state, slot, target, samples, out):
+    """``kernel`` for a velocity scene: one pass of ``fastpath.velocity_ensemble`` over the
+    particles in ``state`` = (phi, v, t, n) with curve e's physics, into ``out`` (exact block
+    sums, ``reports.runs.counts``); returns (flags, flag_state)."""
+    sc = plan.scene
+    phi, v, t, n = state
+    m, grid = len(phi), plan.n_grid
+    blocks = min(BLOCKS, m)
+    moving, stuck = np.zeros((blocks, len(grid)), np.int64), np.zeros((blocks, len(grid)),
+                                                                       np.int64)
+    sum_v, sum_v2 = np.zeros((blocks, len(grid))), np.zeros((blocks, len(grid)))
+    collisions = np.zeros(blocks, np.int64)
+    flags, flag_state = np.zeros(m, np.int8), np.zeros((m, 4))
+    physics = sc.curve_physics(e)
+    with _KERNEL_LOCK:
+        _velocity_kernel()(phi, v, t, n, sc.eps, sc.drag, _law_code(sc.drag_law),
+                  physics.get("restitution", 1.0), grid, sc.max_collisions or NO_LIMIT, slot,
+                  target, moving, sum_v, sum_v2, stuck, collisions, flags, flag_state, samples)
+    out.moving += moving.sum(axis=0)
+    out.stuck_at += stuck.sum(axis=0)
+    out.sum_v += exact_block_sums(sum_v)
+    out.sum_v2 += exact_block_sums(sum_v2)
+    out.collisions += int(collisions.sum())
+    return flags, flag_state
+
+
+def simulate_velocity_chunk(plan, e, k):
+    """``simulate_chunk`` for a velocity scene (``reports.runs.velocity``): chunk k of curve e
+    through ``fastpath.velocity_ensemble``, flagged collisions settled by verify, the particle
+    resuming from the state after it (the kernel fills its grid point)."""
+    sc = plan.scene
+    phi, v, slot, target, picks = chunk_starts(plan, e, k)
+    m = len(phi)
+    out = Counts.zeros(plan, 1)
+    samples = np.zeros((len(picks), 6 + (len(CARRIED_COLUMNS) if sc.carries else 0)))
+    state = (phi, v, np.zeros(m), np.zeros(m, np.int64))
+    physics = sc.curve_physics(e)
+    while len(state[0]):
+        flags, flag_state = velocity_kernel(plan, e, state, slot, target, samples, out)
+        resume = []
+        for i in np.flatnonzero(flags):
+            phi_i, v_i, t_i, n_i = flag_state[i]
+            phi1, v1, tau = (settle(phi_i, v_i, sc.eps, physics) if physics
+                             else settle(phi_i, v_i, sc.eps))
+            out.settled += 1
+            out.collisions += 1
+            resume.append((i, phi1, v1, t_i + tau, int(n_i) + 1))  # its grid point: the kernel
+        idx = np.array([r[0] for r in resume], np.int64)
+        state = tuple(np.array([r[c] for r in resume], dtype)
+                      for c, dtype in ((1, float), (2, float), (3, float), (4, np.int64)))
+        slot, target = slot[idx], target[idx]
+    rows = [[e, k, int(picks[s]), *map(float, samples[s])] for s in range(len(picks))
+            if samples[s, 0] > 0]
+    return out, rows
+
+
 def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
     """Chunk ``chunk`` of curve (experiment) ``curve`` of the run of ``scene`` with ``seed`` and
     ``particles`` per curve (default: the scene's): simulated, flagged collisions settled and
@@ -213,8 +276,9 @@ def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
         numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
     empty = Counts(*(np.zeros(0, np.int64) for _ in range(5)))
     try:
-        counts, rows = simulate_chunk(plan, curve, chunk)
-        bad = verify_rows(rows, scene.eps, scene.physics())
+        simulate = simulate_velocity_chunk if scene.kind == "velocity" else simulate_chunk
+        counts, rows = simulate(plan, curve, chunk)
+        bad = verify_rows(rows, scene.eps, scene.curve_physics(curve))
     except RunFailed as err:
         return ChunkResult(curve, chunk, empty, [], [], str(err),
                            time.perf_counter() - t0, CODE_DIGEST)

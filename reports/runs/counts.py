@@ -10,6 +10,17 @@ bookkeeping of the checkpoint (finished chunks, verified sample rows, elapsed ti
                                      |eps| <= 1), by the collision index / time of sticking;
                                      zero for the elastic model
     portrait[p, q]                   phase-space visits (phase-space scenes only)
+    moving[e, j], stuck_at[e, j]     velocity scenes only (else None): particles still moving
+                                     at collision n_grid[j], and stuck for good before it
+    sum_v[e, j], sum_v2[e, j]        velocity scenes only: the exact sums of v_n and v_n**2 over
+                                     the particles moving at n_grid[j], ``fractions.Fraction``
+                                     in object arrays (see below)
+
+Exact velocity sums. A chunk's kernel adds v_n in float64 within fixed blocks of particles (the
+same for any thread count); each block sum is then converted exactly to a Fraction (a float is
+a dyadic rational) and from there on every sum is exact rational arithmetic. Addition of
+rationals is associative, so the merged sums, and the means rounded once from them, do not
+depend on the order in which chunks are merged (a Dask cluster returns them out of order).
 
 Merging (``Tally.merge``) is keyed by the chunk index (curve, chunk): a chunk already merged is
 ignored, counts are integer sums, and the sample rows are kept sorted by index, so the merged
@@ -29,6 +40,7 @@ import hashlib
 import json
 import zipfile
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 import numpy as np
 
@@ -50,6 +62,10 @@ class Counts:
     settled: int = 0
     stuck_n: np.ndarray | None = None
     stuck_t: np.ndarray | None = None
+    moving: np.ndarray | None = None
+    stuck_at: np.ndarray | None = None
+    sum_v: np.ndarray | None = None
+    sum_v2: np.ndarray | None = None
 
     def __post_init__(self):
         if self.stuck_n is None:
@@ -64,6 +80,10 @@ class Counts:
         nb, tb = len(plan.n_edges), len(plan.t_edges)
         sc = plan.scene
         shape = (sc.phi_bins, sc.v_bins) if sc.kind == "phase-space" else (0, 0)
+        if sc.kind == "velocity":
+            grid = (*lead, len(plan.n_grid))
+            extra.update(moving=np.zeros(grid, np.int64), stuck_at=np.zeros(grid, np.int64),
+                         sum_v=exact_zeros(grid), sum_v2=exact_zeros(grid))
         return cls(np.zeros((*lead, holes, nb), np.int64), np.zeros((*lead, holes, tb), np.int64),
                    np.zeros((*lead, nb), np.int64), np.zeros((*lead, tb), np.int64),
                    np.zeros(shape, np.int64), **extra)
@@ -79,8 +99,27 @@ class Counts:
         self.stuck_t[at] += other.stuck_t
         if portrait:
             self.portrait += other.portrait
+        if self.moving is not None:
+            for name in _VELOCITY + _EXACT:
+                getattr(self, name)[at] += getattr(other, name)
         self.collisions += other.collisions
         self.settled += other.settled
+
+
+def exact_zeros(shape):
+    """An object array of Fraction(0): exact sums (module docstring)."""
+    out = np.empty(shape, object)
+    out.fill(Fraction(0))
+    return out
+
+
+def exact_block_sums(block_sums):
+    """Column sums of a float64 array (blocks, k), each block sum taken exactly: an object array
+    of k Fractions."""
+    out = exact_zeros(block_sums.shape[1:])
+    for row in block_sums:
+        out += np.array([Fraction(float(x)) for x in row], object)
+    return out
 
 
 def _sample_key(row):
@@ -142,13 +181,15 @@ class Finished:
 
 _ARRAYS = ("esc_n", "esc_t", "cens_n", "cens_t", "portrait")
 _STUCK = ("stuck_n", "stuck_t")  # saved only when a particle stuck: elastic checkpoints unchanged
+_VELOCITY = ("moving", "stuck_at")  # velocity scenes only, as are the exact sums:
+_EXACT = ("sum_v", "sum_v2")  # in the bookkeeping JSON as "numerator/denominator" strings
 
 
 def _digest(arrays, meta_json):
-    """SHA-256 over each array's name, dtype, shape and bytes (``_ARRAYS``, then ``_STUCK`` where
-    present), then the bookkeeping JSON."""
+    """SHA-256 over each array's name, dtype, shape and bytes (``_ARRAYS``, then ``_STUCK`` and
+    ``_VELOCITY`` where present), then the bookkeeping JSON."""
     h = hashlib.sha256()
-    for name in (*_ARRAYS, *(n for n in _STUCK if n in arrays)):
+    for name in (*_ARRAYS, *(n for n in _STUCK + _VELOCITY if n in arrays)):
         a = np.ascontiguousarray(arrays[name])
         h.update(f"{name}|{a.dtype.str}|{a.shape}|".encode())
         h.update(a.tobytes())
@@ -173,12 +214,17 @@ class Tally(Counts):
 
     def save(self, path):
         """Write the checkpoint atomically; returns the SHA-256 of the file's bytes."""
-        meta = json.dumps({"collisions": self.collisions, "settled": self.settled,
-                           "finished": self.finished.to_json(), "samples": self.samples,
-                           "elapsed": self.elapsed, "started": self.started})
+        book = {"collisions": self.collisions, "settled": self.settled,
+                "finished": self.finished.to_json(), "samples": self.samples,
+                "elapsed": self.elapsed, "started": self.started}
         arrays = {name: getattr(self, name) for name in _ARRAYS}
         if self.stuck_n.any() or self.stuck_t.any():
             arrays.update(stuck_n=self.stuck_n, stuck_t=self.stuck_t)
+        if self.moving is not None:
+            arrays.update({name: getattr(self, name) for name in _VELOCITY})
+            book["velocity"] = {name: [[str(x) for x in row] for row in getattr(self, name)]
+                                for name in _EXACT}
+        meta = json.dumps(book)
         return rundir.save_npz_atomic(path, **arrays, meta=np.array(meta),
                                       digest=np.array(_digest(arrays, meta)))
 
@@ -187,20 +233,27 @@ class Tally(Counts):
         """The checkpoint at ``path``; CheckpointError if it is unreadable or fails its digest."""
         try:
             with np.load(path) as z:
-                arrays = {name: z[name] for name in (*_ARRAYS, *_STUCK) if name in z.files}
+                arrays = {name: z[name] for name in (*_ARRAYS, *_STUCK, *_VELOCITY)
+                          if name in z.files}
                 meta_json, digest = str(z["meta"]), str(z["digest"])
             meta = json.loads(meta_json)
             if _digest(arrays, meta_json) != digest:
                 raise CheckpointError(f"checkpoint {path} fails its content hash (edited or"
                                       " corrupted)")
+            exact = {name: np.array([[Fraction(x) for x in row] for row in rows], object)
+                     .reshape(arrays["moving"].shape)
+                     for name, rows in meta["velocity"].items()} if "velocity" in meta else {}
             return cls(*(arrays[name] for name in _ARRAYS), int(meta["collisions"]),
                        int(meta["settled"]), arrays.get("stuck_n"), arrays.get("stuck_t"),
+                       arrays.get("moving"), arrays.get("stuck_at"), exact.get("sum_v"),
+                       exact.get("sum_v2"),
                        finished=Finished.from_json(meta["finished"]),
                        samples=sorted(meta["samples"], key=_sample_key),
                        elapsed=float(meta["elapsed"]), started=str(meta["started"]))
         except CheckpointError:
             raise
-        except (OSError, EOFError, zipfile.BadZipFile, KeyError, TypeError, ValueError) as err:
+        except (OSError, EOFError, zipfile.BadZipFile, KeyError, TypeError, ValueError,
+                ZeroDivisionError) as err:
             raise CheckpointError(f"checkpoint {path} is unreadable ({type(err).__name__}:"
                                   f" {err})") from None
 

@@ -57,6 +57,7 @@ from reports.runs.rundir import CHECKPOINT, RunFailed, RunInterrupted
 from reports.runs.scenes import parse_scene
 from reports.runs.signals import deferred_interrupt
 from reports.runs.survival import survival_curve, wilson
+from reports.runs.velocity import velocity_text
 
 
 def summary(tally, scene):
@@ -240,6 +241,9 @@ def _manifest(out, plan, tally, status, ctx, failure=None, verification=None):
     sc = plan.scene
     curves = {}
     for e, exp in enumerate(plan.experiments):
+        if sc.kind == "velocity":
+            curves[exp.name] = velocity_curve(plan, tally, e)
+            continue
         clock = "esc_n" if "collisions" in sc.clocks else "esc_t"
         esc = getattr(tally, clock)[e]
         cens = tally.cens_n[e] if clock == "esc_n" else tally.cens_t[e]
@@ -252,7 +256,11 @@ def _manifest(out, plan, tally, status, ctx, failure=None, verification=None):
         "status": status,
         "scene": {"name": sc.name, "kind": sc.kind, "file": "scene.toml", "eps": sc.eps,
                   "horizon": {"collisions": sc.max_collisions, "time": sc.max_time},
-                  **({"physics": sc.physics()} if not sc.elastic else {})},
+                  **({"physics": sc.physics()} if not sc.elastic and sc.kind != "velocity"
+                     else {}),
+                  **({"physics_per_curve": {x.name: sc.curve_physics(e) for e, x
+                                            in enumerate(plan.experiments)}}
+                     if sc.kind == "velocity" else {})},
         "seed": plan.seed,
         "particles": plan.particles,
         "particles_total": plan.particles * len(plan.experiments),
@@ -309,14 +317,26 @@ def survival_rows(plan, tally):
     return rows
 
 
+def velocity_curve(plan, tally, e):
+    """The manifest's figures of velocity curve e: particles done, and at the horizon the
+    particles moving, stuck and their mean velocity (None if none moves)."""
+    moving = int(tally.moving[e, -1])
+    return {"particles_done": tally.finished.particles_done(plan, e), "moving": moving,
+            "stuck": int(tally.stuck_at[e, -1]),
+            "mean_v_at_horizon": float(tally.sum_v[e, -1] / moving) if moving else None}
+
+
 def result_files(plan, tally):
-    """{name: text or bytes} of survival.csv, counts.csv (or portrait.npy) and sample.csv."""
+    """{name: text or bytes} of survival.csv, counts.csv (or portrait.npy, or velocity.csv)
+    and sample.csv."""
     sc = plan.scene
     files = {}
     if sc.kind == "phase-space":
         buf = io.BytesIO()
         np.save(buf, tally.portrait)
         files["portrait.npy"] = buf.getvalue()
+    elif sc.kind == "velocity":
+        files["velocity.csv"] = velocity_text(plan, tally)
     else:
         files["survival.csv"] = rundir.csv_text(["curve", "clock", "x", "p", "p_lo", "p_hi"],
                                                 survival_rows(plan, tally))

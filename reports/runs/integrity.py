@@ -7,7 +7,9 @@ all hold); file checks name the file and line.
   (``stuck``, particles that come to rest on the plate, is 0 for the elastic model);
 * counts are non-negative integers, the finished chunks lie in the plan, and every sample row
   belongs to a finished chunk that carries picks, at most ``samples_per_chunk`` of them;
-* survival.csv: 0 <= p_lo <= p <= p_hi <= 1 and p non-increasing along each (curve, clock).
+* survival.csv: 0 <= p_lo <= p <= p_hi <= 1 and p non-increasing along each (curve, clock);
+* velocity scenes: at every grid point moving + stuck = particles, and the exact sums are
+  consistent (``reports.runs.velocity.velocity_problems``).
 """
 
 from __future__ import annotations
@@ -15,10 +17,12 @@ from __future__ import annotations
 import csv
 import io
 from collections import Counter
+from fractions import Fraction
 
 import numpy as np
 
 from reports.runs.counts import Counts, Tally
+from reports.runs.velocity import velocity_problems
 
 ARRAYS = ("esc_n", "esc_t", "cens_n", "cens_t", "portrait", "stuck_n", "stuck_t")
 
@@ -70,10 +74,14 @@ def tally_problems(plan, tally):
                         f" {per} chunks")
     elif not all(0 <= e < n_exp and fin.prefix[e] < k < per for e, k in fin.extra):
         problems.append(f"finished chunks outside the plan: {sorted(fin.extra)[:3]}")
+    if plan.scene.kind == "velocity":
+        problems += velocity_shape_problems(plan, tally)
     if problems:
         return problems
     done = [fin.particles_done(plan, e) for e in range(n_exp)]
     problems += [msg for _, _, msg in curve_problems(plan, tally, done)]
+    if plan.scene.kind == "velocity":
+        problems += velocity_problems(plan, tally, done)
     if plan.scene.kind == "phase-space" and int(tally.portrait.sum()) > tally.collisions:
         problems.append(f"{int(tally.portrait.sum())} portrait visits but only"
                         f" {tally.collisions} collisions")
@@ -88,6 +96,23 @@ def tally_problems(plan, tally):
                             f" {plan.samples_per_chunk} are drawn")
             break
     return problems
+
+
+def velocity_shape_problems(plan, tally):
+    """The velocity arrays of a velocity scene's tally: present, (curves, grid) shaped, counts
+    non-negative, sums exact rationals."""
+    shape = (len(plan.experiments), len(plan.n_grid))
+    out = []
+    for name in ("moving", "stuck_at", "sum_v", "sum_v2"):
+        a = getattr(tally, name)
+        if a is None or a.shape != shape:
+            out.append(f"{name} has shape {None if a is None else a.shape}, the plan needs"
+                       f" {shape}")
+        elif name in ("moving", "stuck_at") and np.any(a < 0):
+            out.append(f"{name} has negative counts")
+        elif name in ("sum_v", "sum_v2") and not all(isinstance(x, Fraction) for x in a.flat):
+            out.append(f"{name} holds values that are not exact sums")
+    return out
 
 
 def parse_counts(plan, text, name="counts.csv"):

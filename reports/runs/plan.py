@@ -101,6 +101,14 @@ class Plan:
     def sampled_chunks(self):
         return -(-self.n_chunks // self.sample_stride)
 
+    @property
+    def n_grid(self):
+        """Collision indices where a velocity scene records <v_n>: 0, the integer collision
+        bin edges below the horizon N (log spaced, ``bins_per_decade``), and N itself."""
+        n_max = self.scene.max_collisions
+        inner = self.n_edges[self.n_edges < n_max].astype(np.int64)
+        return np.concatenate([[0], inner, [n_max]]).astype(np.int64)
+
 
 def make_plan(scene, particles=None, seed=None):
     """The run plan; ``particles`` (per curve) and ``seed`` override the scene's."""

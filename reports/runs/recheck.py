@@ -8,7 +8,9 @@ Discrepancies are reported by file and line; any one fails the audit (exit statu
    holds every chunk of the plan;
 3. counts.csv equals the counts.csv written from the checkpoint; survival.csv equals the one
    re-derived from counts.csv by the run's own writer (byte for byte), lies in [0, 1] and does not
-   rise; per curve escapes + censored + stuck = particles (portrait.npy for phase-space scenes);
+   rise; per curve escapes + censored + stuck = particles (portrait.npy for phase-space scenes;
+   velocity.csv for velocity scenes: equal to the one written from the checkpoint, moving +
+   stuck = particles at every grid point, mean_v**2 <= mean_v2);
 4. sample.csv equals the checkpoint's sample; the manifest's figures (collisions, chunks,
    escaped and censored per curve, sampled, uncertain settled, worst error) agree with the
    checkpoint and the sample;
@@ -32,13 +34,16 @@ import fastpath
 from reports.runs import rundir
 from reports.runs.chunk import OVERSTEP_TOLERANCE, check_sample
 from reports.runs.counts import CheckpointError, Tally
-from reports.runs.driver import result_files, survival_rows
+from reports.runs.driver import result_files, survival_rows, velocity_curve
 from reports.runs.integrity import curve_problems, parse_counts, survival_problems, tally_problems
 from reports.runs.plan import make_plan
 from reports.runs.rundir import CARRIED_COLUMNS
 from reports.runs.scenes import parse_scene
+from reports.runs.velocity import file_problems as velocity_file_problems
 
 SHOWN = 5  # discrepancies shown per check; the count of all of them is reported
+_SURVIVAL = "counts.csv and survival.csv"
+_REDERIVED = {"phase-space": "portrait.npy", "velocity": "velocity.csv"}
 
 
 def load_run(run_dir):
@@ -97,6 +102,13 @@ def _outputs(run_dir, plan, tally):
         if tally is not None and (not path.is_file()
                                   or path.read_bytes() != written["portrait.npy"]):
             out.append("portrait.npy: differs from the checkpoint's portrait (or is missing)")
+    elif plan.scene.kind == "velocity":
+        text = _text(run_dir / "velocity.csv")
+        if text is None:
+            return out + ["velocity.csv is missing or not UTF-8 text"]
+        if tally is not None:
+            out += _compare("velocity.csv", written["velocity.csv"], text, "the checkpoint")
+        out += velocity_file_problems(plan, text)
     else:
         counts_text, survival_text = _text(run_dir / "counts.csv"), _text(run_dir / "survival.csv")
         if counts_text is None or survival_text is None:
@@ -134,6 +146,12 @@ def _manifest_figures(manifest, plan, tally, worst):
     for e, exp in enumerate(plan.experiments):
         if plan.scene.kind == "phase-space":
             break
+        if plan.scene.kind == "velocity":
+            curve = manifest.get("curves", {}).get(exp.name, {})
+            want = velocity_curve(plan, tally, e)
+            pairs += [(f"curves.{exp.name}.{key}", curve.get(key), value)
+                      for key, value in want.items() if key != "particles_done"]
+            continue
         clock = "collisions" if "collisions" in plan.scene.clocks else "time"
         esc = tally.esc_n[e] if clock == "collisions" else tally.esc_t[e]
         cens = tally.cens_n[e] if clock == "collisions" else tally.cens_t[e]
@@ -166,17 +184,23 @@ def _sample(run_dir, scene, progress):
         except (KeyError, TypeError, ValueError):
             out.append(f"sample.csv:{line}: not a sample row")
             continue
-        name = "fastpath.carried_step" if scene.carries else "fastpath.step"
         try:
-            fast = tuple(fastpath.carried_step(phi, v, scene.eps, carried, **scene.physics())
-                         if scene.carries else fastpath.step(phi, v, scene.eps, **scene.physics()))
+            physics = scene.curve_physics(int(row["experiment"]))
+        except (KeyError, ValueError, IndexError):
+            out.append(f"sample.csv:{line}: not a sample row (experiment)")
+            continue
+        carries = physics.get("restitution", 1.0) < 1.0
+        name = "fastpath.carried_step" if carries else "fastpath.step"
+        try:
+            fast = tuple(fastpath.carried_step(phi, v, scene.eps, carried, **physics)
+                         if carries else fastpath.step(phi, v, scene.eps, **physics))
             if fast != stored:
                 out.append(f"sample.csv:{line}: {name} gives {fast}"
                            f", the file {stored} (not reproduced bit for bit)")
         except (ValueError, fastpath.UncertainCollision) as err:
             out.append(f"sample.csv:{line}: {name} refuses the row: {err}")
-        ref, err, overstep = (check_sample(phi, v, stored[2], scene.eps, scene.physics())
-                              if not scene.elastic else check_sample(phi, v, stored[2], scene.eps))
+        ref, err, overstep = (check_sample(phi, v, stored[2], scene.eps, physics)
+                              if physics else check_sample(phi, v, stored[2], scene.eps))
         worst = max(worst, err)
         if (ref, err) != (tau_ref, error):
             out.append(f"sample.csv:{line}: verify gives tau_ref {ref!r}, error {err!r}; the file"
@@ -201,7 +225,8 @@ def recheck(run_dir, progress=False):
     if not (run_dir / "sample.csv").is_file() and status != "complete":
         raise ValueError(f"{run_dir} has no sample.csv (status {status}): nothing to verify yet")
     plan = make_plan(scene, manifest.get("particles"), manifest.get("seed"))
-    outputs = (["portrait.npy"] if scene.kind == "phase-space" else ["survival.csv", "counts.csv"])
+    outputs = {"phase-space": ["portrait.npy"], "velocity": ["velocity.csv"]}.get(
+        scene.kind, ["survival.csv", "counts.csv"])
     problems = _hashes(run_dir, manifest, ["scene.toml", "sample.csv", rundir.CHECKPOINT,
                                            *outputs])
     try:
@@ -229,8 +254,8 @@ def recheck(run_dir, progress=False):
         f"{len(rows)} sampled collisions recomputed by verify: worst error {worst:.3g} kappa*u"
         f" (recorded {recorded:.3g}), {len(overstepped)} overstepped"
         f" (tolerance {OVERSTEP_TOLERANCE:g} kappa*u)",
-        "checked: content hashes, checkpoint invariants, counts.csv and survival.csv re-derived,"
-        " sample.csv, the manifest's figures",
+        f"checked: content hashes, checkpoint invariants, {_REDERIVED.get(scene.kind, _SURVIVAL)}"
+        " re-derived, sample.csv, the manifest's figures",
     ]
     for problem in problems[:SHOWN * 4]:
         lines.append(problem)

@@ -3,13 +3,16 @@
 A scene gives the model parameter ``eps``, the initial measure (uniform on a box in phi and v),
 the holes (arcs of collision phase mod 2*pi, each ``[c - w/2, c + w/2)`` for centre c and width w),
 the horizon (a collision count and/or a time), the particle count per curve, the seed and what
-to record. Three kinds:
+to record. Four kinds:
 
 ``escape``       one curve per (width, centre): a single hole open, starts in ``[start]`` (phi, v),
                  which must not overlap the hole (the seed's Section 3).
 ``transport``    for each width, all holes open at once; curve P_ij starts uniform on hole i in
                  phase (``[start]`` gives only v) and leaves through hole j (Section 4).
 ``phase-space``  no holes: a (phi, v) histogram of ``horizon.collisions`` collisions per start.
+``velocity``     no holes: the mean velocity <v_n> and <v_n**2> over the particles still moving
+                 at collision n, on a log grid of n up to ``horizon.collisions`` (collisions
+                 only); one curve per restitution: ``physics.restitution`` may be a list there.
 
 An optional ``[physics]`` table, for every kind, sets the dissipation (DESIGN fact 12): air drag
 ``drag`` = k >= 0 with ``drag_law`` "linear" (eta(v) = k*v) or "quadratic" (eta(v) = k*v*|v|),
@@ -17,8 +20,9 @@ and the coefficient of restitution ``restitution`` = r in (0, 1] (impacts v1 - u
 Left out, it is the elastic, drag-free model (drag = 0, "linear", r = 1), and ``Scene.elastic``
 is True: the scene runs the elastic kernels unchanged.
 
-Built-in scenes live in ``reports/scenes/*.toml`` (package data): ``paper-escape``,
-``paper-transport``, ``paper-phase-space``. ``load_scene`` takes a built-in name or a path.
+Built-in scenes live in ``reports/runs/builtin_scenes/*.toml`` (package data): ``paper-escape``,
+``paper-transport``, ``paper-phase-space``, ``dissipation-saturation``. ``load_scene`` takes a
+built-in name or a path.
 """
 
 from __future__ import annotations
@@ -31,7 +35,7 @@ from importlib import resources
 from pathlib import Path
 
 TWO_PI = 2.0 * math.pi
-KINDS = ("escape", "transport", "phase-space")
+KINDS = ("escape", "transport", "phase-space", "velocity")
 CLOCKS = ("collisions", "time")
 MAX_CHUNK = 2**20
 
@@ -88,6 +92,7 @@ class Scene:
     restitution: float = 1.0
     drag: float = 0.0
     drag_law: str = "linear"
+    restitutions: tuple[float, ...] = ()
     source: str = field(default="", compare=False, repr=False)
 
     @property
@@ -102,15 +107,29 @@ class Scene:
         return self.restitution < 1.0
 
     def physics(self) -> dict:
-        """The keywords of ``fastpath``/``verify`` for this scene's physics (empty if elastic)."""
+        """The keywords of ``fastpath``/``verify`` for this scene's physics (empty if elastic).
+        A velocity scene with several restitutions has one per curve: ``curve_physics``."""
         if self.elastic:
             return {}
         return {"drag": self.drag, "drag_law": self.drag_law, "restitution": self.restitution}
+
+    def curve_physics(self, e) -> dict:
+        """The physics keywords of experiment e (empty for the elastic model): a velocity
+        scene's restitutions[e], the scene's ``physics()`` for the other kinds."""
+        if self.kind != "velocity":
+            return self.physics()
+        r = self.restitutions[e]
+        if r == 1.0 and self.drag == 0.0:
+            return {}
+        return {"drag": self.drag, "drag_law": self.drag_law, "restitution": r}
 
     def experiments(self) -> list[Experiment]:
         """The experiments of the run in their fixed order (it fixes the chunk numbering)."""
         if self.kind == "phase-space":
             return [Experiment("portrait", (), (), (), self.start_phi, self.start_v)]
+        if self.kind == "velocity":
+            names = [f"r={_num(r)}" for r in self.restitutions]
+            return [Experiment(x, (x,), (), (), self.start_phi, self.start_v) for x in names]
         out = []
         many = len(self.hole_widths) > 1
         for w in self.hole_widths:
@@ -214,9 +233,9 @@ def _validate(data, text):
         if phi_box[1] - phi_box[0] > TWO_PI:
             raise ValueError(f"start.phi spans {phi_box[1] - phi_box[0]!r} > 2*pi")
 
-    if kind == "phase-space":
+    if kind in ("phase-space", "velocity"):
         if holes:
-            raise ValueError("a phase-space scene has no [holes]")
+            raise ValueError(f"a {kind} scene has no [holes]")
         centres, widths = (), ()
     else:
         centres = _reals(holes.get("centres"), "holes.centres")
@@ -228,10 +247,10 @@ def _validate(data, text):
             _check_disjoint(centres, widths)
 
     max_n, max_t = _horizon(horizon, kind)
-    physics = _physics(data.get("physics", {}))
-    if kind == "phase-space":
+    physics = _physics(data.get("physics", {}), kind)
+    if kind in ("phase-space", "velocity"):
         if "clocks" in record:
-            raise ValueError("a phase-space scene records no clocks (record.clocks)")
+            raise ValueError(f"a {kind} scene records no clocks (record.clocks)")
         clocks = []
     else:
         clocks = record.get("clocks", list(CLOCKS))
@@ -267,11 +286,24 @@ def _validate(data, text):
     return scene
 
 
-def _physics(table):
-    """[physics] -> {restitution, drag, drag_law}; the defaults are the elastic model."""
-    restitution = _real(table.get("restitution", 1.0), "physics.restitution")
-    if not 0.0 < restitution <= 1.0:
-        raise ValueError(f"physics.restitution must be in (0, 1], got restitution={restitution!r}")
+def _physics(table, kind):
+    """[physics] -> {restitution, drag, drag_law, restitutions}; the defaults are the elastic
+    model. A velocity scene takes a list of restitutions (one curve each; ``restitution`` is
+    then the smallest, which decides ``Scene.elastic`` and ``Scene.carries``)."""
+    value = table.get("restitution", 1.0)
+    if isinstance(value, list) and kind == "velocity":
+        values = _reals(value, "physics.restitution")
+        if len(set(values)) != len(values):
+            raise ValueError(f"physics.restitution lists a value twice: {value!r}")
+    elif isinstance(value, list):
+        raise ValueError(f"physics.restitution must be a number (a list only in velocity"
+                         f" scenes), got restitution={value!r}")
+    else:
+        values = (_real(value, "physics.restitution"),)
+    for restitution in values:
+        if not 0.0 < restitution <= 1.0:
+            raise ValueError(f"physics.restitution must be in (0, 1], got"
+                             f" restitution={restitution!r}")
     drag = _real(table.get("drag", 0.0), "physics.drag")
     if drag < 0.0:
         raise ValueError(f"physics.drag must be >= 0, got drag={drag!r}")
@@ -279,7 +311,8 @@ def _physics(table):
     if law not in DRAG_LAWS:
         raise ValueError(f"physics.drag_law must be one of {', '.join(DRAG_LAWS)},"
                          f" got drag_law={law!r}")
-    return {"restitution": restitution, "drag": drag, "drag_law": law}
+    return {"restitution": min(values), "drag": drag, "drag_law": law,
+            "restitutions": values if kind == "velocity" else ()}
 
 
 def _keys(table, allowed, where):
@@ -338,13 +371,13 @@ def _horizon(horizon, kind):
         if max_n > 10**8:
             raise ValueError(f"horizon.collisions must be <= 1e8 (the bins), got {max_n}")
     if "time" in horizon:
-        if kind == "phase-space":
-            raise ValueError("a phase-space scene's horizon is horizon.collisions only")
+        if kind in ("phase-space", "velocity"):
+            raise ValueError(f"a {kind} scene's horizon is horizon.collisions only")
         max_t = _real(horizon["time"], "horizon.time")
         if not 0 < max_t <= 1e8:
             raise ValueError(f"horizon.time must be in (0, 1e8] (the bins), got {max_t!r}")
-    if kind == "phase-space" and max_n is None:
-        raise ValueError("a phase-space scene needs horizon.collisions")
+    if kind in ("phase-space", "velocity") and max_n is None:
+        raise ValueError(f"a {kind} scene needs horizon.collisions")
     return max_n, max_t
 
 

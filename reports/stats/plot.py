@@ -2,7 +2,8 @@
 
 Escape (Fig. 2): P(n) against n (log-log) and P(t) against sqrt(t) (log P). Transport
 (Figs. 3-4): P_ij against t and against n (log-log), one row per hole width. Phase space
-(Fig. 1): log(1 + counts) of the (phi, v) histogram. Wilson bands are shaded. With ``fit``,
+(Fig. 1): log(1 + counts) of the (phi, v) histogram. Velocity: <v_n> against n (log-log), one
+line per curve, +- one standard error shaded. Wilson bands are shaded. With ``fit``,
 the chosen model is fitted over ``window`` to each curve of ``clock`` and drawn dashed.
 """
 
@@ -13,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from reports.runs import rundir
 from reports.runs.recheck import load_run
 from reports.runs.survival import read_survival
 from reports.stats.least_squares import fit_survival
@@ -30,7 +32,11 @@ def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None)
     if fit and not window:
         raise ValueError("--fit needs --window LO HI")
     lines = []
-    if scene.kind == "phase-space":
+    if scene.kind == "velocity":
+        if fit:
+            raise ValueError("--fit fits survival curves; a velocity run has none")
+        fig = _velocity_figure(plt, run_dir, scene, manifest)
+    elif scene.kind == "phase-space":
         counts = np.load(run_dir / "portrait.npy")
         fig, ax = plt.subplots(figsize=(7, 5))
         ax.imshow(np.log1p(counts.T), origin="lower", aspect="auto", cmap="Greys",
@@ -60,12 +66,35 @@ def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None)
                         lines.append(_fit_line(ax, name, x, p, lo, hi, fit, window, scene, ck))
                 _axes(ax, scene, ck, title, manifest)
         fig.tight_layout()
-    out = Path(out) if out else run_dir / ("portrait.png" if scene.kind == "phase-space"
-                                           else "survival.png")
+    default = {"phase-space": "portrait.png", "velocity": "velocity.png"}.get(scene.kind,
+                                                                            "survival.png")
+    out = Path(out) if out else run_dir / default
     fig.savefig(out, dpi=120)
     plt.close(fig)
     lines.insert(0, f"wrote {out}")
     return lines
+
+
+def _velocity_figure(plt, run_dir, scene, manifest):
+    """<v_n> against n >= 1 on log-log axes, one line per curve, shaded +- one standard error."""
+    rows = rundir.read_csv(run_dir / "velocity.csv")
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for exp in scene.experiments():
+        mine = [r for r in rows if r["curve"] == exp.name and int(r["n"]) >= 1 and r["mean_v"]]
+        n = np.array([int(r["n"]) for r in mine])
+        mean = np.array([float(r["mean_v"]) for r in mine])
+        se = np.array([float(r["se_v"]) if r["se_v"] else 0.0 for r in mine])
+        line, = ax.plot(n, mean, label=exp.name, lw=1)
+        ax.fill_between(n, mean - se, mean + se, color=line.get_color(), alpha=0.2, lw=0)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("n (collisions)")
+    ax.set_ylabel("<v_n> (particles still moving)")
+    ax.set_title(f"{scene.name}: eps = {scene.eps:g} ({manifest['particles']} per curve)",
+                 fontsize=9)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
 
 
 def _groups(scene, data):
