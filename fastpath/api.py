@@ -6,7 +6,7 @@ import numpy as np
 from numba import prange
 
 from fastpath._jit import jit, parallel_jit
-from fastpath._validate import check_dissipation, count, float_inputs, physics, scalar_inputs
+from fastpath._validate import count, float_inputs, physics, scalar_inputs
 from fastpath.advance import CARRIED, carried_collide
 from fastpath.collision import collide
 from fastpath.drag_flight import solve_drag_flight
@@ -349,13 +349,13 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
     the orbit then sticks to the plate and detaches where eps*cos(t) rises through 1, or stops
     as "stuck" for |eps| <= 1 (``Orbit.sticking``, ``Orbit.stopped``; the arrays are shorter
     than n+1 then). drag >= 0 with drag_law "linear" or "quadratic": air drag during the flights
-    (``fastpath.drag_flight``), with restitution 1 only: drag together with restitution < 1
-    raises ValueError (its chattering tail is not derived, ``fastpath.advance``). The defaults
+    (``fastpath.drag_flight``); with restitution < 1 too the particle rides the plate while
+    eps*cos(t) - eta(u(t)) <= 1 and detaches where it rises through 1
+    (``fastpath.drag_sticking``: with linear drag iff |eps|*sqrt(1 + drag**2) > 1). The defaults
     run the elastic kernel unchanged.
     """
     code = _method(method)
     drag, law, restitution = physics(drag, drag_law, restitution)
-    check_dissipation(drag, restitution)
     if (drag != 0.0 or restitution != 1.0) and model != "exact":
         raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
     (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)

@@ -27,6 +27,7 @@ from fastpath.advance import (
     detachment,
     new_state,
 )
+from fastpath.drag import NONE
 from fastpath.flight import AUTO, CONVERGED
 
 
@@ -34,7 +35,7 @@ def steps_of(phi0, v0, eps, r, n):
     """[(phi, v, carried, (phi1, v1, tau))] of up to n advance steps from (phi0, v0)."""
     state = new_state()
     assert begin(state, phi0, v0, 0.0, eps, 0.0, r) == CONVERGED
-    detach, no_holes = detachment(eps, 0.0, r), np.empty(0)
+    detach, no_holes = detachment(eps, 0.0, NONE, r), np.empty(0)
     out = []
     for _ in range(n):
         phi, v, _ = departure_point(state)
