@@ -44,7 +44,7 @@ import math
 import numpy as np
 
 from fastpath._jit import jit
-from fastpath.drag import NONE, particle
+from fastpath.drag import particle
 from fastpath.drag_flight import solve_drag_flight
 from fastpath.drag_short_flight import drag_short_flight, drag_short_window
 from fastpath.drag_sticking import DETACHES, NEVER, drag_accumulation_tail, drag_detachment
@@ -294,12 +294,12 @@ def _drag_inelastic_advance(state, eps, k, law, r, method, detach, hole_lo):
 
 
 @jit
-def carried_collide(phi, v, eps, restitution, carried):
-    """(phi1, v1, tau, status) of one ``advance`` without drag from the departure (phi, v) with
-    the ``CARRIED`` entries ``carried``: the step an ensemble kernel made from that state."""
+def carried_collide(phi, v, eps, drag, law, restitution, carried):
+    """(phi1, v1, tau, status) of one ``advance`` (r < 1, any drag) from the departure (phi, v)
+    with the ``CARRIED`` entries ``carried``: the step an ensemble kernel made from that state."""
     state = carried_state(phi, v, carried)
-    detach = detachment(eps, 0.0, NONE, restitution)
+    detach = detachment(eps, drag, law, restitution)
     status, _, tau, _, _, _ = advance(
-        state, eps, 0.0, 0, restitution, AUTO, detach, np.empty(0)
+        state, eps, drag, law, restitution, AUTO, detach, np.empty(0)
     )
     return state[PHI], state[V], tau, status
