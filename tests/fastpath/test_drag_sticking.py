@@ -26,6 +26,7 @@ Tolerances (u = 2**-53):
 import math
 from fractions import Fraction
 
+import drag_reference as dref
 import drag_sticking_reference as ref
 import numpy as np
 import pytest
@@ -33,17 +34,20 @@ from fastpath_figures import record
 from mpmath import mp
 
 import fastpath
-from fastpath.drag import LINEAR, QUADRATIC
+from fastpath.drag import LINEAR, QUADRATIC, gap_state
 from fastpath.drag_short_flight import drag_short_window
 from fastpath.drag_sticking import (
     DETACHES,
     NEVER,
     UNDECIDED,
     detach_kind,
+    detachment_frame,
     drag_accumulation_tail,
+    drag_detachment,
     drag_detachment_phase,
 )
 from fastpath.gap import departure
+from fastpath.phase import centre_phase
 from fastpath.sticking import detachment_phase
 
 U = 2.0**-53
@@ -253,3 +257,35 @@ def test_impacts_keep_r_of_relative_velocity_with_drag(law):
             assert v_in**2 / 2 + y <= v**2 / 2  # drag works against the motion
         checked += 1
     assert checked >= 10
+
+
+@pytest.mark.parametrize("law, eps, k", [("linear", 1.5, 0.1), ("linear", 0.9, 0.6),
+                                         ("quadratic", 1.5, 0.1), ("quadratic", 0.9, 1.0),
+                                         ("linear", -1.2, 0.3), ("quadratic", 3.0, 0.5)])
+def test_w0_zero_departure_from_drag_detachment(law, eps, k):
+    """The flight from detachment (w0 = 0, d'' = 0): positive on (0, t_c] for the exact state
+    (the module's argument x > 0, sampled at 100 digits), and fastpath's first root after t_c
+    within drag_reference.tau_tolerance (the solver's own gap bound) of the 60-digit first root
+    of the float state's gap, searched from t_c."""
+    tau, iterations, status, theta_star, v_star, kind = drag_detachment(eps, k, LAW[law])
+    assert kind == DETACHES and status == fastpath.FlightStatus.CONVERGED
+    _, t_c = detachment_frame(eps, k, LAW[law])
+    with mp.workdps(ref.DPS):
+        theta_ref, _ = ref.detachment_phase(eps, k, law, dps=ref.DPS)
+        u_ref = -eps * mp.sin(theta_ref)
+        for j in range(1, 41):
+            t = mp.mpf(t_c) * j / 40
+            assert ref.gap(theta_ref, u_ref, mp.mpf(eps), mp.mpf(k), law, t)[0] > 0
+    phi = centre_phase(theta_star)
+    with mp.workdps(dref.DPS):
+        ts = [t_c + (tau * 1.5 - t_c) * j / 400 for j in range(401)]
+        ds = [dref.gap(phi, v_star, eps, k, LAW[law], t) for t in ts]
+        assert ds[0] > 0
+        j = next(i for i, d in enumerate(ds) if d <= 0)
+        tau_ref = mp.findroot(lambda t: dref.gap(phi, v_star, eps, k, LAW[law], t),
+                              (ts[j - 1], ts[j]), solver="anderson")
+    d_error = gap_state(phi, v_star, eps, k, LAW[law], tau)[3]
+    tol = dref.tau_tolerance(d_error, phi, v_star, eps, k, LAW[law], tau_ref)
+    record(f"drag w0=0 departure error {law} eps={eps} k={k} (tol)",
+           float(abs(tau - tau_ref)) / tol)
+    assert abs(tau - tau_ref) <= tol
