@@ -296,3 +296,17 @@ def test_w0_zero_departure_from_drag_detachment(law, eps, k):
     record(f"drag w0=0 departure error {law} eps={eps} k={k} (tol)",
            float(abs(tau - tau_ref)) / tol)
     assert abs(tau - tau_ref) <= tol
+
+
+@pytest.mark.parametrize("law", ["linear", "quadratic"])
+def test_moments_with_drag_and_restitution_count_every_particle(law):
+    """fastpath.moments with drag and r < 1 (eps = 0.6, k = 0.1: never detaches): at every n of
+    the grid, moving + stuck + flagged = particles, and particles do get stuck."""
+    from fastpath.moments import moments
+
+    n = 64
+    m = moments(np.full(n, 4.0), np.linspace(2.0, 4.0, n), 0.6, [10, 100, 1000], drag=0.1,
+                drag_law=law, restitution=0.5)
+    moving, stuck = m.count_n.sum(axis=0), m.stuck_n.sum(axis=0)
+    assert np.all(moving + stuck + m.flagged == n)
+    assert stuck[-1] > 0
