@@ -35,7 +35,7 @@ from mpmath import mp
 
 import fastpath
 from fastpath.drag import LINEAR, QUADRATIC, gap_state
-from fastpath.drag_short_flight import drag_short_window
+from fastpath.drag_short_flight import drag_short_window, particle_offset
 from fastpath.drag_sticking import (
     DETACHES,
     NEVER,
@@ -310,3 +310,32 @@ def test_moments_with_drag_and_restitution_count_every_particle(law):
     moving, stuck = m.count_n.sum(axis=0), m.stuck_n.sum(axis=0)
     assert np.all(moving + stuck + m.flagged == n)
     assert stuck[-1] > 0
+
+
+@pytest.mark.parametrize("law", ["linear", "quadratic"])
+def test_particle_offset_is_cancellation_free(law):
+    """(Y - v*t, V - v) of drag_short_flight against 100 digits for tiny and moderate t, v of
+    either sign and near 0 (the quadratic's top inside the flight). Bound: a few roundings of
+    each term of the formulas (module docstring): 32u*(t**2 + k*|v|*t**3 + k*v**2*t**2 + t*|v|*
+    [t > t_top]) for Y - v*t (after the top v*(t - t_top) is a term) and 32u*t*(1 + k*v**2) for
+    V - v."""
+    rng = np.random.default_rng(5)
+    worst = 0.0
+    for _ in range(300):
+        k = 10 ** rng.uniform(-6, 0.3)
+        t = 10 ** rng.uniform(-12, -2)
+        v = float(rng.choice([-1, 1])) * 10 ** rng.uniform(-14, 0.3)
+        if k * t * t > 0.25:
+            continue
+        dy, dv = particle_offset(v, k, LAW[law], t)
+        with mp.workdps(ref.DPS):
+            y, vel = ref.motion(mp.mpf(v), mp.mpf(k), law, mp.mpf(t))
+            err_y = abs(mp.mpf(dy) - (y - mp.mpf(v) * t))
+            err_v = abs(mp.mpf(dv) - (vel - mp.mpf(v)))
+        top = math.atan(math.sqrt(k) * v) / math.sqrt(k) if v > 0 else 0.0
+        after = law == "quadratic" and t > top
+        tol_y = 32 * U * (t * t + k * abs(v) * t**3 + k * v * v * t * t + after * t * abs(v))
+        tol_v = 32 * U * t * (1.0 + k * v * v)
+        worst = max(worst, float(err_y) / tol_y, float(err_v) / tol_v)
+        assert err_y <= tol_y and err_v <= tol_v, (v, k, t)
+    record(f"drag particle offset worst error {law} (tol)", worst)
