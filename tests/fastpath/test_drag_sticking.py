@@ -339,3 +339,26 @@ def test_particle_offset_is_cancellation_free(law):
         worst = max(worst, float(err_y) / tol_y, float(err_v) / tol_v)
         assert err_y <= tol_y and err_v <= tol_v, (v, k, t)
     record(f"drag particle offset worst error {law} (tol)", worst)
+
+
+@pytest.mark.parametrize("law", ["linear", "quadratic"])
+def test_chattering_next_to_drag_detachment_leaves_the_plate(law):
+    """Hard case: a chatter that reaches theta* (riding force a -> 0+) before it accumulates:
+    the short-flight window fails, the certified drag solver takes the tiny w, the particle
+    leaves (a flight far longer than the chatter's), or the orbit stops UNCERTAIN, never a
+    wrong sticking episode: any episode ends at the detachment phase."""
+    eps, k, r = 1.5, 0.1, 0.9
+    theta_star = drag_detachment_phase(eps, k, LAW[law])
+    phi0 = theta_star - 0.05
+    orb = fastpath.orbit(phi0, 2e-4 - eps * math.sin(phi0), eps, 200, restitution=r, drag=k,
+                         drag_law=law, on_uncertain="stop")
+    assert orb.status in (fastpath.FlightStatus.CONVERGED, fastpath.FlightStatus.UNCERTAIN)
+    assert np.max(np.diff(orb.t)) > 1.0
+    theta_ref, slope = ref.detachment_phase(eps, k, law)
+    # the phase's own tolerance as in the quadratic test (it bounds the linear one too)
+    phase_tol = 2 * 4 * U * (eps + k * eps * eps) * (1 + 2 * math.pi) / float(abs(slope)) \
+        + 4 * math.pi * U + 16 * U
+    for t_end in orb.sticking[:, 1]:
+        flights = int(np.searchsorted(orb.t, t_end)) + 1
+        tol = 2.0 * flights * U * (t_end + 8.0 * math.pi) + phase_tol
+        assert _phase_error(phi0 + t_end, theta_ref) <= tol
