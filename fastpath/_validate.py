@@ -118,12 +118,3 @@ def _physical_scalar(name, value):
     if not math.isfinite(x):
         raise ValueError(f"{name} must be finite, got {name}={x!r}")
     return x
-
-
-def check_dissipation(drag, restitution):
-    """ValueError for drag > 0 together with restitution < 1 in orbits and ensembles: their
-    chattering tail is not derived (``fastpath.advance``)."""
-    if drag != 0.0 and restitution != 1.0:
-        raise ValueError(f"drag={drag!r} with restitution={restitution!r}: drag together with"
-                         " restitution < 1 is not supported in orbits and ensembles (the"
-                         " chattering tail with drag is not derived); use one of them")

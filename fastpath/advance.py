@@ -9,13 +9,14 @@ the impact v1 = (1 + r)*u - r*v_in, and, when r < 1 and the impacts from there a
 particle rides the plate from t_acc and leaves at the detachment phase (|eps| > 1) or is stuck
 for good (|eps| <= 1).
 
-Physics covered. drag == 0: any r in (0, 1] (r = 1 is the elastic map, bit for bit). drag > 0:
-r = 1 only, a chain of drag flights and elastic impacts (with r = 1 impacts never accumulate in
-finite time). drag > 0 with r < 1 is NOT covered: its chattering tail needs the relative
-acceleration A = -1 - eta(u) + eps*cos(theta) in the short flights and the tail sum, which are
-not derived yet; the public wrappers reject that combination with ValueError, and the kernels,
-if called with it anyway, take plain drag flights (each certified) until a departure speed is
-within rounding of zero, where the particle is flagged UNCERTAIN.
+Physics covered. drag == 0: any r in (0, 1] (r = 1 is the elastic map, bit for bit). drag > 0
+and r = 1: a chain of drag flights and elastic impacts (with r = 1 impacts never accumulate in
+finite time). drag > 0 and r < 1 (``_drag_inelastic_advance``): the same carried relative
+velocity and run bases as without drag, with the short relative-coordinate flights of
+``fastpath.drag_short_flight``, certified drag flights (``fastpath.drag_flight``) otherwise, the
+tail ``fastpath.drag_sticking.drag_accumulation_tail`` and the drag's sticking condition and
+detachment phase (``fastpath.drag_sticking``); an accumulation where the decision "ever
+detaches" is within rounding (``detach_kind`` UNDECIDED) is UNCERTAIN (state unchanged).
 
 Without drag and r < 1 the arithmetic is that of the former loop of ``inelastic_orbit``
 (the same operations in the same order): phases and times of a run of short flights are summed
@@ -43,6 +44,10 @@ import math
 import numpy as np
 
 from fastpath._jit import jit
+from fastpath.drag import particle
+from fastpath.drag_flight import solve_drag_flight
+from fastpath.drag_short_flight import drag_short_flight, drag_short_window
+from fastpath.drag_sticking import DETACHES, NEVER, drag_accumulation_tail, drag_detachment
 from fastpath.flight import AUTO, CONVERGED, NOT_DEPARTING, UNCERTAIN, flight_from, phase_error_of
 from fastpath.gap import UNIT_ROUNDOFF, departure
 from fastpath.impact import dissipative_collide
@@ -83,7 +88,7 @@ def new_state():
 def begin(state, phi0, v0, t0, eps, drag, restitution):
     """Fill ``state`` for a departure from (phi0, v0) at time t0; return a FlightStatus code.
 
-    Without drag and r < 1 the departure is checked here (w0 = v0 + eps*sin(phi0) beyond its
+    With r < 1 the departure is checked here (w0 = v0 + eps*sin(phi0) beyond its
     rounding bound, as ``inelastic_orbit`` always did); otherwise the first flight checks it.
     """
     base = reduce_phase(phi0)
@@ -92,7 +97,7 @@ def begin(state, phi0, v0, t0, eps, drag, restitution):
     sin_th, cos_th = math.sin(base), math.cos(base)
     state[SIN], state[COS], state[VK], state[DETACHED] = sin_th, cos_th, v0, 0.0
     state[W] = v0 + eps * sin_th
-    if drag != 0.0 or restitution == 1.0:
+    if restitution == 1.0:
         return CONVERGED
     # not centred: centring fl(pi) moves it by an ulp, and w = v0 + eps*sin would carry that
     w, w_error = departure(base, sin_th, v0, eps, phase_error_of(phi0, base))
@@ -124,13 +129,18 @@ def carried_state(phi, v, carried):
 
 
 @jit
-def detachment(eps, drag, restitution):
-    """(tau, iterations, status) of the flight from detachment (``fastpath.sticking``), the same
-    after every episode: computed once per eps; (NaN, 0, UNCERTAIN) where there is none."""
-    if drag != 0.0 or restitution == 1.0 or not can_detach(eps):
-        return math.nan, 0, UNCERTAIN
+def detachment(eps, drag, law, restitution):
+    """(tau, iterations, status, theta*, u(theta*), kind) of the flight from detachment, the same
+    after every episode: computed once per physics. Without drag (``fastpath.sticking``) theta*
+    and u are NaN (``_inelastic_advance`` takes them from ``fastpath.sticking``); with drag
+    ``fastpath.drag_sticking.drag_detachment``. (NaN, 0, UNCERTAIN, ...) where there is none."""
+    if restitution != 1.0 and drag != 0.0:
+        return drag_detachment(eps, drag, law)
+    kind = DETACHES if can_detach(eps) else NEVER
+    if restitution == 1.0 or not can_detach(eps):
+        return math.nan, 0, UNCERTAIN, math.nan, math.nan, kind
     tau, _, _, iterations, status = detachment_flight(eps)
-    return tau, iterations, status
+    return tau, iterations, status, math.nan, math.nan, kind
 
 
 @jit
@@ -164,7 +174,7 @@ def advance(state, eps, drag, law, restitution, method, detach, hole_lo):
     after the impact, or STUCK (t_acc, inf). detach: ``detachment(eps, ...)``. hole_lo: lower
     edges of the holes whose crossing forbids summing a tail (empty for a plain orbit).
     """
-    if drag != 0.0 or restitution == 1.0:
+    if restitution == 1.0:
         phi1, v1, tau, its, status = dissipative_collide(
             state[PHI], state[V], eps, drag, law, restitution
         )
@@ -172,6 +182,9 @@ def advance(state, eps, drag, law, restitution, method, detach, hole_lo):
             return status, its, tau, NO_STICKING, math.nan, math.nan
         state[PHI], state[V], state[T] = phi1, v1, state[T] + tau
         return CONVERGED, its, tau, NO_STICKING, math.nan, math.nan
+    if drag != 0.0:
+        return _drag_inelastic_advance(state, eps, drag, law, restitution, method, detach,
+                                       hole_lo)
     return _inelastic_advance(state, eps, restitution, method, detach, hole_lo)
 
 
@@ -182,7 +195,7 @@ def _inelastic_advance(state, eps, r, method, detach, hole_lo):
     sin_th, cos_th, w, vk = state[SIN], state[COS], state[W], state[VK]
     w_in = 0.0
     if state[DETACHED] != 0.0:
-        tau, its, status = detach
+        tau, its, status = detach[0], detach[1], detach[2]
         if status != CONVERGED:
             return status, its, tau, NO_STICKING, math.nan, math.nan
         long = True
@@ -226,12 +239,67 @@ def _inelastic_advance(state, eps, r, method, detach, hole_lo):
 
 
 @jit
-def carried_collide(phi, v, eps, restitution, carried):
-    """(phi1, v1, tau, status) of one ``advance`` without drag from the departure (phi, v) with
-    the ``CARRIED`` entries ``carried``: the step an ensemble kernel made from that state."""
+def _drag_inelastic_advance(state, eps, k, law, r, method, detach, hole_lo):
+    """``advance`` with drag and r < 1: ``_inelastic_advance`` with the drag's short flights,
+    flights, tail and detachment (module docstring)."""
+    base_phase, base_time, s = state[BASE_PHASE], state[BASE_TIME], state[S]
+    sin_th, cos_th, w, vk = state[SIN], state[COS], state[W], state[VK]
+    w_in = 0.0
+    if state[DETACHED] != 0.0:
+        tau, its, status = detach[0], detach[1], detach[2]
+        if status != CONVERGED:
+            return status, its, tau, NO_STICKING, math.nan, math.nan
+        long = True
+    else:
+        upper = drag_short_window(sin_th, cos_th, w, vk, eps, k, law)
+        long = not upper > 0.0
+        if long:
+            tau, its, status = solve_drag_flight(base_phase + s, vk, eps, k, law, method)
+            if status != CONVERGED:
+                return status, its, tau, NO_STICKING, math.nan, math.nan
+        else:
+            tau, w_in, its = drag_short_flight(sin_th, cos_th, w, vk, eps, k, law, upper)
+            if s + tau == s:
+                return UNCERTAIN, its, tau, NO_STICKING, math.nan, math.nan
+    s_new = s + tau
+    theta = base_phase + s_new
+    sin_new, cos_new = math.sin(theta), math.cos(theta)
+    if long:
+        w_in = particle(vk, k, law, tau)[1] + eps * sin_new
+    vk_new, w_new = inelastic_impact(-eps * sin_new, w_in, r)
+    tail = drag_accumulation_tail(sin_new, cos_new, w_new, eps, k, law, r)
+    summed = tail == tail and not edge_within(reduce_phase(theta), tail, hole_lo)
+    if summed and detach[5] != DETACHES and detach[5] != NEVER:
+        return UNCERTAIN, its, tau, NO_STICKING, math.nan, math.nan  # ever detaches: undecided
+    s, sin_th, cos_th, vk, w = s_new, sin_new, cos_new, vk_new, w_new
+    state[DETACHED] = 0.0
+    state[PHI], state[V], state[T] = reduce_phase(theta), vk, base_time + s
+    if long or s > _REBASE:
+        base_phase, base_time, s = reduce_phase(theta), base_time + s, 0.0
+    sticking, t_start, t_end = NO_STICKING, math.nan, math.nan
+    if summed:
+        t_start = base_time + (s + tail)
+        if detach[5] == NEVER:
+            sticking, t_end = STUCK, math.inf
+        else:
+            theta_star = detach[3]
+            stay = s + tail + reduce_phase(theta_star - (base_phase + (s + tail)))
+            sticking, t_end = EPISODE, base_time + stay
+            base_phase, base_time, s = theta_star, base_time + stay, 0.0
+            vk, w = detach[4], 0.0
+            state[DETACHED] = 1.0
+    state[BASE_PHASE], state[BASE_TIME], state[S] = base_phase, base_time, s
+    state[SIN], state[COS], state[W], state[VK] = sin_th, cos_th, w, vk
+    return CONVERGED, its, tau, sticking, t_start, t_end
+
+
+@jit
+def carried_collide(phi, v, eps, drag, law, restitution, carried):
+    """(phi1, v1, tau, status) of one ``advance`` (r < 1, any drag) from the departure (phi, v)
+    with the ``CARRIED`` entries ``carried``: the step an ensemble kernel made from that state."""
     state = carried_state(phi, v, carried)
-    detach = detachment(eps, 0.0, restitution)
+    detach = detachment(eps, drag, law, restitution)
     status, _, tau, _, _, _ = advance(
-        state, eps, 0.0, 0, restitution, AUTO, detach, np.empty(0)
+        state, eps, drag, law, restitution, AUTO, detach, np.empty(0)
     )
     return state[PHI], state[V], tau, status

@@ -6,7 +6,7 @@ import numpy as np
 from numba import prange
 
 from fastpath._jit import jit, parallel_jit
-from fastpath._validate import check_dissipation, count, float_inputs, physics, scalar_inputs
+from fastpath._validate import count, float_inputs, physics, scalar_inputs
 from fastpath.advance import CARRIED, carried_collide
 from fastpath.collision import collide
 from fastpath.drag_flight import solve_drag_flight
@@ -288,29 +288,28 @@ def _check_carried(phi, v, eps, carried):
 
 def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
                  restitution=ELASTIC):
-    """One collision of a chattering orbit (r < 1, no drag) from its carried state: (phi1, v1,
+    """One collision of a chattering orbit (r < 1, any drag) from its carried state: (phi1, v1,
     tau), the step an orbit or ensemble kernel made (``fastpath.advance``), bit for bit.
 
     Such a step reads more than (phi, v): ``carried`` = (base_phase, s, sin, cos, w, detached),
     the phase of the impact being base_phase + (s + tau), sin and cos those of the last impact,
     w the carried relative velocity v + eps*sin (kept to full relative precision while the
     impacts accumulate), detached 1.0 for a departure from a sticking episode (w = 0).
-    ValueError for scalars that are not finite, a restitution of 1 or a drag (their steps are
-    ``step``'s), and a ``carried`` that is not a departure from (phi, v): base_phase + s must
+    ValueError for scalars that are not finite, a restitution of 1 (its steps are ``step``'s),
+    and a ``carried`` that is not a departure from (phi, v): base_phase + s must
     reduce to phi, and w equal v + eps*sin to the rounding of v = u + w. Flights float64 cannot
     decide raise ``UncertainCollision`` as for ``step``.
     """
-    drag, _, restitution = physics(drag, drag_law, restitution)
-    if drag != 0.0 or restitution == 1.0:
-        raise ValueError(f"carried_step needs restitution < 1 and no drag (otherwise a step"
-                         f" reads (phi, v) only: use step), got drag={drag!r},"
-                         f" restitution={restitution!r}")
+    drag, law, restitution = physics(drag, drag_law, restitution)
+    if restitution == 1.0:
+        raise ValueError(f"carried_step needs restitution < 1 (otherwise a step reads (phi, v)"
+                         f" only: use step), got restitution={restitution!r}")
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is None:
         raise ValueError("carried_step takes scalar phi, v and eps")
     phi, v, eps = scalars
     _check_carried(phi, v, eps, tuple(carried))
-    phi1, v1, tau, status = carried_collide(phi, v, eps, restitution,
+    phi1, v1, tau, status = carried_collide(phi, v, eps, drag, law, restitution,
                                             np.array(carried, dtype=float))
     if status != CONVERGED:
         _raise_on_status(np.array([status]), [phi], [v], [eps])
@@ -349,13 +348,13 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
     the orbit then sticks to the plate and detaches where eps*cos(t) rises through 1, or stops
     as "stuck" for |eps| <= 1 (``Orbit.sticking``, ``Orbit.stopped``; the arrays are shorter
     than n+1 then). drag >= 0 with drag_law "linear" or "quadratic": air drag during the flights
-    (``fastpath.drag_flight``), with restitution 1 only: drag together with restitution < 1
-    raises ValueError (its chattering tail is not derived, ``fastpath.advance``). The defaults
+    (``fastpath.drag_flight``); with restitution < 1 too the particle rides the plate while
+    eps*cos(t) - eta(u(t)) <= 1 and detaches where it rises through 1
+    (``fastpath.drag_sticking``: with linear drag iff |eps|*sqrt(1 + drag**2) > 1). The defaults
     run the elastic kernel unchanged.
     """
     code = _method(method)
     drag, law, restitution = physics(drag, drag_law, restitution)
-    check_dissipation(drag, restitution)
     if (drag != 0.0 or restitution != 1.0) and model != "exact":
         raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
     (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)

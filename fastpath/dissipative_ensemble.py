@@ -1,11 +1,12 @@
 """Escape ensembles with dissipation: drag, or restitution r < 1 with sticking.
 
 The contract of ``fastpath.ensemble.escape_chunk`` (blocks, histograms, flags, samples: read its
-module docstring), with each collision made by ``fastpath.advance.advance`` (drag > 0 needs
-r = 1 there; the public callers reject drag with r < 1), plus one more outcome:
+module docstring), with each collision made by ``fastpath.advance.advance`` (any drag with any
+restitution), plus one more outcome:
 
 * stuck for good: the impacts accumulate where the particle can never leave the plate
-  (|eps| <= 1, ``fastpath.sticking``). It is counted in ``stuck_n[b, k]`` / ``stuck_t[b, k]``,
+  (|eps| <= 1 without drag, ``fastpath.sticking``; with drag ``fastpath.drag_sticking``).
+  It is counted in ``stuck_n[b, k]`` / ``stuck_t[b, k]``,
   binned by the collision index n of the impact after which the tail was summed (the
   implementation's threshold, ``fastpath.sticking.TAIL_Q``) and by the accumulation time
   t_acc; neither an escape nor censored. It counts as stuck when t_acc <= max_time, else it is
@@ -135,7 +136,7 @@ def dissipative_escape_chunk(phi0, v0, t0, n0, eps, drag, law, restitution, hole
     m = len(phi0)
     blocks = len(collisions)
     per_block = (m + blocks - 1) // blocks
-    detach = detachment(eps, drag, restitution)
+    detach = detachment(eps, drag, law, restitution)
     for b in prange(blocks):
         collisions[b] += run_block(
             b, b * per_block, min(m, (b + 1) * per_block), phi0, v0, t0, n0, eps, drag, law,

@@ -1,8 +1,7 @@
 """Velocity moments with dissipation: drag, or restitution r < 1 with sticking.
 
 The sums of ``fastpath.moments.moments_kernel`` (read its module docstring), each collision made
-by ``fastpath.advance.advance`` (drag > 0 needs r = 1; the public ``moments`` rejects drag with
-r < 1), plus
+by ``fastpath.advance.advance`` (any drag with any restitution), plus
 
 * ``stuck_n[b, j]``: particles stuck for good (the impacts accumulate where the particle can
   never leave, |eps| <= 1) after fewer than n_grid[j] recorded impacts; they are not in
@@ -115,7 +114,7 @@ def dissipative_moments_kernel(phi0, v0, eps, drag, law, restitution, n_grid, t_
     m = len(phi0)
     blocks = len(collisions)
     per_block = (m + blocks - 1) // blocks
-    detach = detachment(eps, drag, restitution)
+    detach = detachment(eps, drag, law, restitution)
     for b in prange(blocks):
         collisions[b] += run_block(
             b, b * per_block, min(m, (b + 1) * per_block), phi0, v0, eps, drag, law,

@@ -25,7 +25,7 @@ import numpy as np
 from numba import prange
 
 from fastpath._jit import parallel_jit
-from fastpath._validate import check_dissipation, count, float_inputs, physics
+from fastpath._validate import count, float_inputs, physics
 from fastpath.collision import collide_from
 from fastpath.dissipative_moments import dissipative_moments_kernel
 from fastpath.flight import CONVERGED, GENERAL
@@ -153,15 +153,14 @@ def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_coll
     ``max_collisions`` caps each orbit (default: 100 * n_grid[-1] + 10**6 when a time grid is
     given, else n_grid[-1]).
 
-    drag, drag_law, restitution: as for ``fastpath.orbit`` (model "exact" only; drag with
-    restitution < 1 raises ValueError); the defaults run ``moments_kernel`` unchanged, any other
-    physics ``fastpath.dissipative_moments`` (with ``stuck_n``, ``stuck_t``).
+    drag, drag_law, restitution: as for ``fastpath.orbit`` (model "exact" only); the defaults
+    run ``moments_kernel`` unchanged, any other physics ``fastpath.dissipative_moments`` (with
+    ``stuck_n``, ``stuck_t``).
 
     Raises ValueError for non-finite inputs, non-departing starts (v0 + eps*sin(phi0) <= 0),
     unsorted or negative grids, an unknown model, bad physics keywords.
     """
     drag, law, restitution = physics(drag, drag_law, restitution)
-    check_dissipation(drag, restitution)
     dissipative = drag != 0.0 or restitution != 1.0
     if dissipative and model != "exact":
         raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")

@@ -78,7 +78,7 @@ def dissipative_orbit(phi0, v0, eps, drag, law, r, phi, v, t, iterations, sticki
     """Fill phi, v, t (length n+1), iterations (length n), sticking rows: drag and/or r < 1.
 
     Returns (collisions done, sticking episodes, status, stuck for good). One call of
-    ``fastpath.advance.advance`` per impact (physics covered: see there; drag > 0 needs r = 1).
+    ``fastpath.advance.advance`` per impact (physics covered: see there).
     Stops early at a flight that is not CONVERGED, and when the particle sticks for good.
     """
     state = np.empty(STATE_SIZE)
@@ -86,7 +86,7 @@ def dissipative_orbit(phi0, v0, eps, drag, law, r, phi, v, t, iterations, sticki
     status = begin(state, phi0, v0, 0.0, eps, drag, r)
     if status != CONVERGED:
         return 0, 0, status, False
-    detach = detachment(eps, drag, r)
+    detach = detachment(eps, drag, law, r)
     no_holes = np.empty(0)
     episodes = 0
     for k in range(len(iterations)):

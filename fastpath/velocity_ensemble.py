@@ -111,7 +111,7 @@ def velocity_chunk(phi0, v0, t0, n0, eps, drag, law, restitution, n_grid, max_co
     m = len(phi0)
     blocks = len(collisions)
     per_block = (m + blocks - 1) // blocks
-    detach = detachment(eps, drag, restitution)
+    detach = detachment(eps, drag, law, restitution)
     for b in prange(blocks):
         collisions[b] += run_block(
             b, b * per_block, min(m, (b + 1) * per_block), phi0, v0, t0, n0, eps, drag, law,

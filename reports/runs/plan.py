@@ -123,10 +123,6 @@ def make_plan(scene, particles=None, seed=None):
                          f"{scene.restitution!r}, drag={scene.drag!r}) needs a dissipative"
                          " portrait kernel, which fastpath does not have; escape and transport"
                          " scenes take [physics]")
-    if scene.drag > 0.0 and scene.restitution != 1.0:
-        raise ValueError(f"scene {scene.name!r}: drag={scene.drag!r} together with restitution="
-                         f"{scene.restitution!r} < 1 is not available in fastpath's dissipative"
-                         " kernel (drag needs restitution = 1 there); use one or the other")
     experiments = scene.experiments()
     per_exp = math.ceil(particles / scene.chunk_size)
     total_chunks = per_exp * len(experiments)

@@ -27,19 +27,20 @@ from fastpath.advance import (
     detachment,
     new_state,
 )
+from fastpath.drag import LAWS, NONE
 from fastpath.flight import AUTO, CONVERGED
 
 
-def steps_of(phi0, v0, eps, r, n):
+def steps_of(phi0, v0, eps, r, n, k=0.0, law=NONE):
     """[(phi, v, carried, (phi1, v1, tau))] of up to n advance steps from (phi0, v0)."""
     state = new_state()
-    assert begin(state, phi0, v0, 0.0, eps, 0.0, r) == CONVERGED
-    detach, no_holes = detachment(eps, 0.0, r), np.empty(0)
+    assert begin(state, phi0, v0, 0.0, eps, k, r) == CONVERGED
+    detach, no_holes = detachment(eps, k, law, r), np.empty(0)
     out = []
     for _ in range(n):
         phi, v, _ = departure_point(state)
         carried = tuple(float(state[j]) for j in CARRIED)
-        status, _, tau, kind, _, _ = advance(state, eps, 0.0, 0, r, AUTO, detach, no_holes)
+        status, _, tau, kind, _, _ = advance(state, eps, k, law, r, AUTO, detach, no_holes)
         assert status == CONVERGED
         out.append((phi, v, carried, (state[PHI], state[V], tau)))
         if kind == STUCK:
@@ -63,6 +64,25 @@ def test_carried_step_repeats_every_step_of_the_kernel(phi0, v0, eps, r, n):
     # the cases that (phi, v) alone cannot reproduce were exercised
     assert run > 0
     if abs(eps) > 1.0:
+        assert detached > 0
+
+
+@pytest.mark.parametrize(("phi0", "v0", "eps", "r", "k", "law"), [
+    (4.0, 3.0, 0.6, 0.8, 0.1, "linear"),  # stuck for good (0.6*sqrt(1.01) < 1)
+    (4.0, 3.0, 1.5, 0.8, 0.1, "linear"),  # episodes and departures from the drag's theta*
+    (4.0, 3.0, 1.5, 0.8, 0.1, "quadratic"),
+    (4.0, 3.0, 0.9, 0.8, 0.6, "linear"),  # |eps| < 1 detaching through drag
+])
+def test_carried_step_repeats_every_step_with_drag(phi0, v0, eps, r, k, law):
+    steps = steps_of(phi0, v0, eps, r, 3000, k, LAWS[law])
+    run, detached = 0, 0
+    for phi, v, carried, kernel in steps:
+        got = fastpath.carried_step(phi, v, eps, carried, restitution=r, drag=k, drag_law=law)
+        assert got == kernel
+        run += carried[CARRIED.index(S)] != 0.0
+        detached += carried[CARRIED.index(DETACHED)] != 0.0
+    assert run > 0
+    if abs(eps) * (1.0 + k) > 1.05:
         assert detached > 0
 
 
@@ -96,7 +116,6 @@ def test_a_carried_state_that_is_not_the_departure_is_refused():
 
 @pytest.mark.parametrize(("kwargs", "name"), [
     ({"restitution": 1.0}, "restitution=1.0"),
-    ({"drag": 0.1, "restitution": 0.8}, "drag=0.1"),
     ({"restitution": 1.5}, "restitution=1.5"),
 ])
 def test_physics_without_a_carried_state_is_refused(kwargs, name):

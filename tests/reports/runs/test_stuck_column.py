@@ -69,3 +69,16 @@ def test_elastic_checkpoint_has_no_stuck_arrays(tmp_path):
     manifest = json.loads((tmp_path / "run" / "manifest.json").read_text())
     assert manifest["curves"]["phi_c=2"]["stuck"] == 0 and "physics" not in manifest["scene"]
     assert "stuck" not in (tmp_path / "run" / "counts.csv").read_text()
+
+
+def test_drag_with_restitution_runs_and_counts_stuck(tmp_path):
+    """drag and restitution < 1 together (issue 16 item 5): linear drag 0.1 at eps = 0.6 gives
+    0.6*sqrt(1.01) < 1, so accumulated particles are stuck for good."""
+    scene = parse_scene(STICK.replace("restitution = 0.5", "restitution = 0.5\ndrag = 0.1"))
+    driver.run(scene, tmp_path / "run", progress=False)
+    manifest = json.loads((tmp_path / "run" / "manifest.json").read_text())
+    curve = manifest["curves"]["phi_c=2"]
+    assert curve["stuck"] > 0
+    assert sum(curve["escaped"].values()) + curve["censored"] + curve["stuck"] == 400
+    assert manifest["scene"]["physics"] == {"drag": 0.1, "drag_law": "linear",
+                                            "restitution": 0.5}
