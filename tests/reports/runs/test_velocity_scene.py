@@ -331,3 +331,17 @@ def test_plot_draws_the_velocity_curves(small_run, tmp_path):
     assert main(["plot", str(small_run[0]), "--out", str(out)]) == 0
     assert out.stat().st_size > 10_000
     assert main(["plot", str(small_run[0]), "--fit", "power", "--window", "1", "10"]) == 2
+
+
+def test_drag_with_restitution_runs_and_passes_bouncer_verify(tmp_path):
+    """Drag together with r < 1 (sticking with drag): every curve takes the drag; the run's
+    sampled collisions are re-derived bit for bit by ``bouncer verify``, and a particle stuck
+    for good under linear drag (|eps|*sqrt(1 + k^2) <= 1 at eps = 0.6, k = 0.1) is counted."""
+    text = STICKY.replace("[physics]", "[physics]\ndrag = 0.1\ndrag_law = \"linear\"")
+    manifest = driver.run(_fresh(text), tmp_path / "run", progress=False)
+    assert manifest["status"] == "complete"
+    assert manifest["scene"]["physics_per_curve"]["r=0.5"]["drag"] == 0.1
+    ok, lines = recheck(tmp_path / "run")
+    assert ok, "\n".join(lines[-5:])
+    rows = (tmp_path / "run" / "velocity.csv").read_text().splitlines()
+    assert int(rows[-1].split(",")[3]) > 0  # stuck at the horizon
