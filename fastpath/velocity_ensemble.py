@@ -15,8 +15,8 @@ is counted in ``stuck[b, j]`` for every grid point n_grid[j] > n and is not in `
 there: its velocity is the plate's, reported apart, as ``fastpath.dissipative_moments`` does.
 
 Flags and samples as ``fastpath.dissipative_ensemble`` (the departure of the flight concerned,
-the carried state after the six sample fields when ``samples`` has the columns and r < 1, no
-drag): a flagged particle stops with (phi, v, t, n) of that departure; the caller settles the
+the carried state after the six sample fields when ``samples`` has the columns and r < 1,
+with or without drag): a flagged particle stops with (phi, v, t, n) of that departure; the caller settles the
 collision with ``verify`` and resumes the particle here from its state after it. The grid
 point of a start, resumed or not, is filled here: the caller adds nothing.
 """
@@ -58,8 +58,7 @@ def run_block(b, first, last, phi0, v0, t0, n0, eps, drag, law, restitution, det
     """Run particles first .. last-1 into the rows of block b; return the collisions made."""
     state = np.empty(STATE_SIZE)
     no_holes = np.empty(0)
-    keep_carried = (samples.shape[1] >= 6 + len(CARRIED) and restitution < 1.0
-                    and drag == 0.0)
+    keep_carried = samples.shape[1] >= 6 + len(CARRIED) and restitution < 1.0
     carried = np.empty(len(CARRIED))
     done = 0
     for i in range(first, last):
