@@ -65,11 +65,24 @@ def _cell(text) -> str:
     return str(text).replace("|", "/").replace("\n", " ")
 
 
+BEYOND_THE_SEED = ("dissipation",)  # figures of claims the seed does not make (issue 16's study)
+
+
+def _verdict_counts(claims):
+    counts = {v: sum(c["verdict"] == v for c in claims) for v in VERDICTS}
+    return (f"{counts[CONFIRMED]} confirmed, {counts[REFUTED]} refuted, "
+            f"{counts[INCONCLUSIVE]} inconclusive")
+
+
 def claims_markdown(claims: list[dict]) -> str:
     """A table of the claims (from their JSON form), then each claim's evidence and rule."""
-    counts = {v: sum(c["verdict"] == v for c in claims) for v in VERDICTS}
-    lines = [f"{len(claims)} claims of the seed: {counts[CONFIRMED]} confirmed, "
-             f"{counts[REFUTED]} refuted, {counts[INCONCLUSIVE]} inconclusive.", "",
+    seeds = [c for c in claims if c["figure"] not in BEYOND_THE_SEED]
+    beyond = [c for c in claims if c["figure"] in BEYOND_THE_SEED]
+    summary = f"{len(seeds)} claims of the seed: {_verdict_counts(seeds)}."
+    if beyond:
+        figures = ", ".join(sorted({c["figure"] for c in beyond}))
+        summary += f" {len(beyond)} beyond the seed ({figures}): {_verdict_counts(beyond)}."
+    lines = [summary, "",
              "| id | figure | the seed says | verdict | particles per curve | run |",
              "|---|---|---|---|---|---|"]
     for c in claims:

@@ -33,3 +33,10 @@ def test_report_json_round_trips_and_the_markdown_follows_it(tmp_path):
     md = claims_markdown(stored["claims"])
     assert "3 claims of the seed: 1 confirmed, 1 refuted, 1 inconclusive." in md
     assert "| fig3-h=1 | 2 | exponential | **refuted** | 100,000,000 | paper-escape-1e8 |" in md
+
+
+def test_claims_beyond_the_seed_are_counted_apart():
+    claims = [claim(), claim("refuted", id="dissipation-exponent", figure="dissipation")]
+    md = claims_markdown(claims_json(claims))
+    assert md.startswith("1 claims of the seed: 1 confirmed, 0 refuted, 0 inconclusive. 1 beyond"
+                         " the seed (dissipation): 0 confirmed, 1 refuted, 0 inconclusive.")
