@@ -16,8 +16,9 @@ there: its velocity is the plate's, reported apart, as ``fastpath.dissipative_mo
 
 Flags and samples as ``fastpath.dissipative_ensemble`` (the departure of the flight concerned,
 the carried state after the six sample fields when ``samples`` has the columns and r < 1,
-with or without drag): a flagged particle stops with (phi, v, t, n) of that departure; the caller settles the
-collision with ``verify`` and resumes the particle here from its state after it. The grid
+with or without drag): a flagged particle stops with (phi, v, t, n) of that departure; the
+caller settles the collision with ``verify`` and resumes the particle here from its state after
+it. The grid
 point of a start, resumed or not, is filled here: the caller adds nothing.
 """
 
