@@ -343,3 +343,17 @@ def test_a_sample_departing_at_phase_zero_is_kept():
     out, rows = chunk.simulate_chunk(plan, 0, 0)
     assert out.esc_n.sum() == 1
     assert rows == [[0, 0, 0, 1.0, 0.0, 1.0, 2.0, 1.0, 2.0]]
+
+
+def test_settle_rounds_verify_at_the_recorded_precision():
+    """``settle`` returns the floats of ``verify.step`` at ``VERIFY_DPS`` (30 digits, recorded
+    in the run manifest as ``verify_dps``): the settled state, hence the rest of a particle's
+    orbit, depends on it. eps = 0, phi = 2**-53*(1 + 2**-52), v = 1/2: tau = 1 and the exact
+    phi1 = 1 + 2**-53 + 2**-105 lies 2**-105 above a float64 rounding midpoint; at 30 digits
+    (103 bits) it rounds to the midpoint first and then to 1.0 (ties to even), at 50 digits to
+    1 + 2**-52. (So the settled phi1 can be 1 ulp from the correctly rounded value: a double
+    rounding within 2**-103 relative of a midpoint.)"""
+    phi, v, eps = 2.0**-53 * (1 + 2.0**-52), 0.5, 0.0
+    assert chunk.VERIFY_DPS == 30
+    assert chunk.settle(phi, v, eps) == (1.0, 0.5, 1.0)
+    assert float(verify.step(phi, v, eps, dps=50)[0]) == 1.0 + 2.0**-52
