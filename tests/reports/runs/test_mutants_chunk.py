@@ -396,3 +396,14 @@ def test_check_sample_error_and_overstep_in_units_of_kappa_u(physics):
         # tau, 1 + k*kappa*u and tau_ref each rounded to float64 (u relative): 3/kappa
         assert abs(got[1] - abs(k)) <= 3 / float(kappa)
         assert got[2] == (k > 16)
+
+
+def test_check_sample_overstep_is_strictly_beyond_16_kappa_u():
+    """eps = 0, phi = 0, v = 1/2: tau_ref = 1 and kappa = (v + tau)/|v - tau| = 3 exactly, so
+    rel = tau - 1 is exact: tau = 1 + 16*3*u is at the tolerance (not an overstep), the next
+    float beyond it is."""
+    at = 1.0 + 16 * 3 * 2.0**-53
+    assert chunk.OVERSTEP_TOLERANCE == 16
+    assert verify.condition_number(0.0, 0.5, 0.0, 1.0) == 3
+    assert chunk.check_sample(0.0, 0.5, at, 0.0) == (1.0, 16.0, False)
+    assert chunk.check_sample(0.0, 0.5, np.nextafter(at, 2.0), 0.0)[2]
