@@ -1,0 +1,61 @@
+"""Tests that kill mutants of the ensemble's lane kernel (scripts/mutation/ensemble.py).
+
+``lane_collide`` must return what ``collide`` and ``departure_phase`` give for the same
+departure (the next flight's centred phase and its error bound, bit for bit), and answer only
+where its moderate phase reduction is the one ``collide`` uses (|phi + tau| < 2**20).
+"""
+
+import numpy as np
+
+from fastpath.collision import collide
+from fastpath.ensemble import lane_collide
+from fastpath.flight import GENERAL, departure_phase
+from fastpath.phase import centre_phase
+
+
+def _states(n, seed=5):
+    rng = np.random.default_rng(seed)
+    return (rng.uniform(-np.pi, np.pi, n), rng.uniform(0.6, 30.0, n),
+            rng.choice([0.6, -0.6, 0.99, 0.1], n))
+
+
+def test_lanes_carry_the_departure_phase_of_the_landing():
+    """Answered lanes: (tau, phi1, v1) are collide's, and (centred phi1, its error bound) are
+    departure_phase(phi1), bit for bit; landings on both sides of pi occur (centred != phi1
+    after a landing in [pi, 2*pi), where the centring adds an error)."""
+    phi, v, eps = _states(400)
+    shifted = 0
+    for p, w, e in zip(phi, v, eps, strict=True):
+        centred, error = departure_phase(p)
+        tau, phi1, v1, centred1, error1, answered = lane_collide(centred, w, e, error)
+        if not answered:
+            continue
+        assert (phi1, v1, tau) == collide(p, w, e)[:3]  # AUTO: with the lockstep flight
+        assert (centred1, error1) == departure_phase(phi1)
+        shifted += centred1 != phi1
+    assert 100 < shifted < 300
+
+
+def _landing_at_the_limit(above):
+    """A departure at phase 0 (eps = 0.5) whose landing phi + tau is 2**20 exactly (above=False)
+    or just above it, with the Holmes start phi + 2v below 2**20 (the lockstep flight runs)."""
+    eps = 0.5
+    v = 2.0**19
+    for _ in range(200000):
+        v = np.nextafter(v, 0.0)
+        tau, _, _, _, _, answered = lane_collide(0.0, v, eps, 0.0)
+        x = 0.0 + tau
+        if (x > 2.0**20) if above else (x == 2.0**20):
+            return v, eps, tau
+    raise AssertionError("no landing at 2**20 constructed")
+
+
+def test_lanes_do_not_answer_landings_at_or_beyond_2_to_20():
+    """|phi + tau| >= 2**20: collide reduces the landing with Payne-Hanek, not the lanes'
+    Cody-Waite reduction, so the lane leaves that flight to collide (answered False)."""
+    for above in (False, True):
+        v, eps, tau = _landing_at_the_limit(above)
+        assert 0.0 + 2 * v < 2.0**20 <= 0.0 + tau
+        assert not lane_collide(0.0, v, eps, 0.0)[5]
+        phi1 = collide(0.0, v, eps, GENERAL)[0]
+        assert 0.0 <= phi1 < 2 * np.pi and centre_phase(phi1) == departure_phase(phi1)[0]
