@@ -59,3 +59,37 @@ def test_lanes_do_not_answer_landings_at_or_beyond_2_to_20():
         assert not lane_collide(0.0, v, eps, 0.0)[5]
         phi1 = collide(0.0, v, eps, GENERAL)[0]
         assert 0.0 <= phi1 < 2 * np.pi and centre_phase(phi1) == departure_phase(phi1)[0]
+
+
+def test_lockstep_step_is_halley_from_the_holmes_start():
+    """The first lockstep evaluation (at the Holmes start t = 2v) steps to Halley's iterate
+    t - 2*d*d1/(2*d1**2 - d*d2) of the d, d1 = d', d2 = d'' it evaluated, where that lies inside
+    the bracket: the same iterate to the rounding of the step (a few roundings of relative u
+    each: 8u*|step|, plus u*t for the subtraction), checked in mpmath from the same floats."""
+    import mpmath
+
+    from fastpath.gap import departure
+    from fastpath.lockstep import _evaluation, _start
+    from fastpath.sincos import sin_cos
+
+    u = 2.0**-53
+    phi, v, eps = _states(300, seed=11)
+    checked = 0
+    for p, w, e in zip(phi, v, eps, strict=True):
+        s, c = sin_cos(p)
+        _, w0_error = departure(p, s, w, e, 0.0)
+        state, two_v = _start(p, s, w, e, w0_error)
+        if state[12]:  # not eligible
+            continue
+        t, delta, s0, c0, lo, hi = state[:6]
+        after = _evaluation(state, p, c, w, e, two_v, 1)
+        if after[11] or after[12] or after[0] == 0.5 * (lo + hi):  # answered, gave up, bisected
+            continue
+        d = e * (c - c0) - 0.5 * t * delta  # as _evaluation computes them, from the same floats
+        d1 = -w - delta + e * s0
+        with mpmath.workdps(40):
+            d, d1, d2 = mpmath.mpf(d), mpmath.mpf(d1), -1 + mpmath.mpf(e) * mpmath.mpf(c0)
+            step = 2 * d * d1 / (2 * d1 * d1 - d * d2)
+            assert abs(after[0] - (t - step)) <= 8 * u * abs(step) + u * t
+        checked += 1
+    assert checked > 100
