@@ -93,3 +93,32 @@ def test_lockstep_step_is_halley_from_the_holmes_start():
             assert abs(after[0] - (t - step)) <= 8 * u * abs(step) + u * t
         checked += 1
     assert checked > 100
+
+
+def test_lockstep_iterates_stay_inside_the_bracket():
+    """Every evaluation that neither answers nor gives up moves to a point strictly inside the
+    updated bracket; where Halley's step leaves it (short flights, v < 1, eps near +-1) the
+    guard takes the bracket's midpoint."""
+    from fastpath.gap import departure
+    from fastpath.lockstep import _evaluation, _start
+    from fastpath.sincos import sin_cos
+
+    rng = np.random.default_rng(0)
+    guarded = 0
+    for _ in range(1500):
+        p, w = rng.uniform(-np.pi, np.pi), 10 ** rng.uniform(-0.2, 3)
+        e = rng.choice([1.0, -1.0, 0.999, 0.9, 0.6, 0.3])
+        s, c = sin_cos(p)
+        w0, w0_error = departure(p, s, w, e, 0.0)
+        if not w0 > w0_error:
+            continue
+        state, two_v = _start(p, s, w, e, w0_error)
+        for k in range(1, 5):
+            if state[11] or state[12]:
+                break
+            state = _evaluation(state, p, c, w, e, two_v, k)
+            t, lo, hi = state[0], state[4], state[5]
+            if not (state[11] or state[12]):
+                assert lo < t < hi
+                guarded += t == 0.5 * (lo + hi)
+    assert guarded > 0
