@@ -122,3 +122,27 @@ def test_lockstep_iterates_stay_inside_the_bracket():
                 assert lo < t < hi
                 guarded += t == 0.5 * (lo + hi)
     assert guarded > 0
+
+
+def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
+    """_start: t = 2v, the certified bracket of this departure (``fastpath.concave.bracket`` of
+    w0 = v + eps*sin(phi)), no answer yet, and the lane eligible exactly when
+    2*w0 >= 1 + |eps| (the other conditions hold for these states)."""
+    from fastpath.concave import bracket
+    from fastpath.gap import departure
+    from fastpath.lockstep import _start
+    from fastpath.sincos import sin_cos
+
+    phi, v, eps = _states(300, seed=2)
+    for p, w, e in zip(phi, v * 0.1, eps, strict=True):
+        s, _ = sin_cos(p)
+        w0, w0_error = departure(p, s, w, e, 0.0)
+        if not w0 > w0_error:
+            continue
+        state, two_v = _start(p, s, w, e, w0_error)
+        assert two_v == state[0] == 2 * w and state[1] == 0.0
+        assert state[4:6] == bracket(w, w + e * s, w0_error, e)
+        assert state[12] == (not 2 * (w + e * s) >= 1 + abs(e))
+    for w, e in ((0.5, 0.0), (0.75, 0.5), (1.0, 1.0)):  # phi = 0: 2*w0 = 1 + |eps| exactly
+        assert not _start(0.0, 0.0, w, e, 0.0)[0][12]
+        assert _start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][12]
