@@ -146,3 +146,6 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
     for w, e in ((0.5, 0.0), (0.75, 0.5), (1.0, 1.0)):  # phi = 0: 2*w0 = 1 + |eps| exactly
         assert not _start(0.0, 0.0, w, e, 0.0)[0][12]
         assert _start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][12]
+    # the Holmes phase phi + 2v must be inside sin_cos's range |x| < 2**20
+    assert _start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][12]
+    assert not _start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][12]
