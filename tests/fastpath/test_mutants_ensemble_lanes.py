@@ -146,6 +146,11 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
     for w, e in ((0.5, 0.0), (0.75, 0.5), (1.0, 1.0)):  # phi = 0: 2*w0 = 1 + |eps| exactly
         assert not _start(0.0, 0.0, w, e, 0.0)[0][12]
         assert _start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][12]
+    # |v| > 1e-150 (v**2 must not underflow): eps = 1, phi = pi/2 makes 2*w0 = 2 >= 1 + |eps|
+    s, _ = sin_cos(np.pi / 2)
+    assert s == 1.0
+    assert _start(np.pi / 2, s, 1e-150, 1.0, 0.0)[0][12]
+    assert not _start(np.pi / 2, s, np.nextafter(1e-150, 1.0), 1.0, 0.0)[0][12]
     # the Holmes phase phi + 2v must be inside sin_cos's range |x| < 2**20
     assert _start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][12]
     assert not _start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][12]
