@@ -154,3 +154,14 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
     # the Holmes phase phi + 2v must be inside sin_cos's range |x| < 2**20
     assert _start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][12]
     assert not _start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][12]
+
+
+def test_lockstep_collide_answers_eps_one():
+    """|eps| = 1 is concave (DESIGN fact 11): the lanes answer such flights too."""
+    from fastpath.lockstep import lockstep_collide
+    from fastpath.sincos import sin_cos
+
+    for eps in (1.0, -1.0):
+        s, c = sin_cos(0.3)
+        tau, *_, done = lockstep_collide(0.3, s, c, 2.0, eps, 0.0)
+        assert done and tau == collide(0.3, 2.0, eps)[2]
