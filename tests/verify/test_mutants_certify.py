@@ -670,19 +670,22 @@ def test_certify_candidate_at_eps_one_uses_the_concave_criterion():
     assert certify.certify_candidate(phi, v, eps, lo_, hi_, dps=30)
 
 
-def _search_at_four(end):
-    """phi = 0, eps = 2 + 2**-37, v such that ``end(d(4)) == 0`` at 60 digits (the plate term's
-    end cancelled by ``4*(v - 2)``, exact), and a candidate whose right end ``c + c*10**-50`` is
-    exactly 4. Returns the context and the candidate; the first root is just past or before 4
-    (d' ~ -4.3 there)."""
+def _search_at_four(end, eps0):
+    """phi = 0, eps = eps0 + k*2**-40 (the first k that makes the cancellation exact), v such
+    that ``end(d(4)) == 0`` at 60 digits (the plate term's end cancelled by ``4*(v - 2)``), and
+    a candidate whose right end ``c + c*10**-50`` is exactly 4. Returns the context, the
+    candidate and the enclosure of d(4); the first root is within rounding of 4 (d' ~ -4.3 for
+    eps ~ 2, ~ -2.3 for eps ~ 0.5)."""
     dps, wdps, four = 50, 60, mp.mpf(4)
-    eps = mp.mpf(2 + 2.0**-37)
     with working_dps(wdps):
-        half = iv.mpf(four) / 2
-        plate = 2 * iv.mpf(eps) * iv.sin(half) * iv.sin(half)
-        with mp.workprec(1000):
-            v = 2 - end(plate) / 4
-        assert mp.mpf(v) == v  # exact at 60 digits: the cancellation is exact
+        for k in range(64):
+            eps = mp.mpf(eps0) + k * mp.mpf(2) ** -40
+            half = iv.mpf(four) / 2
+            plate = 2 * iv.mpf(eps) * iv.sin(half) * iv.sin(half)
+            with mp.workprec(1000):
+                v = 2 - end(plate) / 4
+            if mp.mpf(v) == v:  # exact at 60 digits: the cancellation is exact
+                break
         ctx = certify._context(mp.zero, v, eps, dps, wdps)
         scale = mp.mpf(10) ** -dps
         c = next(c for c in (four / (1 + scale) + j * mp.eps * 4 for j in range(-5, 6))
@@ -692,14 +695,19 @@ def _search_at_four(end):
     return ctx, c, d4
 
 
+@pytest.mark.parametrize("eps0, concave", [(2.0, False), (0.5, True)],
+                         ids=["eps~2 boxes", "eps~0.5 concave shortcut"])
 @pytest.mark.parametrize("end", [hi, lo], ids=["d(right) in [-x, 0]", "d(right) in [0, x]"])
-def test_search_needs_a_strict_sign_at_the_candidate(end):
+def test_search_needs_a_strict_sign_at_the_candidate(end, eps0, concave):
     """The certificate is ``d(right) < 0`` and a skipped near-tangency ``d(right) > 0``, both
-    strict: an enclosure of ``d(right)`` with an end exactly 0 decides neither, and the attempt
-    reports the minimum of d at the candidate (its enclosure's size there), not elsewhere."""
-    ctx, c, d4 = _search_at_four(end)
+    strict, in the box path and in the concave shortcut of ``_search`` (used by the drag
+    certificate; here with a true claim, ``|eps| <= 1``): an enclosure of ``d(right)`` with an
+    end exactly 0 decides neither, and the attempt reports the minimum of d at the candidate
+    (its enclosure's size there), not elsewhere."""
+    ctx, c, d4 = _search_at_four(end, eps0)
     with working_dps(ctx.wdps), pytest.raises(certify._Undecided) as err:
-        certify._search(ctx, 1 + ctx.eps, lo(ctx.iv_v) / (1 + ctx.eps), None,
+        certify._search(ctx, 1 + abs(ctx.eps), lo(ctx.iv_v) / (1 + abs(ctx.eps)), None,
+                        concave_from=(lambda right: True) if concave else None,
                         candidate=lambda ctx, curv, t: c)
     size = max(abs(lo(d4)), abs(hi(d4)))
     assert err.value.what == (f"d has a minimum within {mp.nstr(size, 3)} of 0 near "
