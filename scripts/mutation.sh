@@ -9,7 +9,8 @@
 #   small AST driver (scripts/mutation/ensemble.py) applies one operator swap at a time to a
 #   scratch copy and runs the ensemble tests with a per-mutant NUMBA_CACHE_DIR.
 #
-# One worker, under nice: the machine is shared. Scratch copies live under $MUTATION_DIR
+# One worker, under nice -n 19: the machine is shared. MUTATION_NAMES=FILE runs the globs in FILE
+# instead of scripts/mutation/<group>.names (e.g. only the functions added to a group). Scratch copies live under $MUTATION_DIR
 # (default /tmp/bouncer-mutation); each group prints its survivors and a one-line score.
 set -euo pipefail
 
@@ -30,9 +31,11 @@ run_mutmut() {  # $1: group name (scripts/mutation/$1.cfg)
     cd "$dest"
     export NUMBA_CACHE_DIR="$work/numba-$1"
     local t0=$SECONDS
-    local names=()  # optional scripts/mutation/<group>.names: mutant-name globs to run, one a line
-    [ -f "$root/scripts/mutation/$1.names" ] && mapfile -t names < "$root/scripts/mutation/$1.names"
-    nice -n 15 mutmut run --max-children 1 "${names[@]}" > mutmut-run.log 2>&1 || { tail -20 mutmut-run.log; return 1; }
+    # optional scripts/mutation/<group>.names (or the file $MUTATION_NAMES): mutant-name globs to
+    # run, one a line
+    local names=() names_file=${MUTATION_NAMES:-$root/scripts/mutation/$1.names}
+    [ -f "$names_file" ] && mapfile -t names < "$names_file"
+    nice -n 19 mutmut run --max-children 1 "${names[@]}" > mutmut-run.log 2>&1 || { tail -20 mutmut-run.log; return 1; }
     mutmut results --all true > results.txt 2>&1
     echo "== $1: wall $((SECONDS - t0)) s (log: $dest/mutmut-run.log)"
     python - results.txt <<'EOF'
@@ -62,7 +65,7 @@ for g in $groups; do
         verify|runs|certify) run_mutmut "$g" ;;
         ensemble)
             scratch_copy "$work/ensemble"
-            nice -n 15 python "$root/scripts/mutation/ensemble.py" "$work/ensemble" ;;
+            nice -n 19 python "$root/scripts/mutation/ensemble.py" "$work/ensemble" ;;
         *) echo "unknown group: $g (verify, runs, ensemble, certify, all)" >&2; exit 2 ;;
     esac
 done

@@ -1,17 +1,19 @@
-"""Hand-rolled mutation driver for ``fastpath/ensemble.py`` (numba kernels: mutmut cannot).
+"""Hand-rolled mutation driver for numba kernels (mutmut cannot): ``fastpath/ensemble.py`` and
+``fastpath/lockstep.py``.
 
-    python scripts/mutation/ensemble.py SCRATCH_COPY
+    python scripts/mutation/ensemble.py SCRATCH_COPY [FUNCTION,...]
 
-Operators, applied one at a time inside ``exit_hole``, ``bin_index`` and ``escape_chunk`` (the
-escape/censor accounting):
+Operators, applied one at a time inside the functions of ``TARGETS`` (the escape/censor
+accounting, the lanes and the lockstep flight; a comma-separated list restricts the run):
 
 * comparison: ``<`` <-> ``<=``, ``>`` <-> ``>=``, ``==`` <-> ``!=``;
 * arithmetic: ``+`` <-> ``-`` (binary and augmented assignment);
 * integer constant ``c`` -> ``c + 1``.
 
-Each mutant replaces the scratch copy's ``fastpath/ensemble.py`` (via ``ast.unparse``) and runs
-the ensemble tests with ``NUMBA_DISABLE_JIT=1``: the kernels run as plain Python (no compile per
-mutant), where they pass as compiled. Two tests are deselected: one compares thread counts
+Each mutant replaces its file in the scratch copy (via ``ast.unparse``) and runs the ensemble
+and lockstep tests with ``NUMBA_DISABLE_JIT=1``: the kernels run as plain Python (no compile per
+mutant), where they pass as compiled given the pytest plugin ``nopython_shims`` (``sin_cos`` of
+NaN is NaN, as compiled). Two tests are deselected: one compares thread counts
 (meaningless without numba) and one takes ~40 s; both are run by the normal suite. A mutant is
 killed when pytest exits non-zero, a timeout when it runs past ``TIMEOUT`` seconds.
 """
@@ -26,10 +28,15 @@ import subprocess
 import sys
 import time
 
-TARGET = "fastpath/ensemble.py"
-FUNCTIONS = ("exit_hole", "bin_index", "escape_chunk")
+TARGETS = {
+    "fastpath/ensemble.py": ("exit_hole", "bin_index", "escape_chunk", "lane_collide",
+                             "_escape_lanes", "_load"),
+    "fastpath/lockstep.py": ("_evaluation", "_start", "_classify", "moderate_bracket",
+                             "lockstep_collide"),
+}
 TIMEOUT = 300
 TESTS = [
+    "tests/fastpath/test_lockstep.py",
     "tests/fastpath/test_ensemble.py",
     "tests/reports/runs/test_hole_edges.py",
     "tests/reports/runs/test_censoring.py",
@@ -44,11 +51,11 @@ _SWAP = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt,
          ast.Eq: ast.NotEq, ast.NotEq: ast.Eq, ast.Add: ast.Sub, ast.Sub: ast.Add}
 
 
-def sites(tree):
-    """(function, line, kind, path) for every mutable node, in a fixed order."""
+def sites(tree, functions):
+    """(function, line, kind, node, index) for every mutable node, in a fixed order."""
     out = []
     for fn in tree.body:
-        if not (isinstance(fn, ast.FunctionDef) and fn.name in FUNCTIONS):
+        if not (isinstance(fn, ast.FunctionDef) and fn.name in functions):
             continue
         for node in ast.walk(fn):
             if isinstance(node, ast.Compare):
@@ -62,10 +69,10 @@ def sites(tree):
     return out
 
 
-def mutate(source, index):
+def mutate(source, functions, index):
     """The module source with mutation ``index`` applied, and a description of it."""
     tree = ast.parse(source)
-    fn, line, kind, node, i = sites(tree)[index]
+    fn, line, kind, node, i = sites(tree, functions)[index]
     if kind == "compare":
         old = type(node.ops[i])
         node.ops[i] = _SWAP[old]()
@@ -85,7 +92,10 @@ def run_tests(root):
                              recursive=True))
     cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *TESTS,
            *(os.path.relpath(p, root) for p in extra), *(f"--deselect={d}" for d in DESELECT)]
-    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    cmd[3:3] = ["-p", "nopython_shims"]
+    shims = os.path.join(root, "scripts", "mutation")
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1",
+               PYTHONPATH=os.pathsep.join(filter(None, [shims, os.environ.get("PYTHONPATH")])))
     try:
         return subprocess.run(cmd, cwd=root, env=env, capture_output=True,
                               timeout=TIMEOUT).returncode
@@ -93,31 +103,39 @@ def run_tests(root):
         return None
 
 
-def main(root):
-    path = os.path.join(root, TARGET)
-    original = open(path).read()
-    n = len(sites(copy.deepcopy(ast.parse(original))))
+def main(root, only=None):
     t0 = time.monotonic()
     if run_tests(root) != 0:
         sys.exit("ensemble: the tests fail on the unmutated code; no score")
+    for target, functions in TARGETS.items():
+        functions = tuple(f for f in functions if only is None or f in only)
+        if functions:
+            mutate_file(root, target, functions)
+    print(f"== ensemble: wall {time.monotonic() - t0:.0f} s")
+
+
+def mutate_file(root, target, functions):
+    path = os.path.join(root, target)
+    original = open(path).read()
+    n = len(sites(copy.deepcopy(ast.parse(original)), functions))
     tally = {"killed": 0, "survived": 0, "timeout": 0}
     try:
         for k in range(n):
-            mutated, what = mutate(original, k)
+            mutated, what = mutate(original, functions, k)
             with open(path, "w") as f:
                 f.write(mutated)
             rc = run_tests(root)
             status = "timeout" if rc is None else "killed" if rc != 0 else "survived"
             tally[status] += 1
             if status != "killed":
-                print(f"   {status:10s} ensemble mutant {k}: {what}", flush=True)
+                print(f"   {status:10s} {target} mutant {k}: {what}", flush=True)
     finally:
         with open(path, "w") as f:
             f.write(original)
-    print(f"== ensemble: wall {time.monotonic() - t0:.0f} s")
-    print(f"fastpath.ensemble: {n} mutants, {tally['killed']} killed, {tally['survived']} "
-          f"survived, {tally['timeout']} timeouts; score {100 * tally['killed'] / n:.1f}%")
+    print(f"{target} ({', '.join(functions)}): {n} mutants, {tally['killed']} killed, "
+          f"{tally['survived']} survived, {tally['timeout']} timeouts; "
+          f"score {100 * tally['killed'] / max(n, 1):.1f}%", flush=True)
 
 
 if __name__ == "__main__":
-    main(sys.argv[1])
+    main(sys.argv[1], None if len(sys.argv) < 3 else set(sys.argv[2].split(",")))

@@ -609,3 +609,114 @@ def test_general_graze_message_when_the_stretch_is_proved(monkeypatch, psi, t_gu
     assert _significant_digits(m.group(1)) == 3 and _significant_digits(m.group(2)) == 20
     assert 0 < mp.mpf(m.group(1)) < 1e-35 and abs(mp.mpf(m.group(2)) - g.T) < 1e-15
     assert info.value.needed > 40
+
+
+# --- interval ends exactly 0.0 (issue 12: the last survivors) --------------------------------
+#
+# An end of an interval enclosure is exactly 0 only by construction: v is chosen (an exact mpf
+# with the working precision's bits) so that it cancels one end of the rounded enclosure of
+# eps*sin(phi), or of the plate term of d, computed exactly as the certifier computes it.
+
+def _v_cancelling_w0_end(phi, eps, wdps, end):
+    """v with ``end(w0) == 0`` for ``w0 = iv(v) + iv(eps)*iv.sin(phi)`` at ``wdps`` digits."""
+    with working_dps(wdps) as prec:
+        plate = iv.mpf(eps) * iv.sin(reduce_phase(phi, prec).enclosure)
+        v = -end(plate)
+        w0 = iv.mpf(v) + plate
+    assert end(w0) == 0 and lo(w0) < hi(w0)
+    return v
+
+
+def test_w0_with_upper_end_exactly_zero_is_rejected_at_that_precision():
+    """``hi(w0) == 0`` proves ``w0 <= 0``: no departure, decided at the first attempt. With
+    ``max_dps`` equal to its precision, a ``hi(w0) < 0`` test would report it undecidable."""
+    phi, eps = mp.mpf(1), mp.mpf(0.5)
+    v = _v_cancelling_w0_end(phi, eps, 60, hi)
+    with pytest.raises(ValueError, match=r"no departure: w0 = v \+ eps\*sin\(phi\) = 0\.0 <= 0"):
+        verify.certify_flight(phi, v, eps, dps=50, max_dps=60)
+
+
+def test_w0_with_lower_end_exactly_zero_is_not_a_proved_departure():
+    """``lo(w0) == 0`` does not prove ``w0 > 0`` (the concave proof needs ``d'(0) > 0``): at that
+    precision the flight is undecidable BECAUSE of w0 (not of a later sign); one precision step
+    later (120 digits) w0 > 0 is proved and the flight certified."""
+    phi, eps = mp.mpf(1), mp.mpf(0.5)
+    v = _v_cancelling_w0_end(phi, eps, 60, lo)
+    with pytest.raises(verify.UndecidableCollision) as err:
+        verify.certify_flight(phi, v, eps, dps=50, max_dps=60)
+    assert err.value.what.startswith("w0 = v + eps*sin(phi) is within ")
+    assert err.value.what.endswith(" of 0: departure or not")
+    cert = verify.certify_flight(phi, v, eps, dps=50)
+    assert cert.dps_used == 120 and cert.tau > 0
+
+
+def test_certify_candidate_at_eps_one_uses_the_concave_criterion():
+    """``|eps| = 1`` is the concave case (issue 12), so the proof is ``d(lo) > 0`` in ``iv``. A
+    lower end inside the analytic free stretch ``(0, w0/2]`` whose gap ``d(lo) ~ 1e-52`` is
+    below the resolution of 25 digits: the concave criterion cannot prove it (False), the box
+    criterion of ``|eps| > 1`` would accept it without evaluating ``d(lo)``. At 40 digits the
+    same enclosure is proved (it is right)."""
+    phi, eps, dps = mp.mpf(1), mp.mpf(1), 15
+    with working_dps(dps + 10) as prec:
+        sine = iv.sin(reduce_phase(phi, prec).enclosure)
+        v = -lo(sine) + (hi(sine) - lo(sine))  # w0 ~ 1e-26: one ulp of the sine above 0
+        w0 = iv.mpf(v) + iv.sin(reduce_phase(phi, prec).enclosure)
+        lo_ = lo(w0) / 2
+        assert lo(w0) > 0 and lo(certify._context(phi, v, eps, dps, dps + 10).d(lo_)) <= 0
+    hi_ = mp.mpf(2) ** -60
+    tau = verify.certify_flight(phi, v, eps, dps=40).tau
+    assert lo_ < tau < hi_
+    assert not certify.certify_candidate(phi, v, eps, lo_, hi_, dps=dps)
+    assert certify.certify_candidate(phi, v, eps, lo_, hi_, dps=30)
+
+
+def _search_at_four(end, eps0):
+    """phi = 0, eps = eps0 + k*2**-40 (the first k that makes the cancellation exact), v such
+    that ``end(d(4)) == 0`` at 60 digits (the plate term's end cancelled by ``4*(v - 2)``), and
+    a candidate whose right end ``c + c*10**-50`` is exactly 4. Returns the context, the
+    candidate and the enclosure of d(4); the first root is within rounding of 4 (d' ~ -4.3 for
+    eps ~ 2, ~ -2.3 for eps ~ 0.5)."""
+    dps, wdps, four = 50, 60, mp.mpf(4)
+    with working_dps(wdps):
+        for k in range(64):
+            eps = mp.mpf(eps0) + k * mp.mpf(2) ** -40
+            half = iv.mpf(four) / 2
+            plate = 2 * iv.mpf(eps) * iv.sin(half) * iv.sin(half)
+            with mp.workprec(1000):
+                v = 2 - end(plate) / 4
+            if mp.mpf(v) == v:  # exact at 60 digits: the cancellation is exact
+                break
+        ctx = certify._context(mp.zero, v, eps, dps, wdps)
+        scale = mp.mpf(10) ** -dps
+        c = next(c for c in (four / (1 + scale) + j * mp.eps * 4 for j in range(-5, 6))
+                 if c + c * scale == four)
+        d4 = ctx.d(four)
+        assert end(d4) == 0 and lo(d4) < hi(d4)
+    return ctx, c, d4
+
+
+@pytest.mark.parametrize("eps0, concave", [(2.0, False), (0.5, True)],
+                         ids=["eps~2 boxes", "eps~0.5 concave shortcut"])
+@pytest.mark.parametrize("end", [hi, lo], ids=["d(right) in [-x, 0]", "d(right) in [0, x]"])
+def test_search_needs_a_strict_sign_at_the_candidate(end, eps0, concave):
+    """The certificate is ``d(right) < 0`` and a skipped near-tangency ``d(right) > 0``, both
+    strict, in the box path and in the concave shortcut of ``_search`` (used by the drag
+    certificate; here with a true claim, ``|eps| <= 1``): an enclosure of ``d(right)`` with an
+    end exactly 0 decides neither, and the attempt reports the minimum of d at the candidate
+    (its enclosure's size there), not elsewhere."""
+    ctx, c, d4 = _search_at_four(end, eps0)
+    with working_dps(ctx.wdps), pytest.raises(certify._Undecided) as err:
+        certify._search(ctx, 1 + abs(ctx.eps), lo(ctx.iv_v) / (1 + abs(ctx.eps)), None,
+                        concave_from=(lambda right: True) if concave else None,
+                        candidate=lambda ctx, curv, t: c)
+    size = max(abs(lo(d4)), abs(hi(d4)))
+    assert err.value.what == (f"d has a minimum within {mp.nstr(size, 3)} of 0 near "
+                              "tau=4.0: graze or not")
+
+
+def test_precision_hint_at_an_exact_zero_of_the_slope():
+    """``condition_number`` is infinite where ``d'(tau) = 0`` exactly (eps = 0, tau = v: the apex
+    of the parabola); the precision hint is then the guard precision, not an overflow."""
+    assert verify.condition_number(0.0, 1.0, 0.0, 1.0) == mp.inf
+    with working_dps(60):
+        assert certify._needed_dps(mp.zero, mp.one, mp.zero, mp.one, 50) == 60

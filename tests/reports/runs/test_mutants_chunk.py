@@ -343,3 +343,67 @@ def test_a_sample_departing_at_phase_zero_is_kept():
     out, rows = chunk.simulate_chunk(plan, 0, 0)
     assert out.esc_n.sum() == 1
     assert rows == [[0, 0, 0, 1.0, 0.0, 1.0, 2.0, 1.0, 2.0]]
+
+
+def test_settle_rounds_verify_at_the_recorded_precision():
+    """``settle`` returns the floats of ``verify.step`` at ``VERIFY_DPS`` (30 digits, recorded
+    in the run manifest as ``verify_dps``): the settled state, hence the rest of a particle's
+    orbit, depends on it. eps = 0, phi = 2**-53*(1 + 2**-52), v = 1/2: tau = 1 and the exact
+    phi1 = 1 + 2**-53 + 2**-105 lies 2**-105 above a float64 rounding midpoint; at 30 digits
+    (103 bits) it rounds to the midpoint first and then to 1.0 (ties to even), at 50 digits to
+    1 + 2**-52. (So the settled phi1 can be 1 ulp from the correctly rounded value: a double
+    rounding within 2**-103 relative of a midpoint.)"""
+    phi, v, eps = 2.0**-53 * (1 + 2.0**-52), 0.5, 0.0
+    assert chunk.VERIFY_DPS == 30
+    assert chunk.settle(phi, v, eps) == (1.0, 0.5, 1.0)
+    assert float(verify.step(phi, v, eps, dps=50)[0]) == 1.0 + 2.0**-52
+
+
+def _sample_by_hand(phi, v, tau, eps, physics=None):
+    """``check_sample``'s definition from verify at ``VERIFY_DPS``: tau_ref = verify.step's
+    tau, error = |tau - tau_ref|/tau_ref/(kappa*u), overstep = rel > 16*kappa*u."""
+    u = 2.0**-53
+    if physics:
+        phi1, v1, tau_ref = verify.step(phi, v, eps, dps=chunk.VERIFY_DPS, **physics)
+        kappa = chunk.dissipative_kappa(phi, v, eps, tau_ref, phi1, v1, physics["restitution"])
+    else:
+        tau_ref = verify.step(phi, v, eps, dps=chunk.VERIFY_DPS)[2]
+        kappa = verify.condition_number(phi, v, eps, tau_ref)
+    rel = (tau - tau_ref) / tau_ref
+    return float(tau_ref), float(abs(rel) / (kappa * u)), bool(rel > 16 * kappa * u), kappa
+
+
+@pytest.mark.parametrize("physics", [None, {"drag": 0.1, "drag_law": "linear",
+                                            "restitution": 1.0}], ids=["elastic", "drag"])
+def test_check_sample_error_and_overstep_in_units_of_kappa_u(physics):
+    """A fast tau moved off verify's by k*kappa*u (k = 0, 3, -3, 40): the recorded error is |k|
+    (to the rounding of tau), the overstep flag is set only for k = 40 > 16; and the values are
+    those of verify at VERIFY_DPS, bit for bit (``bouncer verify`` re-derives them: at k = 0,
+    tau = float(tau_ref), the error is the rounding of tau_ref, whose bits depend on the 30
+    digits of tau_ref, not only on its float64). The drag
+    flight's tau_ref is the drag flight's (not the elastic one, 0.6% longer here)."""
+    phi, v, eps = 0.4, 1.3, 0.6
+    tau_ref, _, _, kappa = _sample_by_hand(phi, v, 1.0, eps, physics)
+    if physics:
+        assert abs(tau_ref / float(verify.flight_time(phi, v, eps)) - 1) > 1e-3
+    u = 2.0**-53
+    for k in (0.0, 3.0, -3.0, 40.0):
+        tau = tau_ref * (1 + k * float(kappa) * u)
+        got = chunk.check_sample(phi, v, tau, eps, physics) if physics else chunk.check_sample(
+            phi, v, tau, eps)
+        assert got == _sample_by_hand(phi, v, tau, eps, physics)[:3]
+        assert got[0] == tau_ref
+        # tau, 1 + k*kappa*u and tau_ref each rounded to float64 (u relative): 3/kappa
+        assert abs(got[1] - abs(k)) <= 3 / float(kappa)
+        assert got[2] == (k > 16)
+
+
+def test_check_sample_overstep_is_strictly_beyond_16_kappa_u():
+    """eps = 0, phi = 0, v = 1/2: tau_ref = 1 and kappa = (v + tau)/|v - tau| = 3 exactly, so
+    rel = tau - 1 is exact: tau = 1 + 16*3*u is at the tolerance (not an overstep), the next
+    float beyond it is."""
+    at = 1.0 + 16 * 3 * 2.0**-53
+    assert chunk.OVERSTEP_TOLERANCE == 16
+    assert verify.condition_number(0.0, 0.5, 0.0, 1.0) == 3
+    assert chunk.check_sample(0.0, 0.5, at, 0.0) == (1.0, 16.0, False)
+    assert chunk.check_sample(0.0, 0.5, np.nextafter(at, 2.0), 0.0)[2]

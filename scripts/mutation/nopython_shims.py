@@ -1,0 +1,27 @@
+"""pytest plugin for the ``NUMBA_DISABLE_JIT=1`` mutation runs (scripts/mutation/ensemble.py).
+
+Compiled, ``math.floor`` of NaN or inf gives some integer and the arithmetic around it gives NaN
+(``sin_cos``, ``reduce_moderate``, ``centre_moderate``); as plain Python it raises. The lockstep
+lanes compute an unanswered lane's NaN on purpose (the select discards it), so the ``fastpath``
+modules get a ``math`` whose ``floor`` returns a non-finite argument unchanged (NaN in, NaN out,
+as compiled) and is ``math.floor`` otherwise.
+"""
+
+import math
+import sys
+import types
+
+import fastpath.ensemble  # noqa: F401  (every kernel module imported before the swap)
+import fastpath.lockstep  # noqa: F401
+
+
+def _floor(x):
+    return math.floor(x) if abs(x) < math.inf else x
+
+
+_math = types.SimpleNamespace(**{k: getattr(math, k) for k in dir(math) if not k.startswith("__")})
+_math.floor = _floor
+
+for _name, _module in list(sys.modules.items()):
+    if _name.startswith("fastpath") and getattr(_module, "math", None) is math:
+        _module.math = _math

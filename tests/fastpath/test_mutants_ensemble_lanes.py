@@ -1,0 +1,168 @@
+"""Tests that kill mutants of the ensemble's lane kernel (scripts/mutation/ensemble.py).
+
+``lane_collide`` must return what ``collide`` and ``departure_phase`` give for the same
+departure (the next flight's centred phase and its error bound, bit for bit), and answer only
+where its moderate phase reduction is the one ``collide`` uses (|phi + tau| < 2**20).
+"""
+
+import numpy as np
+
+from fastpath.collision import collide
+from fastpath.ensemble import lane_collide
+from fastpath.flight import GENERAL, departure_phase
+from fastpath.phase import centre_phase
+
+
+def _states(n, seed=5):
+    rng = np.random.default_rng(seed)
+    return (rng.uniform(-np.pi, np.pi, n), rng.uniform(0.6, 30.0, n),
+            rng.choice([0.6, -0.6, 0.99, 0.1], n))
+
+
+def test_lanes_carry_the_departure_phase_of_the_landing():
+    """Answered lanes: (tau, phi1, v1) are collide's, and (centred phi1, its error bound) are
+    departure_phase(phi1), bit for bit; landings on both sides of pi occur (centred != phi1
+    after a landing in [pi, 2*pi), where the centring adds an error)."""
+    phi, v, eps = _states(400)
+    shifted = 0
+    for p, w, e in zip(phi, v, eps, strict=True):
+        centred, error = departure_phase(p)
+        tau, phi1, v1, centred1, error1, answered = lane_collide(centred, w, e, error)
+        if not answered:
+            continue
+        assert (phi1, v1, tau) == collide(p, w, e)[:3]  # AUTO: with the lockstep flight
+        assert (centred1, error1) == departure_phase(phi1)
+        shifted += centred1 != phi1
+    assert 100 < shifted < 300
+
+
+def _landing_at_the_limit(above):
+    """A departure at phase 0 (eps = 0.5) whose landing phi + tau is 2**20 exactly (above=False)
+    or just above it, with the Holmes start phi + 2v below 2**20 (the lockstep flight runs)."""
+    eps = 0.5
+    v = 2.0**19
+    for _ in range(200000):
+        v = np.nextafter(v, 0.0)
+        tau, _, _, _, _, answered = lane_collide(0.0, v, eps, 0.0)
+        x = 0.0 + tau
+        if (x > 2.0**20) if above else (x == 2.0**20):
+            return v, eps, tau
+    raise AssertionError("no landing at 2**20 constructed")
+
+
+def test_lanes_do_not_answer_landings_at_or_beyond_2_to_20():
+    """|phi + tau| >= 2**20: collide reduces the landing with Payne-Hanek, not the lanes'
+    Cody-Waite reduction, so the lane leaves that flight to collide (answered False)."""
+    for above in (False, True):
+        v, eps, tau = _landing_at_the_limit(above)
+        assert 0.0 + 2 * v < 2.0**20 <= 0.0 + tau
+        assert not lane_collide(0.0, v, eps, 0.0)[5]
+        phi1 = collide(0.0, v, eps, GENERAL)[0]
+        assert 0.0 <= phi1 < 2 * np.pi and centre_phase(phi1) == departure_phase(phi1)[0]
+
+
+def test_lockstep_step_is_halley_from_the_holmes_start():
+    """The first lockstep evaluation (at the Holmes start t = 2v) steps to Halley's iterate
+    t - 2*d*d1/(2*d1**2 - d*d2) of the d, d1 = d', d2 = d'' it evaluated, where that lies inside
+    the bracket: the same iterate to the rounding of the step (a few roundings of relative u
+    each: 8u*|step|, plus u*t for the subtraction), checked in mpmath from the same floats."""
+    import mpmath
+
+    from fastpath.gap import departure
+    from fastpath.lockstep import _evaluation, _start
+    from fastpath.sincos import sin_cos
+
+    u = 2.0**-53
+    phi, v, eps = _states(300, seed=11)
+    checked = 0
+    for p, w, e in zip(phi, v, eps, strict=True):
+        s, c = sin_cos(p)
+        _, w0_error = departure(p, s, w, e, 0.0)
+        state, two_v = _start(p, s, w, e, w0_error)
+        if state[12]:  # not eligible
+            continue
+        t, delta, s0, c0, lo, hi = state[:6]
+        after = _evaluation(state, p, c, w, e, two_v, 1)
+        if after[11] or after[12] or after[0] == 0.5 * (lo + hi):  # answered, gave up, bisected
+            continue
+        d = e * (c - c0) - 0.5 * t * delta  # as _evaluation computes them, from the same floats
+        d1 = -w - delta + e * s0
+        with mpmath.workdps(40):
+            d, d1, d2 = mpmath.mpf(d), mpmath.mpf(d1), -1 + mpmath.mpf(e) * mpmath.mpf(c0)
+            step = 2 * d * d1 / (2 * d1 * d1 - d * d2)
+            assert abs(after[0] - (t - step)) <= 8 * u * abs(step) + u * t
+        checked += 1
+    assert checked > 100
+
+
+def test_lockstep_iterates_stay_inside_the_bracket():
+    """Every evaluation that neither answers nor gives up moves to a point strictly inside the
+    updated bracket; where Halley's step leaves it (short flights, v < 1, eps near +-1) the
+    guard takes the bracket's midpoint."""
+    from fastpath.gap import departure
+    from fastpath.lockstep import _evaluation, _start
+    from fastpath.sincos import sin_cos
+
+    rng = np.random.default_rng(0)
+    guarded = 0
+    for _ in range(1500):
+        p, w = rng.uniform(-np.pi, np.pi), 10 ** rng.uniform(-0.2, 3)
+        e = rng.choice([1.0, -1.0, 0.999, 0.9, 0.6, 0.3])
+        s, c = sin_cos(p)
+        w0, w0_error = departure(p, s, w, e, 0.0)
+        if not w0 > w0_error:
+            continue
+        state, two_v = _start(p, s, w, e, w0_error)
+        for k in range(1, 5):
+            if state[11] or state[12]:
+                break
+            state = _evaluation(state, p, c, w, e, two_v, k)
+            t, lo, hi = state[0], state[4], state[5]
+            if not (state[11] or state[12]):
+                assert lo < t < hi
+                guarded += t == 0.5 * (lo + hi)
+    assert guarded > 0
+
+
+def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
+    """_start: t = 2v, the certified bracket of this departure (``fastpath.concave.bracket`` of
+    w0 = v + eps*sin(phi)), no answer yet, and the lane eligible exactly when
+    2*w0 >= 1 + |eps| (the other conditions hold for these states)."""
+    from fastpath.concave import bracket
+    from fastpath.gap import departure
+    from fastpath.lockstep import _start
+    from fastpath.sincos import sin_cos
+
+    phi, v, eps = _states(300, seed=2)
+    for p, w, e in zip(phi, v * 0.1, eps, strict=True):
+        s, _ = sin_cos(p)
+        w0, w0_error = departure(p, s, w, e, 0.0)
+        if not w0 > w0_error:
+            continue
+        state, two_v = _start(p, s, w, e, w0_error)
+        assert two_v == state[0] == 2 * w and state[1] == 0.0
+        assert state[4:6] == bracket(w, w + e * s, w0_error, e)
+        assert state[12] == (not 2 * (w + e * s) >= 1 + abs(e))
+    for w, e in ((0.5, 0.0), (0.75, 0.5), (1.0, 1.0)):  # phi = 0: 2*w0 = 1 + |eps| exactly
+        assert not _start(0.0, 0.0, w, e, 0.0)[0][12]
+        assert _start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][12]
+    # |v| > 1e-150 (v**2 must not underflow): eps = 1, phi = pi/2 makes 2*w0 = 2 >= 1 + |eps|
+    s, _ = sin_cos(np.pi / 2)
+    assert s == 1.0
+    assert _start(np.pi / 2, s, 1e-150, 1.0, 0.0)[0][12]
+    assert not _start(np.pi / 2, s, np.nextafter(1e-150, 1.0), 1.0, 0.0)[0][12]
+    # the Holmes phase phi + 2v must be inside sin_cos's range |x| < 2**20
+    assert _start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][12]
+    assert not _start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][12]
+
+
+def test_lockstep_collide_answers_eps_one():
+    """|eps| = 1 is concave (DESIGN fact 11): the lanes answer such flights too (eps = 1)."""
+    from fastpath.lockstep import lockstep_collide
+    from fastpath.sincos import sin_cos
+
+    centred, error = departure_phase(0.3)
+    s, c = sin_cos(centred)
+    tau, *_, done = lockstep_collide(centred, s, c, 2.0, 1.0, error)
+    assert done
+    assert tau == collide(0.3, 2.0, 1.0)[2]
