@@ -40,8 +40,11 @@ from fastpath.sincos import SIN_COS_LIMIT, sin_cos
 
 LOCKSTEP_EVALUATIONS = 4
 
-# the classification of fastpath.concave
-_BEFORE, _AFTER, _AT_ROOT, _FLAT = 0, 1, 2, 3
+# the entries of a lane's state tuple (``_start``, ``_evaluation``): the iterate t, t - 2v, its
+# sine and cosine, the step h they still have to be rotated by, the bracket, the answer, the
+# root point with its sine and cosine, the evaluations made, and the two flags
+(T, DELTA, SIN, COS, PENDING, LO, HI, TAU, T_ROOT, SIN_ROOT, COS_ROOT, EVALUATIONS, DONE,
+ FAILED) = range(14)
 
 
 @inline_jit
@@ -55,15 +58,6 @@ def moderate_bracket(v, w0, w0_error, eps):
     """``fastpath.concave.bracket`` for 1e-150 < |v| < 1e150 (v**2 neither under- nor overflows),
     without the branch to hypot."""
     return bracket_from_root(v, w0, w0_error, eps, math.sqrt(v * v + 4.0 * abs(eps)))
-
-
-@inline_jit
-def _classify(phi, v, eps, t, d, d1):
-    """``fastpath.concave.classify`` as nested selects."""
-    d_err = gap_error(phi, v, eps, t)
-    d1_err = rate_error(phi, v, eps, t)
-    by_rate = _select(d1 < -d1_err, _AT_ROOT, _select(d1 > d1_err, _BEFORE, _FLAT))
-    return _select(d > d_err, _BEFORE, _select(d < -d_err, _AFTER, by_rate))
 
 
 @inline_jit
@@ -172,7 +166,7 @@ def lockstep_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
 @inline_jit
 def _running(state):
     """The lane has neither answered nor given up."""
-    return not (state[12] or state[13])
+    return not (state[DONE] or state[FAILED])
 
 
 @jit

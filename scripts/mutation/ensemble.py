@@ -29,10 +29,10 @@ import sys
 import time
 
 TARGETS = {
-    "fastpath/ensemble.py": ("exit_hole", "bin_index", "escape_chunk", "lane_collide",
-                             "_escape_lanes", "_load"),
-    "fastpath/lockstep.py": ("_evaluation", "_start", "_classify", "moderate_bracket",
-                             "lockstep_collide"),
+    "fastpath/ensemble.py": ("exit_hole", "in_hole", "bin_index", "_escape_groups",
+                             "lane_collide", "_escape_lanes", "_load"),
+    "fastpath/lockstep.py": ("_evaluation", "_start", "_answer", "_running", "moderate_bracket",
+                             "lockstep_collide", "lockstep_flight_one"),
 }
 TIMEOUT = 300
 TESTS = [

@@ -10,6 +10,7 @@ import numpy as np
 from fastpath.collision import collide
 from fastpath.ensemble import lane_collide
 from fastpath.flight import GENERAL, departure_phase
+from fastpath.lockstep import COS, DELTA, DONE, FAILED, HI, LO, SIN, T
 from fastpath.phase import centre_phase
 
 
@@ -79,18 +80,19 @@ def test_lockstep_step_is_halley_from_the_holmes_start():
         s, c = sin_cos(p)
         _, w0_error = departure(p, s, w, e, 0.0)
         state, two_v = _start(p, s, w, e, w0_error)
-        if state[12]:  # not eligible
+        if state[FAILED]:  # not eligible
             continue
-        t, delta, s0, c0, lo, hi = state[:6]
+        t, delta, s0, c0, lo, hi = (state[T], state[DELTA], state[SIN], state[COS],
+                                    state[LO], state[HI])
         after = _evaluation(state, p, c, w, e, two_v, 1)
-        if after[11] or after[12] or after[0] == 0.5 * (lo + hi):  # answered, gave up, bisected
+        if after[DONE] or after[FAILED] or after[T] == 0.5 * (lo + hi):  # answered, gave up, halved
             continue
         d = e * (c - c0) - 0.5 * t * delta  # as _evaluation computes them, from the same floats
         d1 = -w - delta + e * s0
         with mpmath.workdps(40):
             d, d1, d2 = mpmath.mpf(d), mpmath.mpf(d1), -1 + mpmath.mpf(e) * mpmath.mpf(c0)
             step = 2 * d * d1 / (2 * d1 * d1 - d * d2)
-            assert abs(after[0] - (t - step)) <= 8 * u * abs(step) + u * t
+            assert abs(after[T] - (t - step)) <= 8 * u * abs(step) + u * t
         checked += 1
     assert checked > 100
 
@@ -114,11 +116,11 @@ def test_lockstep_iterates_stay_inside_the_bracket():
             continue
         state, two_v = _start(p, s, w, e, w0_error)
         for k in range(1, 5):
-            if state[11] or state[12]:
+            if state[DONE] or state[FAILED]:
                 break
             state = _evaluation(state, p, c, w, e, two_v, k)
-            t, lo, hi = state[0], state[4], state[5]
-            if not (state[11] or state[12]):
+            t, lo, hi = state[T], state[LO], state[HI]
+            if not (state[DONE] or state[FAILED]):
                 assert lo < t < hi
                 guarded += t == 0.5 * (lo + hi)
     assert guarded > 0
@@ -140,20 +142,20 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
         if not w0 > w0_error:
             continue
         state, two_v = _start(p, s, w, e, w0_error)
-        assert two_v == state[0] == 2 * w and state[1] == 0.0
-        assert state[4:6] == bracket(w, w + e * s, w0_error, e)
-        assert state[12] == (not 2 * (w + e * s) >= 1 + abs(e))
+        assert two_v == state[T] == 2 * w and state[DELTA] == 0.0
+        assert (state[LO], state[HI]) == bracket(w, w + e * s, w0_error, e)
+        assert state[FAILED] == (not 2 * (w + e * s) >= 1 + abs(e))
     for w, e in ((0.5, 0.0), (0.75, 0.5), (1.0, 1.0)):  # phi = 0: 2*w0 = 1 + |eps| exactly
-        assert not _start(0.0, 0.0, w, e, 0.0)[0][12]
-        assert _start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][12]
+        assert not _start(0.0, 0.0, w, e, 0.0)[0][FAILED]
+        assert _start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][FAILED]
     # |v| > 1e-150 (v**2 must not underflow): eps = 1, phi = pi/2 makes 2*w0 = 2 >= 1 + |eps|
     s, _ = sin_cos(np.pi / 2)
     assert s == 1.0
-    assert _start(np.pi / 2, s, 1e-150, 1.0, 0.0)[0][12]
-    assert not _start(np.pi / 2, s, np.nextafter(1e-150, 1.0), 1.0, 0.0)[0][12]
+    assert _start(np.pi / 2, s, 1e-150, 1.0, 0.0)[0][FAILED]
+    assert not _start(np.pi / 2, s, np.nextafter(1e-150, 1.0), 1.0, 0.0)[0][FAILED]
     # the Holmes phase phi + 2v must be inside sin_cos's range |x| < 2**20
-    assert _start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][12]
-    assert not _start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][12]
+    assert _start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][FAILED]
+    assert not _start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][FAILED]
 
 
 def test_lockstep_collide_answers_eps_one():
