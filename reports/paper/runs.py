@@ -1,4 +1,5 @@
-"""The runs behind the seed's figures: reused when complete, else run (``ensure_run``).
+"""The runs behind the seed's figures: reused when complete and ``bouncer verify`` passes on
+them with this code, else run (``ensure_run``).
 """
 
 from __future__ import annotations
@@ -8,6 +9,7 @@ from pathlib import Path
 
 from reports.runs import rundir
 from reports.runs.driver import run
+from reports.runs.recheck import recheck
 from reports.runs.rundir import RunFailed
 from reports.runs.scenes import load_scene
 
@@ -26,7 +28,9 @@ def say_nothing(_msg):
 
 def ensure_run(name, runs_dir, particles, echo=say_nothing):
     """Run directory of the built-in scene ``name`` with ``particles`` (per curve): reused when
-    complete with the same scene, particles and seed, resumed when partial, else run."""
+    complete with the same scene, particles and seed and ``bouncer verify`` (``recheck``) passes
+    on it (this code re-derives its sampled collisions bit for bit: a run made by an earlier
+    solver is run again), resumed when partial, else run."""
     scene = load_scene(name)
     out = Path(runs_dir) / f"{name}-{particles}"
     resume = force = False
@@ -37,10 +41,15 @@ def ensure_run(name, runs_dir, particles, echo=say_nothing):
             out / "scene.toml").is_file() else ""
         same = (stored == scene.source and man.get("particles") == particles
                 and man.get("seed") == scene.seed)
-        if same and man.get("status") == "complete":
-            echo(f"reusing {out} (complete)")
+        complete = same and man.get("status") == "complete"
+        if complete and recheck(out)[0]:
+            echo(f"reusing {out} (complete, bouncer verify passes)")
             return out
-        if same and man.get("status") == "partial":
+        if complete:
+            echo(f"{out}: bouncer verify fails on it with this code (an earlier release made"
+                 " it): running it again")
+            force = True
+        elif same and man.get("status") == "partial":
             resume = True
         elif man.get("status") == "failed" and same:
             raise RunFailed(f"{out}: the stored run failed: {man.get('failure')}")
