@@ -168,3 +168,108 @@ def test_lockstep_collide_answers_eps_one():
     tau, *_, done = lockstep_collide(centred, s, c, 2.0, 1.0, error)
     assert done
     assert tau == collide(0.3, 2.0, 1.0)[2]
+
+
+# Crafted lane states for the comparisons at exact equality in ``_evaluation``. With eps = 0
+# the plate term and its error bounds vanish: d = -t*delta/2, d' = -v - delta, and (t = 1)
+# d_err = d1_err = 4u*(|v| + 1), all exact in float64 for the dyadic values below, so d and d'
+# can be put exactly on their error bounds. delta is read from the state (not t - 2v), so it is
+# a free input. Each test first checks that the crafted floats are on the boundary as intended.
+_U = 2.0**-53
+
+
+def _crafted(v, delta, lo=0.25, hi=4.0):
+    """(state, arguments) of a running lane at t = 1 with eps = 0 (phi = 0, sin = 0, cos = 1)."""
+    state = (1.0, delta, 0.0, 1.0, 0.0, lo, hi, np.nan, 0.0, 0.0, 1.0, 0, False, False)
+    return state, (0.0, 1.0, v, 0.0, 2.0 * v, 1)
+
+
+def _bounds(v):
+    """(d_err, d1_err) at t = 1, eps = 0, as ``gap_error`` and ``rate_error`` give them."""
+    from fastpath.gap import gap_error, rate_error
+
+    return gap_error(0.0, v, 0.0, 1.0), rate_error(0.0, v, 0.0, 1.0)
+
+
+def test_lockstep_root_test_includes_a_gap_on_its_error_bound():
+    """|d| == d_err with d' < -d1_err is a root (``abs(d) <= d_err``), even where the Newton
+    correction is far from final (|d'| only 2*d1_err): the lane answers at t + newton (inside
+    the bracket here). As ``abs(d) < d_err`` it would give up as a flat top."""
+    from fastpath.concave import newton_is_final
+    from fastpath.lockstep import TAU, _evaluation
+
+    v = 16 * _U
+    d_err, d1_err = _bounds(v)
+    delta = -2.0 * d_err  # d = d_err
+    state, args = _crafted(v, delta)
+    d, d1 = -0.5 * delta, -v - delta
+    assert d == d_err and -16 * d1_err < d1 < -d1_err
+    assert not newton_is_final(-d / d1, d_err, d1_err, 0.0)
+    after = _evaluation(state, *args)
+    assert after[DONE] and not after[FAILED]
+    assert abs(after[TAU] - (1.0 - d / d1)) <= 8 * _U  # the Newton point t - d/d' ~ 1.5
+
+
+def test_lockstep_root_test_needs_a_rate_below_its_error_bound():
+    """d' == -d1_err exactly (with |d| < d_err) is not a certain descent: no answer; the lane
+    gives up as a flat top (``not d1 > d1_err``). As ``d1 <= -d1_err`` it would answer."""
+    from fastpath.lockstep import _evaluation
+
+    v = 2.0**-50
+    d_err, d1_err = _bounds(v)
+    delta = d1_err - v  # d' = -v - delta = -d1_err
+    state, args = _crafted(v, delta)
+    assert -v - delta == -d1_err and abs(-0.5 * delta) < d_err
+    after = _evaluation(state, *args)
+    assert after[FAILED] and not after[DONE]
+
+
+def test_lockstep_flat_top_includes_a_rate_on_its_error_bound():
+    """d' == d1_err exactly with |d| < d_err is a flat top (the rise is not certain): the
+    lane gives up. As ``not d1 >= d1_err`` it would raise lo to t and step on."""
+    from fastpath.lockstep import _evaluation
+
+    v = 2.0**-52
+    d_err, d1_err = _bounds(v)
+    delta = -v - d1_err  # d' = d1_err
+    state, args = _crafted(v, delta)
+    assert -v - delta == d1_err and abs(-0.5 * delta) < d_err
+    after = _evaluation(state, *args)
+    assert after[FAILED] and not after[DONE]
+
+
+def test_lockstep_bracket_moves_only_on_a_gap_beyond_its_error_bound():
+    """d == +-d_err exactly with |d'| <= d1_err: the sign of the gap is not certain, so neither
+    bracket end moves and the lane gives up as a flat top. As ``d >= d_err`` (``d <= -d_err``)
+    it would move lo (hi) to t and step on."""
+    from fastpath.lockstep import _evaluation
+
+    for v in (2.0**-50, -(2.0**-50)):  # d = +d_err, then d = -d_err
+        d_err, d1_err = _bounds(v)
+        delta = -2.0 * d_err if v > 0 else 2.0 * d_err
+        state, args = _crafted(v, delta)
+        d, d1 = -0.5 * delta, -v - delta
+        assert abs(d) == d_err and abs(d1) <= d1_err
+        after = _evaluation(state, *args)
+        assert after[FAILED] and not after[DONE]
+        assert (after[LO], after[HI]) == (0.25, 4.0)
+
+
+def test_lockstep_halley_step_onto_a_bracket_end_is_bisected():
+    """A Halley step that lands exactly on a bracket end is not inside the bracket: the guard
+    bisects (``lo < t_next < hi``). As ``<=`` the lane would stop there (bracket closed) and
+    give up. The step is first taken in a wide bracket; that end is then put on it."""
+    from fastpath.lockstep import _evaluation
+
+    # d = 0.5 > d_err, d' = -1: lo moves to t = 1 and Halley steps right (to 1.4);
+    # d = -0.5 < -d_err, d' = -1.5: hi moves to t = 1 and Halley steps left (to 0.625)
+    for v, delta, end in ((2.0, -1.0, HI), (0.5, 1.0, LO)):
+        state, args = _crafted(v, delta)
+        wide = _evaluation(state, *args)
+        t_next = wide[T]
+        assert not (wide[DONE] or wide[FAILED]) and 0.25 < t_next < 4.0 and t_next != 1.0
+        lo, hi = (1.0, t_next) if end == HI else (t_next, 1.0)
+        state, args = _crafted(v, delta, *((0.25, t_next) if end == HI else (t_next, 4.0)))
+        after = _evaluation(state, *args)
+        assert not (after[DONE] or after[FAILED])
+        assert (after[LO], after[HI]) == (lo, hi) and after[T] == 0.5 * (lo + hi)
