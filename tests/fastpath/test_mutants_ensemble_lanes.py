@@ -277,12 +277,13 @@ def test_lockstep_halley_step_onto_a_bracket_end_is_bisected():
 
 def test_escape_chunk_counts_each_particle_into_its_own_block():
     """Particles are split into ``len(collisions)`` blocks of ceil(m/blocks) consecutive ones,
-    and a particle's collisions count into its block's row: 8 particles in 4 blocks, no hole
-    (width 0), each censored at exactly 5 collisions, give 2*5 per block (a wrong block size,
-    e.g. (m + blocks + 1)//blocks = 3, would give 15, 15, 10, 0)."""
+    and a particle's collisions count into its block's row: 7 particles in 4 blocks (of 2, 2,
+    2, 1), no hole (width 0), each censored at exactly 5 collisions, give 10, 10, 10, 5 (a block
+    size (m + blocks + 1)//blocks = 3 would give 15, 15, 5, 0; a first lane's block
+    (first - lane)//per_block, wrapped as a negative index, 5, 10, 10, 10)."""
     from fastpath.ensemble import escape_chunk, log_edges
 
-    m, blocks, max_n = 8, 4, 5
+    m, blocks, max_n = 7, 4, 5
     rng = np.random.default_rng(3)
     n_edges = log_edges(1.0, 8, 10, integer=True)
     t_edges = np.concatenate([[0.0], log_edges(0.1, 9, 10)])
@@ -295,5 +296,5 @@ def test_escape_chunk_counts_each_particle_into_its_own_block():
                  np.zeros(m, np.int64), np.zeros((blocks, 1, nb), np.int64),
                  np.zeros((blocks, 1, tb), np.int64), cens_n, np.zeros((blocks, tb), np.int64),
                  collisions, np.zeros(m, np.int8), np.zeros((m, 4)), np.zeros((0, 6)))
-    assert cens_n.sum(axis=1).tolist() == [2] * blocks  # every particle censored, none flagged
-    assert collisions.tolist() == [2 * max_n] * blocks
+    assert cens_n.sum(axis=1).tolist() == [2, 2, 2, 1]  # every particle censored, none flagged
+    assert collisions.tolist() == [2 * max_n, 2 * max_n, 2 * max_n, max_n]
