@@ -298,3 +298,30 @@ def test_escape_chunk_counts_each_particle_into_its_own_block():
                  collisions, np.zeros(m, np.int8), np.zeros((m, 4)), np.zeros((0, 6)))
     assert cens_n.sum(axis=1).tolist() == [2, 2, 2, 1]  # every particle censored, none flagged
     assert collisions.tolist() == [2 * max_n, 2 * max_n, 2 * max_n, max_n]
+
+
+def test_overlapping_holes_count_into_the_first_listed():
+    """Where holes overlap, a landing in both escapes through the first listed (``exit_hole``
+    returns the first j): with two identical holes every escape is in hole 0, in the lanes'
+    vectorised hole test too (``hole[lane] < 0`` keeps the first; ``<= 0`` would let hole 1
+    overwrite hole 0)."""
+    from fastpath.ensemble import escape_chunk, log_edges
+
+    m, blocks, max_n = 50, 2, 2000
+    rng = np.random.default_rng(4)
+    n_edges = log_edges(1.0, 8, 10, integer=True)
+    t_edges = np.concatenate([[0.0], log_edges(0.1, 9, 10)])
+    nb, tb = len(n_edges), len(t_edges)
+    esc_n = np.zeros((blocks, 2, nb), np.int64)
+    cens_n = np.zeros((blocks, nb), np.int64)
+    flags = np.zeros(m, np.int8)
+    escape_chunk(rng.uniform(-np.pi, np.pi, m), rng.uniform(1.0, 5.0, m), np.zeros(m),
+                 np.zeros(m, np.int64), 0.6, np.array([1.0, 1.0]), np.array([0.5, 0.5]), max_n,
+                 np.inf, n_edges, t_edges, True, True, np.full(m, -1, np.int64),
+                 np.zeros(m, np.int64), esc_n, np.zeros((blocks, 2, tb), np.int64), cens_n,
+                 np.zeros((blocks, tb), np.int64), np.zeros(blocks, np.int64), flags,
+                 np.zeros((m, 4)), np.zeros((0, 6)))
+    assert not flags.any()
+    assert esc_n[:, 0].sum() > m // 2  # most escape (hole 0.5 wide, 2000 collisions)
+    assert esc_n[:, 1].sum() == 0
+    assert esc_n.sum() + cens_n.sum() == m
