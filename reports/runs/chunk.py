@@ -142,6 +142,21 @@ def settle(phi, v, eps, physics=None):
     return float(phi1), float(v1), float(tau)
 
 
+def _resumed(resume, slot, target):
+    """The kernel's next pass over the settled particles ``resume`` = [(i, phi, v, t, n)]:
+    (state, their sample slots, their sample targets)."""
+    idx = np.array([r[0] for r in resume], np.int64)
+    state = tuple(np.array([r[c] for r in resume], dtype)
+                  for c, dtype in ((1, float), (2, float), (3, float), (4, np.int64)))
+    return state, slot[idx], target[idx]
+
+
+def _sample_rows(e, k, picks, samples):
+    """The chunk's sample rows [e, k, particle, n, phi, v, ...] of the picks that were reached."""
+    return [[e, k, int(picks[s]), *map(float, samples[s])] for s in range(len(picks))
+            if samples[s, 0] > 0]
+
+
 def simulate_chunk(plan, e, k):
     """Simulate chunk k of experiment e, settling flagged collisions by verify:
     (Counts, sample rows not yet verified)."""
@@ -185,13 +200,8 @@ def simulate_chunk(plan, e, k):
                     out.esc_t[j, bin_index(plan.t_edges, t1)] += 1
                     continue
             resume.append((i, phi1, v1, t1, n1))
-        idx = np.array([r[0] for r in resume], np.int64)
-        state = tuple(np.array([r[c] for r in resume], dtype)
-                      for c, dtype in ((1, float), (2, float), (3, float), (4, np.int64)))
-        slot, target = slot[idx], target[idx]
-    rows = [[e, k, int(picks[s]), *map(float, samples[s])] for s in range(len(picks))
-            if samples[s, 0] > 0]
-    return out, rows
+        state, slot, target = _resumed(resume, slot, target)
+    return out, _sample_rows(e, k, picks, samples)
 
 
 def _velocity_kernel():
@@ -247,13 +257,8 @@ def simulate_velocity_chunk(plan, e, k):
             out.settled += 1
             out.collisions += 1
             resume.append((i, phi1, v1, t_i + tau, int(n_i) + 1))  # its grid point: the kernel
-        idx = np.array([r[0] for r in resume], np.int64)
-        state = tuple(np.array([r[c] for r in resume], dtype)
-                      for c, dtype in ((1, float), (2, float), (3, float), (4, np.int64)))
-        slot, target = slot[idx], target[idx]
-    rows = [[e, k, int(picks[s]), *map(float, samples[s])] for s in range(len(picks))
-            if samples[s, 0] > 0]
-    return out, rows
+        state, slot, target = _resumed(resume, slot, target)
+    return out, _sample_rows(e, k, picks, samples)
 
 
 def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
