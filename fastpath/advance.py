@@ -118,6 +118,21 @@ def departure_point(state):
 
 
 @jit
+def copy_carried(state, carried):
+    """Copy the ``CARRIED`` entries of ``state`` into ``carried`` (a sampled departure's, kept
+    until its collision is recorded)."""
+    for j in range(len(CARRIED)):
+        carried[j] = state[CARRIED[j]]
+
+
+@jit
+def store_carried(samples, slot, carried):
+    """``carried`` into the columns after the six sample fields of ``samples[slot]``."""
+    for j in range(len(carried)):
+        samples[slot, 6 + j] = carried[j]
+
+
+@jit
 def carried_state(phi, v, carried):
     """A state departing from (phi, v) with the ``CARRIED`` entries ``carried`` (in that order);
     the times (absolute time, base time) are 0: a step's (phi1, v1, tau) does not read them."""

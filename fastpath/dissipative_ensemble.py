@@ -42,8 +42,10 @@ from fastpath.advance import (
     V,
     advance,
     begin,
+    copy_carried,
     departure_point,
     detachment,
+    store_carried,
 )
 from fastpath.ensemble import _flag, _store_sample, bin_index, exit_hole
 from fastpath.flight import AUTO, CONVERGED
@@ -55,12 +57,6 @@ def _censor(cens_n, cens_t, b, n, t, n_edges, t_edges, record_n, record_t):
         cens_n[b, bin_index(n_edges, n)] += 1
     if record_t:
         cens_t[b, bin_index(t_edges, t)] += 1
-
-
-@jit
-def _store_carried(samples, slot, carried):
-    for j in range(len(carried)):
-        samples[slot, 6 + j] = carried[j]
 
 
 @jit
@@ -88,8 +84,7 @@ def run_block(b, first, last, phi0, v0, t0, n0, eps, drag, law, restitution, det
                 break
             phi, v, t = departure_point(state)
             if keep_carried and slot >= 0 and n < target:
-                for j in range(len(CARRIED)):
-                    carried[j] = state[CARRIED[j]]
+                copy_carried(state, carried)
             status, _, tau, kind, t_start, _ = advance(
                 state, eps, drag, law, restitution, AUTO, detach, hole_lo
             )
@@ -104,7 +99,7 @@ def run_block(b, first, last, phi0, v0, t0, n0, eps, drag, law, restitution, det
             if slot >= 0 and n <= target:
                 _store_sample(samples, slot, n, phi, v, state[PHI], state[V], tau)
                 if keep_carried:
-                    _store_carried(samples, slot, carried)
+                    store_carried(samples, slot, carried)
             j = exit_hole(state[PHI], hole_lo, hole_width)
             if j >= 0:
                 if record_n:

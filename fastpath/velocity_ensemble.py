@@ -34,8 +34,10 @@ from fastpath.advance import (
     V,
     advance,
     begin,
+    copy_carried,
     departure_point,
     detachment,
+    store_carried,
 )
 from fastpath.ensemble import _flag, _store_sample
 from fastpath.flight import AUTO, CONVERGED
@@ -75,8 +77,7 @@ def run_block(b, first, last, phi0, v0, t0, n0, eps, drag, law, restitution, det
         while n < max_collisions:
             phi, v, t = departure_point(state)
             if keep_carried and slot >= 0 and n < target:
-                for j in range(len(CARRIED)):
-                    carried[j] = state[CARRIED[j]]
+                copy_carried(state, carried)
             status, _, tau, kind, _, _ = advance(
                 state, eps, drag, law, restitution, AUTO, detach, no_holes
             )
@@ -88,8 +89,7 @@ def run_block(b, first, last, phi0, v0, t0, n0, eps, drag, law, restitution, det
             if slot >= 0 and n <= target:
                 _store_sample(samples, slot, n, phi, v, state[PHI], state[V], tau)
                 if keep_carried:
-                    for j in range(len(CARRIED)):
-                        samples[slot, 6 + j] = carried[j]
+                    store_carried(samples, slot, carried)
             jn = _add(b, jn, n, state[V], n_grid, moving, sum_v, sum_v2)
             if kind == STUCK:
                 for j in range(jn, len(n_grid)):
