@@ -322,13 +322,15 @@ def certify_candidate(phi, v, eps, lo_, hi_, dps: int = 50) -> bool:
     wdps = state.dps + _GUARD_DPS
     with working_dps(wdps):
         ctx = _context(state.phi, state.v, state.eps, state.dps, wdps)
-        w0 = ctx.iv_v + ctx.ieps * iv.sin(ctx.iphi)
-        if lo(w0) <= 0:
-            return False
         try:
             if abs(state.eps) <= 1:
+                # d concave with d(0) = 0: d(lo_) > 0 gives d >= (t/lo_)*d(lo_) > 0 on (0, lo_]
+                # and with it the departure, w0 = d'(0) >= d(lo_)/lo_ > 0 (no w0 test needed)
                 proved_lo = lo(ctx.d(lo_)) > 0
             else:
+                w0 = ctx.iv_v + ctx.ieps * iv.sin(ctx.iphi)
+                if lo(w0) <= 0:
+                    return False
                 free = lo(w0) / (1 + abs(state.eps))
                 if lo_ > free:
                     _prove_positive(ctx, free, lo_)
