@@ -114,6 +114,10 @@ def read_run(path, clocks=CLOCKS):
         raise ValueError(f"{path / 'manifest.json'}: malformed JSON ({err})") from None
     counts_file = path / "counts.csv"
     if not counts_file.is_file():
+        kind = (manifest.get("scene") or {}).get("kind") if isinstance(manifest, dict) else None
+        if kind in ("phase-space", "velocity"):  # these kinds record no survival counts
+            raise ValueError(f"{path}: a {kind} run has no survival counts to fit (no counts.csv;"
+                             f" `bouncer plot {path}` draws what it recorded)")
         raise ValueError(f"{path}: no counts.csv")
     experiments = manifest.get("curves")
     if not isinstance(experiments, dict) or "bins" not in manifest:

@@ -137,3 +137,20 @@ def test_run_directory_that_does_not_add_up_is_rejected(tmp_path):
     (run / "manifest.json").write_text(json.dumps(manifest))
     proc = run_cli(run, "--json")
     assert proc.returncode == 2 and "particles_done" in proc.stderr
+
+
+@pytest.mark.parametrize("kind", ["phase-space", "velocity", "escape"])
+def test_run_without_counts_names_its_kind(tmp_path, kind):
+    """A phase-space or velocity run records no survival counts: the one-line error says so
+    (and where to look instead); a survival run that lost counts.csv still says it is missing."""
+    run = tmp_path / "run"
+    run.mkdir()
+    (run / "manifest.json").write_text(json.dumps({"scene": {"name": "s", "kind": kind}}))
+    proc = run_cli(run, "--json")
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    line, = proc.stderr.strip().splitlines()
+    assert "no counts.csv" in line
+    if kind == "escape":
+        assert "survival counts" not in line
+    else:
+        assert f"a {kind} run has no survival counts to fit" in line and "bouncer plot" in line
