@@ -13,6 +13,9 @@ Families (all float64 inputs, references from ``verify`` at 60+ digits or exact)
 
 A CONVERGED answer is wrong when tau is not finite, not > 0, or off the reference by more than
 K*kappa*u (K = 16, ``fastpath_tolerances``). For grazes the error in kappa*u is reported too.
+
+``python tests/fastpath/adversarial.py SEED [PER_FAMILY]`` judges a held-out random set of the
+same families instead (``held_out_set``).
 """
 
 import math
@@ -86,6 +89,47 @@ def adversarial_set():
     return triple_family() + _triple_perturbed() + _eps_one() + _grazes() + _huge_phases()
 
 
+def held_out_set(seed, per_family=200):
+    """Fresh random members of the same families (nothing here was tuned against them):
+
+    ``triple``: x log-uniform in [1e-6, 3], eps = 1 - 10**-U(3, 16) or 1 exactly (exact 2x);
+    ``triple-perturbed``: the same with phi, v moved by relative +-10**-U(3, 12);
+    ``eps-one``: eps = 1, phi uniform, w0 log-uniform in [1e-10, 10];
+    ``graze``: eps = 1 + 10**-U(1, 11), contact phase +-acos(...), contact time U(0.5, 4),
+    clearance +-10**-U(1, 12) (``verify.grazing_contact``);
+    ``huge-phase``: |phi| = 10**U(12, 307) with a random sign, eps in {0.6, 1, 3}, w0
+    log-uniform in [1e-8, 3].
+    """
+    import verify
+
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(per_family):
+        x = float(10.0 ** rng.uniform(-6.0, 0.5))
+        eps = 1.0 if rng.random() < 0.2 else 1.0 - float(10.0 ** -rng.uniform(3.0, 16.0))
+        out.append(("triple", -x, x, eps, 2.0 * x))
+        a, b = (float(rng.choice((-1.0, 1.0)) * 10.0 ** -rng.uniform(3.0, 12.0))
+                for _ in range(2))
+        out.append(("triple-perturbed", -x * (1 + a), x * (1 + b), eps, None))
+        phi = float(rng.uniform(-math.pi, math.pi))
+        out.append(("eps-one", phi, float(10.0 ** rng.uniform(-10.0, 1.0)) - math.sin(phi),
+                    1.0, None))
+        geps = 1.0 + float(10.0 ** -rng.uniform(1.0, 11.0))
+        psi = float(rng.choice((-1.0, 1.0))) * math.acos((1.0 + 0.5 * (geps - 1.0)) / geps)
+        clearance = float(rng.choice((-1.0, 1.0)) * 10.0 ** -rng.uniform(1.0, 12.0))
+        try:
+            c = verify.grazing_contact(geps, psi, float(rng.uniform(0.5, 4.0)), clearance)
+            out.append(("graze", float(c.phi), float(c.v), geps, None))
+        except ValueError:
+            pass
+        hphi = float(rng.choice((-1.0, 1.0)) * 10.0 ** rng.uniform(12.0, 307.0))
+        heps = float(rng.choice((0.6, 1.0, 3.0)))
+        with mp.workdps(REF_DPS + 320):
+            hv = float(mp.mpf(10.0 ** rng.uniform(-8.0, 0.5)) - heps * mp.sin(mp.mpf(hphi)))
+        out.append(("huge-phase", hphi, hv, heps, None))
+    return out
+
+
 def judge(family, phi, v, eps, exact):
     """(status name, iterations, error in kappa*u or None, problem or None) for one flight."""
     import verify
@@ -120,9 +164,9 @@ def judge(family, phi, v, eps, exact):
     return status, iterations, units, None
 
 
-def figures():
-    """Counts of wrong CONVERGED per family, worst graze error, max iterations."""
-    rows = [(case[0], judge(*case), case) for case in adversarial_set()]
+def figures(cases=None):
+    """Counts of wrong CONVERGED per family, worst error, max iterations."""
+    rows = [(case[0], judge(*case), case) for case in (cases or adversarial_set())]
     fams = sorted({r[0] for r in rows})
     for fam in fams:
         mine = [r for r in rows if r[0] == fam]
@@ -144,4 +188,8 @@ def figures():
 
 
 if __name__ == "__main__":
-    figures()
+    import sys
+
+    # python tests/fastpath/adversarial.py [SEED [PER_FAMILY]]: a held-out random set instead
+    figures(held_out_set(int(sys.argv[1]), int(sys.argv[2]) if len(sys.argv) > 2 else 200)
+            if len(sys.argv) > 1 else None)
