@@ -22,7 +22,9 @@ least-squares slope of log V_sat against log(1 - r).
 Published values: E. D. Leonel and co-workers study exactly this (A. L. P. Livorati,
 D. G. Ladeira, E. D. Leonel, Phys. Rev. E 78, 056205 (2008), inelastic impacts; F. A. de Souza,
 L. E. A. Simoes, M. R. da Silva, E. D. Leonel, Math. Probl. Eng. 2009, 409857 (2009), linear
-drag). We could read only the abstract of the second: "the average velocity starts growing at
+drag; A. M. Cespedes, UNESP dissertation (2015), V_rms exponents "from the analytical
+expression of the mean square velocity"). From this workplace we could read only their
+abstracts, none with a number; the second says "the average velocity starts growing at
 first and then bends towards a regime of constant value, thus confirming that the introduction
 of drag force is a sufficient condition to suppress Fermi acceleration". We found no published
 value of beta, so beta is compared with our own random-phase estimate, not with a citation:
@@ -30,6 +32,25 @@ with v_in ~ -v at large v, an impact gives v1 = r*v + (1 + r)*u with u = -eps*si
 uncorrelated phases (<u> = 0, <u^2> = eps^2/2) make the stationary second moment
 <v^2> = r^2 <v^2> + (1 + r)^2 eps^2/2, i.e. <v^2> = (1 + r)*eps^2/(2*(1 - r)), and a fixed
 shape of the velocity distribution gives V_sat ~ (1 - r)^(-1/2).
+
+The velocity strip (``velocity_strip``; claim ``dissipation-velocity-strip``). The one
+published scaling statement with numbers we could read: J. J. Barroso, M. V. Carneiro,
+E. E. N. Macau, Phys. Rev. E 79, 026206 (2009), abstract: chaotic orbits of the inelastic
+bouncer are "bounded by a velocity strip v = +-Gamma/(1 - r)" (Gamma the nondimensional shaking
+acceleration; the symbols are garbled in the stored copy and restored here). In our units the
+strip follows from the model alone. In flight the energy v**2/2 + y is constant and the plate
+height |y| <= |eps|, so the landing speed obeys v_in**2 <= v**2 + 4|eps|; an impact gives
+v1 = (1 + r)*u - r*v_in with |u| <= |eps| and v_in < u (an approach): for v_in <= 0,
+v1 <= (1 + r)|eps| + r*sqrt(v**2 + 4|eps|), for 0 < v_in < u, v1 < (1 + r)|eps|; and
+v1 > u >= -|eps|. So |v| <= V implies |v1| <= g(V) = (1 + r)|eps| + r*sqrt(V**2 + 4|eps|) for
+V >= |eps|, and g is increasing with slope < r < 1: its fixed point
+
+    V*(r) = (|eps| + r*sqrt(eps**2 + 4|eps|*(1 - r)/(1 + r)))/(1 - r)  ~  2|eps|/(1 - r)
+
+bounds every later velocity of an orbit that starts with |v| <= V* (a particle riding the
+plate has |v| = |u| <= |eps|). The strip's width scales as (1 - r)^-1, Barroso et al.'s law; it
+is a bound, not the plateau (V_sat grows only as (1 - r)^beta, beta = -0.6 here). The check is
+that no velocity of the study's orbits leaves it, and by how much the orbits stay inside.
 """
 
 from __future__ import annotations
@@ -83,6 +104,29 @@ class Curve:
     slope_sys: float
 
 
+STRIP_ORBITS = {False: 64, True: 8}  # orbits per r (n_max collisions each) for the strip
+
+
+def velocity_strip(r, eps):
+    """V*(r): the fixed point of g(V) = (1 + r)|eps| + r*sqrt(V**2 + 4|eps|), the edge of the
+    velocity strip |v| <= V* that no orbit with restitution r < 1 leaves (module docstring)."""
+    e = abs(eps)
+    return (e + r * math.sqrt(e * e + 4.0 * e * (1.0 - r) / (1.0 + r))) / (1.0 - r)
+
+
+def strip_maxima(phi0, v0, eps, one_minus_r, n_max):
+    """max |v_n| over ``fastpath.orbit`` of each start (n_max collisions), per 1 - r."""
+    out = []
+    for x in one_minus_r:
+        top = 0.0
+        for p, v in zip(phi0, v0, strict=True):
+            orb = fastpath.orbit(float(p), float(v), eps, n_max, on_uncertain="stop",
+                                 restitution=1.0 - float(x))
+            top = max(top, float(np.max(np.abs(orb.v))))
+        out.append(top)
+    return out
+
+
 @dataclass
 class Dissipation:
     """The study's curves, the exponent of V_sat in (1 - r) and the stuck fractions."""
@@ -102,6 +146,8 @@ class Dissipation:
     sticking: list  # (r, stuck fraction, particles) at STUDY["sticking_eps"]
     verification: dict
     seconds: float
+    strip_max: list = None  # max |v_n| over STRIP_ORBITS orbits, per 1 - r (velocity strip)
+    strip_orbits: int = 0
 
 
 def plateau(n, mean_v, lo, hi):
@@ -230,9 +276,11 @@ def dissipation_study(quick=False):
                     {"drag": STUDY["drag"]["linear"][-1], "drag_law": "linear"},
                     {"drag": STUDY["drag"]["quadratic"][-1], "drag_law": "quadratic"}]
     ver = verify_dissipative(starts, eps, physics_list, min(cfg["n_max"], 3000), cfg["verify"])
+    k = STRIP_ORBITS[bool(quick)]
+    strip = strip_maxima(phi0[:k], v0[:k], eps, omr, cfg["n_max"])
     return Dissipation(eps, m, nf, window, elastic, rest, drag, omr, beta, beta_err, beta_sys,
                        math.exp(amp) if math.isfinite(amp) else math.nan, sticking, ver,
-                       time.perf_counter() - t0)
+                       time.perf_counter() - t0, strip, k)
 
 
 def saturation_verdict(elastic, curves):
@@ -269,9 +317,20 @@ def exponent_verdict(beta, sigma, systematic, expected=RANDOM_PHASE_BETA):
     return REFUTED if off > u else CONFIRMED if u <= RESOLUTION else INCONCLUSIVE
 
 
+def strip_verdict(one_minus_r, maxima, eps):
+    """confirmed: every max |v_n| <= V*(r) (``velocity_strip``); refuted: some orbit leaves
+    the strip; inconclusive: no maxima. No tolerance: a rounding error of the orbit is ~1e-16
+    relative, and an orbit that reaches V* at all is already far outside what chaos gives."""
+    if not maxima or not all(math.isfinite(m) for m in maxima):
+        return INCONCLUSIVE
+    inside = all(m <= velocity_strip(1.0 - x, eps)
+                 for x, m in zip(one_minus_r, maxima, strict=True))
+    return CONFIRMED if inside else REFUTED
+
+
 def dissipation_claims(d):
-    """Claims ``dissipation-saturates`` and ``dissipation-exponent`` (rules in the verdict
-    functions' docstrings)."""
+    """Claims ``dissipation-saturates``, ``dissipation-exponent`` and
+    ``dissipation-velocity-strip`` (rules in the verdict functions' docstrings)."""
     curves = d.restitution + d.drag
     sat = saturation_verdict(d.elastic, curves)
     worst = max(curves, key=lambda c: abs(c.slope) / (1.96 * c.slope_err + c.slope_sys))
@@ -301,8 +360,9 @@ def dissipation_claims(d):
         Claim(
             id="dissipation-exponent", figure="dissipation",
             seed_says="V_sat ~ (1 - r)^beta: NO PUBLISHED VALUE FOUND (Livorati, Ladeira, "
-                      "Leonel, PRE 78, 056205 (2008) not readable here); compared with our "
-                      "random-phase estimate beta = -1/2",
+                      "Leonel, PRE 78, 056205 (2008) and the other sources in "
+                      "reports/paper/dissipation.py: only abstracts readable here, none with "
+                      "a number); compared with our random-phase estimate beta = -1/2",
             verdict=exponent_verdict(d.beta, d.beta_err, d.beta_sys),
             evidence=f"{where}: least-squares slope of log V_sat against log(1 - r) for 1 - r "
                      f"in {', '.join(f'{x:g}' for x in d.one_minus_r)} = {d.beta:.3f} +- "
@@ -312,4 +372,23 @@ def dissipation_claims(d):
             particles_per_curve=d.particles,
             statistical={"beta": d.beta_err}, systematic={"beta": d.beta_sys}, run=None,
             rule="|beta + 1/2| <= 1.96 sigma + systematic, with U <= 1/4"),
+        Claim(
+            id="dissipation-velocity-strip", figure="dissipation",
+            seed_says="Inelastic impacts confine the chaotic orbits to a velocity strip of "
+                      "width ~ 1/(1 - r) (Barroso, Carneiro, Macau, PRE 79, 026206 (2009), "
+                      "abstract: 'bounded by a velocity strip v = +-Gamma/(1 - r)'); in our "
+                      "units its edge is V*(r) ~ 2|eps|/(1 - r), derived in "
+                      "reports/paper/dissipation.py",
+            verdict=strip_verdict(d.one_minus_r, d.strip_max, d.eps),
+            evidence=f"eps = {d.eps:g}, {d.strip_orbits} orbits of {int(d.n[-1]):,} "
+                     "collisions per r from the study's starts: max |v_n| / V*(r) = "
+                     + ", ".join(f"{m / velocity_strip(1.0 - x, d.eps):.3f} (1 - r = {x:g}, "
+                                 f"V* = {velocity_strip(1.0 - x, d.eps):.4g})"
+                                 for x, m in zip(d.one_minus_r, d.strip_max or [],
+                                                 strict=False))
+                     + f"; the strip is a bound (width ~ (1 - r)^-1), the plateau grows "
+                     f"only as (1 - r)^{d.beta:.2f}.",
+            particles_per_curve=d.strip_orbits, statistical={}, systematic={}, run=None,
+            rule="every max |v_n| <= V*(r) (a rigorous bound of the exact dynamics: no "
+                 "tolerance); refuted if an orbit leaves the strip"),
     ]

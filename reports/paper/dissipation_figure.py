@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from reports.paper.dissipation import BLOCKS, RANDOM_PHASE_BETA, STUDY
+from reports.paper.dissipation import BLOCKS, RANDOM_PHASE_BETA, STUDY, velocity_strip
 from reports.paper.sampling import fmt, verified_text
 from reports.paper.style import caption, pyplot, save_figure
 
@@ -35,8 +35,14 @@ def figure_dissipation(d, out_dir):
         x0 = d.one_minus_r[-1]
         ax.loglog(x, plats[-1] * (x / x0) ** RANDOM_PHASE_BETA, "--", color="tab:red", lw=1,
                   label="slope -1/2 (random-phase estimate, not published)")
+    if d.strip_max:
+        x = np.geomspace(d.one_minus_r[0], d.one_minus_r[-1], 50)
+        ax.loglog(x, [velocity_strip(1.0 - xi, d.eps) for xi in x], "-", color="tab:green",
+                  lw=1, label="velocity strip V*(r) ~ 2 eps/(1 - r) (bound)")
+        ax.loglog(d.one_minus_r, d.strip_max, "^", color="tab:green",
+                  label=f"max |v_n| over {d.strip_orbits} orbits")
     ax.set_xlabel("1 - r")
-    ax.set_ylabel("V_sat")
+    ax.set_ylabel("V_sat, velocity")
     ax.set_title("plateau against the restitution loss", fontsize=10)
     ax.legend(fontsize=7)
     fig.suptitle("Dissipation suppresses Fermi acceleration (seed's escape start box, no holes)",
@@ -76,9 +82,29 @@ def dissipation_markdown(d, image):
         "(linear drag: <v> grows, then bends to a constant). The comparison value -1/2 is our "
         "own random-phase estimate (`reports/paper/dissipation.py`), not a citation.",
         "",
+        *_strip_lines(d),
         f"Stuck for good by n = {int(d.n[-1]):,} at eps = {STUDY['sticking_eps']:g} "
         f"(|eps| <= 1: a particle that sticks never leaves): {stuck} of {d.particles:,} "
         f"particles. At eps = {d.eps:g} no particle sticks for good (it detaches where the "
         "plate's acceleration falls through -1).",
         "",
     ])
+
+
+def _strip_lines(d):
+    if not d.strip_max:
+        return []
+    ratios = ", ".join(f"{x:g}: {m / velocity_strip(1.0 - x, d.eps):.3f}"
+                       for x, m in zip(d.one_minus_r, d.strip_max, strict=True))
+    return [
+        "The one published scaling law with numbers we could read is a bound: Barroso, "
+        "Carneiro, Macau, Phys. Rev. E 79, 026206 (2009) find the chaotic orbits of the "
+        "inelastic bouncer \"bounded by a velocity strip v = +-Gamma/(1 - r)\" (abstract). In "
+        "our units the strip's edge is V*(r) = (|eps| + r sqrt(eps^2 + 4|eps|(1 - r)/(1 + r)))"
+        "/(1 - r) ~ 2|eps|/(1 - r), derived from energy conservation in flight and the impact "
+        "rule (`reports/paper/dissipation.py`). Over "
+        f"{d.strip_orbits} orbits of {int(d.n[-1]):,} collisions per r, max |v_n| / V*(r) "
+        f"by 1 - r = {ratios}: every orbit stays inside, and ever deeper inside as r -> 1 "
+        "(the plateau grows as (1 - r)^beta, the strip as (1 - r)^-1).",
+        "",
+    ]

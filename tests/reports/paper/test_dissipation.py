@@ -19,6 +19,8 @@ from reports.paper.dissipation import (
     log_slope,
     plateau,
     saturation_verdict,
+    strip_verdict,
+    velocity_strip,
 )
 from reports.paper.dissipation_figure import dissipation_markdown
 from reports.precision.bench import DISSIPATIVE_MODELS, dissipative_table, time_dissipative_orbits
@@ -87,13 +89,51 @@ def test_claims_and_markdown_from_a_study():
     d = Dissipation(2.0, 10, N, WINDOW, fake_curve("elastic", 0.5), rest,
                     [fake_curve("linear drag k = 0.01", 0.0)], OMR, -0.5, 0.01, 0.0, 4.0,
                     [(0.5, 1.0, 10)], {"sampled": 3, "worst_error": 0.5, "overstepped": 0}, 1.0)
+    d.strip_max = [0.5 * velocity_strip(1 - x, 2.0) for x in OMR]
+    d.strip_orbits = 4
     claims = dissipation_claims(d)
-    assert [c.id for c in claims] == ["dissipation-saturates", "dissipation-exponent"]
+    assert [c.id for c in claims] == ["dissipation-saturates", "dissipation-exponent",
+                                      "dissipation-velocity-strip"]
     assert all(c.verdict in VERDICTS for c in claims)
-    assert [c.verdict for c in claims] == [CONFIRMED, CONFIRMED]
+    assert [c.verdict for c in claims] == [CONFIRMED, CONFIRMED, CONFIRMED]
     assert "NO PUBLISHED VALUE FOUND" in claims[1].seed_says
+    assert "Barroso" in claims[2].seed_says and "0.500 (1 - r = 0.005" in claims[2].evidence
     md = dissipation_markdown(d, "x.png")
     assert "No published value of beta was found" in md and "r = 0.5: 100.0%" in md
+    assert "velocity strip" in md and "0.1: 0.500" in md
+
+
+def test_velocity_strip_is_the_fixed_point_and_scales_as_one_over_one_minus_r():
+    for eps in (0.6, 2.0, 5.0):
+        for r in (0.1, 0.5, 0.9, 0.99, 0.999):
+            vs = velocity_strip(r, eps)
+            g = (1 + r) * eps + r * math.sqrt(vs**2 + 4 * eps)
+            assert abs(g - vs) <= 8 * U * vs
+            assert vs >= eps
+        x = 1e-6
+        assert abs(velocity_strip(1 - x, eps) * x / (2 * eps) - 1) < 1e-5
+
+
+def test_strip_verdict_rules():
+    omr = [0.01, 0.1]
+    inside = [0.9 * velocity_strip(1 - x, 2.0) for x in omr]
+    assert strip_verdict(omr, inside, 2.0) == CONFIRMED
+    assert strip_verdict(omr, [inside[0], 1.0001 * velocity_strip(0.9, 2.0)], 2.0) == REFUTED
+    assert strip_verdict(omr, [], 2.0) == INCONCLUSIVE
+    assert strip_verdict(omr, [math.nan, 1.0], 2.0) == INCONCLUSIVE
+
+
+@pytest.mark.parametrize("r", [0.5, 0.9])
+def test_orbits_never_leave_the_velocity_strip_even_from_its_edge(r):
+    """Started on the strip's edge (the worst start), 2000 collisions never exceed V*."""
+    import fastpath
+
+    eps = 2.0
+    vs = velocity_strip(r, eps)
+    for phi in np.linspace(0.0, 2 * math.pi, 7, endpoint=False):
+        v = vs if vs + eps * math.sin(phi) > 0 else -eps * math.sin(phi) + 1.0
+        orb = fastpath.orbit(float(phi), float(v), eps, 2000, on_uncertain="stop", restitution=r)
+        assert float(np.max(np.abs(orb.v))) <= vs
 
 
 @pytest.mark.slow
