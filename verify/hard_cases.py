@@ -237,12 +237,16 @@ _DRAG_GRAZES = (
 # plate when w = 3*a*delta**2/8. Below the tangency the particle comes back in the dip nearly
 # tangentially (two roots ~sqrt(8*|c|/(a*delta)) apart, slope ~sqrt(a*delta*|c|), kappa up to
 # ~1e12); above it, it leaves and lands an O(1) time later. As delta -> 0 the hump, the dip and
-# the departure merge into a triple root at t = 0 (d''(0) = -a*delta ~ 0): w = 1e-3, 1e-5, 1e-8
-# take delta = 0.049, 0.0049, 1.5e-4 and the hump height from 1e-5 down to 3e-13, so a float64
-# solver must resolve a clearance c against a gap whose whole dip is tiny. v was tuned at 60
-# digits so that the dip's minimum is c (scripts/chattering_grazes.py prints these rows);
-# "0+" / "0-" are the two float64 neighbours of the exact tangency's v (actual clearance of the
-# float inputs ~1e-17..1e-21, either side of 0: float64 cannot decide them, verify can).
+# the departure merge into a triple root at t = 0 (d''(0) = -a*delta ~ 0): w = 1e-3, 1e-5, 1e-8,
+# 1e-9 take delta = 0.049, 0.0049, 1.5e-4, 4.9e-5 and the hump height from 1e-5 down to 1e-14,
+# so a float64 solver must resolve a clearance c against a gap whose whole dip is tiny, and
+# crawl past a positive one (fastpath's lower-bound steps, built on the global curvature bound
+# 1 + |eps| while the dip's own d'' is ~a*delta/2, take 54 of their 60 iterations for c = 1e-15
+# at w = 1e-9 and run out at c = 1e-16: MAX_ITERATIONS before the first root, not a wrong
+# answer). v was tuned at 60 digits so that the dip's minimum is c (scripts/chattering_grazes.py
+# prints these rows); "0+" / "0-" are the two float64 neighbours of the exact tangency's v
+# (actual clearance of the float inputs ~1e-17..1e-21, either side of 0: float64 cannot decide
+# them, verify can).
 # Elastic rows (drag 0.0: the flight is the elastic gap, restitution acts only at impacts) and
 # linear/quadratic drag 1e-8. Row: (eps, law, drag, nominal w, nominal clearance, phi, v, t_m =
 # contact (the dip), actual clearance of the float64 inputs (60 digits), certified tau).
@@ -283,6 +287,16 @@ _CHATTER_GRAZES = (
      0.00023166043950893317, -4.880490635779861e-20, 0.00023162681242620134),
     (1.5, "linear", 0.0, 1e-08, "-1e-14", 5.441962197653618, 1.1181884243313835,
      0.0002321582940384019, -9.999981077038845e-15, 0.0002164482615086749),
+    (1.5, "linear", 0.0, 1e-09, "1e-15", 5.4420677987249695, 1.1180828263169431,
+     7.275003333360665e-05, 1.0000068555873058e-15, 3.566265574195673),
+    (1.5, "linear", 0.0, 1e-09, "1e-16", 5.4420677987249695, 1.1180828263046108,
+     7.32069610832164e-05, 1.0000106053707047e-16, 3.566265574171789),
+    (1.5, "linear", 0.0, 1e-09, "0+", 5.4420677987249695, 1.1180828263032454,
+     7.325702323961822e-05, 1.3581697185772918e-20, 3.5662655741691447),
+    (1.5, "linear", 0.0, 1e-09, "0-", 5.4420677987249695, 1.1180828263032452,
+     7.325703137278327e-05, -2.684630500414706e-21, 7.324300619166333e-05),
+    (1.5, "linear", 0.0, 1e-09, "-1e-15", 5.4420677987249695, 1.1180828262896405,
+     7.375036698235996e-05, -1.0000076585292634e-15, 6.471239473825638e-05),
     (3.0, "linear", 0.0, 1e-06, "1e-10", 5.051254906295397, 2.8293978448588004,
      0.0014025889029493498, 9.99999998208056e-11, 5.968578735272975),
     (3.0, "linear", 0.0, 1e-06, "0+", 5.051254906295397, 2.829397774932447,

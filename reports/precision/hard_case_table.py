@@ -221,8 +221,8 @@ def dissipative_case_markdown(rows: list[DissipativeRow]) -> str:
             f"| {c.id} | {c.kind} | {c.phi:.17g} | {c.v:.17g} | {c.eps:.17g} | {_physics(c)} "
             f"| {tau} | {row.seconds:.2f} | {kappa} | {_fast_cell(row)} | {row.iterations} "
             f"| {row.status} |")
-    lines += ["", "| class | rows | CONVERGED | UNCERTAIN | other status | missed "
-              "| worst err [kappa u] | verify undecidable | verify max [s] |",
+    lines += ["", "| class | rows | CONVERGED | UNCERTAIN or MAX_ITERATIONS | other status "
+              "| missed | worst err [kappa u] | verify undecidable | verify max [s] |",
               "|" + "---|" * 9]
     for kind in sorted({r.case.kind for r in rows}):
         group = [r for r in rows if r.case.kind == kind]
@@ -241,9 +241,12 @@ def dissipative_case_markdown(rows: list[DissipativeRow]) -> str:
               "point (`fastpath.sticking`, `fastpath.drag_sticking`). UNCERTAIN is fastpath "
               "saying that float64 cannot decide (verify settles those); on the chattering "
               "grazes it comes where the dip's clearance is within a few of fastpath's gap "
-              "rounding bounds of zero (the c=0+/0- neighbours of the tangency and c=-1e-14: "
-              "a shallow dip, d'' ~ sqrt(eps**2 - 1)*delta/2, lets a small slope pass for a "
-              "graze).", ""]
+              "rounding bounds of zero (the c=0+/0- neighbours of the tangency, and c=-1e-14 or "
+              "-1e-15: a shallow dip, d'' ~ sqrt(eps**2 - 1)*delta/2, lets a small slope pass "
+              "for a graze). MAX_ITERATIONS (as UNCERTAIN) at w = 1e-9, c = 1e-16: the "
+              "lower-bound steps crawl past the shallow dip and run out of their 60 iterations "
+              "before the landing, on a flight float64 could decide (a known limitation, not a "
+              "wrong answer).", ""]
     return "\n".join(lines)
 
 
