@@ -8,9 +8,14 @@ gap_error of zero); drag rows as the drag flights (``test_drag_reference.judge``
 the tolerance of the solver's own gap bound of the 60-digit first root, UNCERTAIN only at a dip
 within 16 gap bounds of zero). Every answer is positive and never past verify's certified first
 root (``case.tau``) by more than that tolerance; the statuses and worst errors are recorded.
+``test_random_chattering_grazes_are_never_wrong`` draws more members of the class (tuned by
+``scripts/chattering_grazes.py``) and holds fastpath to verify on them the same way.
 """
 
+import math
+
 import drag_reference as ref
+import numpy as np
 import pytest
 from fastpath_figures import record
 from fastpath_reference import flight_outcome
@@ -19,8 +24,10 @@ from mpmath import mp
 from test_drag_reference import judge
 
 import fastpath
+import verify
 from fastpath.drag import LAWS, gap_state
 from fastpath.phase import centre_phase
+from scripts.chattering_grazes import WORK_DPS, tune
 from verify.hard_cases import CHATTERING_GRAZES
 
 ELASTIC = [c for c in CHATTERING_GRAZES if c.drag == 0.0]
@@ -112,3 +119,52 @@ def test_chattering_graze_figures():
         if abs(case.clearance) < 1e-16:
             assert status == "UNCERTAIN", case.id
     assert worst[2] <= K
+
+
+def _random_chattering_grazes(n, seed):
+    """n departures of the class with random eps, drag, w0 = 1e-9..1e-3 and clearance
+    -+(1e-18..1e-5, capped at a quarter of the hump), tuned at 60 digits by the table's script."""
+    rng = np.random.default_rng(seed)
+    out = []
+    while len(out) < n:
+        eps = float(rng.choice([1.05, 1.5, 3.0, 10.0]))
+        k = float(rng.choice([0.0, 1e-8, 1e-4]))
+        law = str(rng.choice(sorted(LAWS)))
+        w = 10 ** rng.uniform(-9, -3)
+        with mp.workdps(WORK_DPS):
+            e = mp.mpf(eps)
+            a = mp.sqrt(e**2 - 1)
+            delta = mp.sqrt(8 * mp.mpf(w) / (3 * a))
+            phi = float(2 * mp.pi - mp.acos(1 / e) - delta)
+            c = rng.choice([-1.0, 1.0]) * min(10 ** rng.uniform(-18, -5), a * delta**3 / 48)
+            try:
+                v = float(tune(mp.mpf(phi), e, mp.mpf(k), law, mp.mpf(w), delta, mp.mpf(c))[0])
+            except ArithmeticError:
+                continue  # the tangency's Newton did not converge: draw again
+        if v + eps * math.sin(phi) > 0:
+            out.append((phi, v, eps, k, law))
+    return out
+
+
+def test_random_chattering_grazes_are_never_wrong():
+    """fastpath on random members of the class: CONVERGED within the suite's tolerance of
+    verify's certified first root, else (UNCERTAIN, MAX_ITERATIONS) short of that root."""
+    statuses = {}
+    for phi, v, eps, k, law in _random_chattering_grazes(24, 1606):
+        cert = verify.certify_flight(phi, v, eps, drag=k, drag_law=law)
+        res = fastpath.flight(phi, v, eps, drag=k, drag_law=law)
+        status = fastpath.FlightStatus(res.status).name
+        statuses[status] = statuses.get(status, 0) + 1
+        state = (phi, v, eps, k, law, status, res.tau, cert.tau)
+        assert status in ("CONVERGED", "UNCERTAIN", "MAX_ITERATIONS"), state
+        assert 0 < res.tau
+        if status != "CONVERGED":
+            assert res.tau <= cert.enclosure[1], state
+        elif k == 0.0:
+            assert tau_error_units(res.tau, cert.tau, phi, v, eps) <= K, state
+        else:
+            code = LAWS[law]
+            d_error = gap_state(centre_phase(phi), v, eps, k, code, res.tau)[3]
+            assert abs(res.tau - cert.tau) <= ref.tau_tolerance(d_error, phi, v, eps, k, code,
+                                                                cert.tau), state
+    record("random chattering grazes (24): statuses", dict(sorted(statuses.items())))
