@@ -7,7 +7,9 @@ Sections, each computed in this run (nothing is copied in by hand):
    (``reports.precision.bench``);
 2. work-precision: every method's error against ``verify`` and its time per collision, with the
    missed collisions on close root pairs (``reports.precision.work_precision``), and the
-   hard-case table from the same evaluation (``reports.precision.hard_case_table``);
+   hard-case table from the same evaluation (``reports.precision.hard_case_table``), with the
+   dissipative hard cases (drag, departures at rest, chattering grazes: fastpath and verify
+   only) in a sub-table of their own;
 3. the seed's figures from trusted ensemble runs (``reports.paper.figures``);
 4. physics checks against published results (``reports.paper.physics_checks``);
 5. optionally, finished runs given with ``--include-run`` (e.g. the paper-scale escape run).
@@ -35,7 +37,7 @@ from reports.paper.claims import claims_markdown, write_report_json
 from reports.paper.figures import paper_figures_section
 from reports.paper.physics_checks import physics_checks_section
 from reports.precision.bench import ensemble_table, orbit_table, time_ensembles, time_orbits
-from reports.precision.hard_case_table import hard_case_markdown
+from reports.precision.hard_case_table import dissipative_case_section, hard_case_markdown
 from reports.precision.methods import default_methods
 from reports.precision.work_precision import (
     plot_work_precision,
@@ -98,10 +100,13 @@ def _precision_sections(out_dir, quick, compare, echo):
     plot_work_precision(result, out_dir / "work_precision")
     hard = [i for i, c in enumerate(result.cases) if c.group == "hard"]
     errors = {m.name: [result.errors[m.name][i] for i in hard] for m in methods}
+    echo("hard cases with drag and chattering: fastpath against verify")
+    dissipative = dissipative_case_section()
     return "\n".join([
         work_precision_markdown(result, "work_precision.png"), "",
         hard_case_markdown([result.cases[i] for i in hard], [result.references[i] for i in hard],
                            errors, methods), "",
+        dissipative, "",
     ])
 
 

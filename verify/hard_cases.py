@@ -22,7 +22,10 @@ flight time is ``2x``, and ``d'(2x) = eps*sin(x) - x ~ -x**3/6`` at eps = 1, DES
 than the phase holds), ``overflow``.
 
 Classes added for issue 16 (``DISSIPATIVE_CASES``, with ``drag``, ``drag_law`` and the
-certified ``tau``): ``drag-graze`` and ``w0=0 departure`` (see the table).
+certified ``tau``): ``drag-graze``, ``w0=0 departure`` and ``chattering-graze`` (near-grazes of a
+chattering departure with small w0 just before the phase where the plate's acceleration falls
+through -1; elastic rows have ``drag = 0.0`` and stay out of ``HARD_CASES``, so that the elastic
+table's counted figures do not move; see the table).
 """
 
 import math
@@ -225,6 +228,131 @@ _DRAG_GRAZES = (
      6.8232924430174675, 6.823292321128432),
     (-3.8901811231228502, 3.303620503138832, 3.0, "-1e-6", 4.189062665767766, 4.188954674819296),
 )
+# "chattering-graze" (issue 16, item 6): a chattering particle (restitution r < 1) leaves each
+# impact with a small relative speed w = w0. Just before theta* = 2*pi - arccos(1/eps), where the
+# plate's acceleration -eps*cos falls through -1, the relative acceleration d'' = -1 - eta(V) +
+# eps*cos(phi + t) is slightly negative at the departure and turns positive a moment later, so
+# with a = sqrt(eps**2 - 1) and phi = theta* - delta the gap is d(t) ~ (a/6)*t*(t**2 - 3*delta*t +
+# 6*w/a): a hump of height ~a*delta**3/12, then a dip at t_m ~ 3*delta/2 that is tangent to the
+# plate when w = 3*a*delta**2/8. Below the tangency the particle comes back in the dip nearly
+# tangentially (two roots ~sqrt(8*|c|/(a*delta)) apart, slope ~sqrt(a*delta*|c|), kappa up to
+# ~1e12); above it, it leaves and lands an O(1) time later. As delta -> 0 the hump, the dip and
+# the departure merge into a triple root at t = 0 (d''(0) = -a*delta ~ 0): w = 1e-3, 1e-5, 1e-8,
+# 1e-9 take delta = 0.049, 0.0049, 1.5e-4, 4.9e-5 and the hump height from 1e-5 down to 1e-14,
+# so a float64 solver must resolve a clearance c against a gap whose whole dip is tiny, and
+# crawl past a positive one (fastpath's lower-bound steps, built on the global curvature bound
+# 1 + |eps| while the dip's own d'' is ~a*delta/2, take 54 of their 60 iterations for c = 1e-15
+# at w = 1e-9 and run out at c = 1e-16: MAX_ITERATIONS before the first root, not a wrong
+# answer). v was tuned at 60 digits so that the dip's minimum is c (scripts/chattering_grazes.py
+# prints these rows); "0+" / "0-" are the two float64 neighbours of the exact tangency's v
+# (actual clearance of the float inputs ~1e-17..1e-21, either side of 0: float64 cannot decide
+# them, verify can).
+# Elastic rows (drag 0.0: the flight is the elastic gap, restitution acts only at impacts) and
+# linear/quadratic drag 1e-8. Row: (eps, law, drag, nominal w, nominal clearance, phi, v, t_m =
+# contact (the dip), actual clearance of the float64 inputs (60 digits), certified tau).
+_CHATTER_GRAZES = (
+    (1.5, "linear", 0.0, 0.001, "1e-6", 5.3932787499251935, 1.1665492131141069,
+     0.07295019910426484, 9.999999999982523e-07, 3.614432949989247),
+    (1.5, "linear", 0.0, 0.001, "1e-10", 5.3932787499251935, 1.1665355541279248,
+     0.07345717177717401, 9.999999529061691e-11, 3.6144061223269106),
+    (1.5, "linear", 0.0, 0.001, "1e-14", 5.3932787499251935, 1.166535552766724,
+     0.07345722178564051, 1.0007045674577471e-14, 3.6144061196533452),
+    (1.5, "linear", 0.0, 0.001, "0+", 5.3932787499251935, 1.166535552766588,
+     0.07345722179064111, 8.537662793698133e-18, 3.614406119653078),
+    (1.5, "linear", 0.0, 0.001, "0-", 5.3932787499251935, 1.1665355527665877,
+     0.07345722179064927, -7.77311699769608e-18, 0.07345719789201204),
+    (1.5, "linear", 0.0, 0.001, "-1e-14", 5.3932787499251935, 1.1665355527664516,
+     0.07345722179564987, -1.0006281129463226e-14, 0.07345636433478465),
+    (1.5, "linear", 0.0, 0.001, "-1e-10", 5.3932787499251935, 1.1665355514052518,
+     0.07345727180398329, -9.999999736802458e-11, 0.0733715039634635),
+    (1.5, "linear", 0.0, 0.001, "-1e-6", 5.3932787499251935, 1.1665219851311428,
+     0.07395078522084327, -1.0000000000031789e-06, 0.06490805250722828),
+    (1.5, "linear", 0.0, 1e-05, "1e-10", 5.43723284794301, 1.1229144547076721,
+     0.007322676525025341, 1.0000000017432696e-10, 3.5710940935705504),
+    (1.5, "linear", 0.0, 1e-05, "1e-14", 5.43723284794301, 1.1229144410574967,
+     0.007327682869693701, 1.0000551695597456e-14, 3.5710940670983193),
+    (1.5, "linear", 0.0, 1e-05, "0+", 5.43723284794301, 1.122914441056132,
+     0.00732768336969448, 5.640901417423175e-19, 3.571094067095673),
+    (1.5, "linear", 0.0, 1e-05, "0-", 5.43723284794301, 1.1229144410561318,
+     0.007327683369775834, -1.0629824171062476e-18, 0.007327655460549899),
+    (1.5, "linear", 0.0, 1e-05, "-1e-14", 5.43723284794301, 1.1229144410547673,
+     0.007327683869695157, -9.999424197658036e-15, 0.007324976475516603),
+    (1.5, "linear", 0.0, 1e-05, "-1e-10", 5.43723284794301, 1.1229144274139038,
+     0.007332676584127262, -9.999999926505817e-11, 0.007057040390453982),
+    (1.5, "linear", 0.0, 1e-08, "1e-14", 5.441962197653618, 1.1181884244177172,
+     0.00023115826202051924, 1.0000006812475817e-14, 3.5663711695140856),
+    (1.5, "linear", 0.0, 1e-08, "0+", 5.441962197653618, 1.1181884243745037,
+     0.00023166043693698569, 2.6340441241780395e-21, 3.566371169430392),
+    (1.5, "linear", 0.0, 1e-08, "0-", 5.441962197653618, 1.1181884243745035,
+     0.00023166043950893317, -4.880490635779861e-20, 0.00023162681242620134),
+    (1.5, "linear", 0.0, 1e-08, "-1e-14", 5.441962197653618, 1.1181884243313835,
+     0.0002321582940384019, -9.999981077038845e-15, 0.0002164482615086749),
+    (1.5, "linear", 0.0, 1e-09, "1e-15", 5.4420677987249695, 1.1180828263169431,
+     7.275003333360665e-05, 1.0000068555873058e-15, 3.566265574195673),
+    (1.5, "linear", 0.0, 1e-09, "1e-16", 5.4420677987249695, 1.1180828263046108,
+     7.32069610832164e-05, 1.0000106053707047e-16, 3.566265574171789),
+    (1.5, "linear", 0.0, 1e-09, "0+", 5.4420677987249695, 1.1180828263032454,
+     7.325702323961822e-05, 1.3581697185772918e-20, 3.5662655741691447),
+    (1.5, "linear", 0.0, 1e-09, "0-", 5.4420677987249695, 1.1180828263032452,
+     7.325703137278327e-05, -2.684630500414706e-21, 7.324300619166333e-05),
+    (1.5, "linear", 0.0, 1e-09, "-1e-15", 5.4420677987249695, 1.1180828262896405,
+     7.375036698235996e-05, -1.0000076585292634e-15, 6.471239473825638e-05),
+    (3.0, "linear", 0.0, 1e-06, "1e-10", 5.051254906295397, 2.8293978448588004,
+     0.0014025889029493498, 9.99999998208056e-11, 5.968578735272975),
+    (3.0, "linear", 0.0, 1e-06, "0+", 5.051254906295397, 2.829397774932447,
+     0.0014565065604678976, 5.485290224179635e-19, 5.968578667280034),
+    (3.0, "linear", 0.0, 1e-06, "0-", 5.051254906295397, 2.8293977749324464,
+     0.001456506560791307, -9.828982523346894e-20, 0.0014564945958023734),
+    (3.0, "linear", 0.0, 1e-06, "-1e-10", 5.051254906295397, 2.8293977073799828,
+     0.0015034342067905952, -9.99999996985261e-11, 0.0010779543498931309),
+    (1.5, "linear", 1e-08, 0.001, "1e-6", 5.3932787499251935, 1.1665492135307374,
+     0.07295021439620368, 1.0000000000005035e-06, 3.614432952165656),
+    (1.5, "linear", 1e-08, 0.001, "1e-10", 5.3932787499251935, 1.1665355545473837,
+     0.07345718685706958, 1.0000000389170322e-10, 3.614406124509075),
+    (1.5, "linear", 1e-08, 0.001, "0+", 5.3932787499251935, 1.166535553186047,
+     0.07345723687051828, 1.29574507151866e-17, 3.6144061218352426),
+    (1.5, "linear", 1e-08, 0.001, "0-", 5.3932787499251935, 1.1665355531860468,
+     0.07345723687052644, -3.3533324186222542e-18, 0.07345722117363082),
+    (1.5, "linear", 1e-08, 0.001, "-1e-10", 5.3932787499251935, 1.1665355518247111,
+     0.07345728688384207, -9.999999712948881e-11, 0.07337151905218814),
+    (1.5, "linear", 1e-08, 0.001, "-1e-6", 5.3932787499251935, 1.1665219855533544,
+     0.07395080010249726, -1.0000000000028411e-06, 0.06490806844947103),
+    (1.5, "linear", 1e-08, 1e-08, "0+", 5.441962197653618, 1.118188424375799,
+     0.00023167543680672743, 1.0419022280591453e-20, 3.566371171871206),
+    (1.5, "linear", 1e-08, 1e-08, "0-", 5.441962197653618, 1.1181884243757987,
+     0.00023167543937850838, -4.102325884145785e-20, 0.00023164461063352642),
+    (1.5, "quadratic", 1e-08, 0.001, "1e-6", 5.3932787499251935, 1.1665492135901037,
+     0.07295021620340598, 1.0000000000048566e-06, 3.6144329576288663),
+    (1.5, "quadratic", 1e-08, 0.001, "1e-10", 5.3932787499251935, 1.1665355546070777,
+     0.07345718863397419, 9.999999427251888e-11, 3.6144061299729824),
+    (1.5, "quadratic", 1e-08, 0.001, "0+", 5.3932787499251935, 1.166535553245741,
+     0.07345723864742115, 9.664654649657128e-19, 3.61440612729915),
+    (1.5, "quadratic", 1e-08, 0.001, "0-", 5.3932787499251935, 1.1665355532457409,
+     0.07345723864742931, -1.534431805570215e-17, 0.07345720506985591),
+    (1.5, "quadratic", 1e-08, 0.001, "-1e-10", 5.3932787499251935, 1.1665355518844054,
+     0.07345728866073503, -9.999999518147674e-11, 0.07337152083137613),
+    (1.5, "quadratic", 1e-08, 0.001, "-1e-6", 5.3932787499251935, 1.1665219856133666,
+     0.07395080185099367, -1.0000000000036865e-06, 0.06490807037015349),
+    (1.5, "quadratic", 1e-08, 1e-08, "0+", 5.441962197653618, 1.118188424375952,
+     0.00023167720721755807, 1.3006693971871711e-20, 3.566371177371703),
+    (1.5, "quadratic", 1e-08, 1e-08, "0-", 5.441962197653618, 1.1181884243759517,
+     0.00023167720978931936, -3.843598026027518e-20, 0.00023164736921622),
+)
+
+
+def _chatter(eps, law, k, w, c, phi, v, t_m, clearance, tau):
+    model = "elastic" if k == 0.0 else f"{law}-drag={k:g}"
+    where = "lands in the dip" if tau < 2 * t_m else "passes over it and lands later"
+    return HardCase(
+        f"chatter-graze-{model}-eps={eps:g}-w={w:g}-c={c}", phi, v, eps,
+        f"chattering departure (w0 ~ {w:g}) just before theta* = 2*pi - arccos(1/eps): dip at "
+        f"t = {t_m:.3g}, clearance {clearance:.3g} (nominal {c}), {where}",
+        contact=t_m, clearance=clearance, kind="chattering-graze", drag=k, drag_law=law, tau=tau)
+
+
+CHATTERING_GRAZES = tuple(_chatter(*row) for row in _CHATTER_GRAZES)
+
+
 DISSIPATIVE_CASES = (
     *[_dissipative(f"drag-graze-{law}-eps={eps:g}-c={c}", phi, v, eps, law, 1e-8, tau,
                    "drag-graze", f"near-graze (clearance {c}) at eps = {eps} under {law} drag 1e-8")
@@ -236,6 +364,7 @@ DISSIPATIVE_CASES = (
                  "w0=0 departure", "departure at rest, d''(0) = 0.5 > 0"),
     _dissipative("w0=0-eps=1-linear", 0.0, 0.0, 1.0, "linear", 0.1, 0.39814790798759475,
                  "w0=0 departure", "departure at rest, d''(0) = 0 exactly, d'''(0) = k > 0"),
+    *CHATTERING_GRAZES,
 )
 
 ALL_CASES = HARD_CASES + OVERFLOW_CASES + DISSIPATIVE_CASES

@@ -22,6 +22,7 @@ from mpmath import mp
 DPS = 60
 U = 2.0**-53
 LINEAR, QUADRATIC = 1, 2
+STOP_DIGITS = 30  # digits of a dip's position at which local_minimum stops (its docstring)
 
 
 def particle(v, k, law, t):
@@ -70,7 +71,13 @@ def curvature(phi, v, eps, k, law, t):
 
 
 def local_minimum(phi, v, eps, k, law, t):
-    """(s, d(s)) at the local minimum of the gap near t (Newton on d'), None if not convex."""
+    """(s, d(s)) at the local minimum of the gap near t (Newton on d'), None if not convex.
+
+    Stops at 30 digits of s (STOP_DIGITS): the textbook forms lose up to ~25 digits to
+    cancellation (module docstring) and a shallow dip divides that noise of d' by a small d''
+    (linear drag 1e-8 with d'' ~ 1e-4 leaves Newton steps of ~1e-50 at 60 digits, which a
+    52-digit stop never met: it returned None for a real dip). d(s) is second order in the
+    error of s (d'(s) = 0), so 30 digits of s give d(s) to the working precision."""
     with mp.workdps(DPS):
         s = mp.mpf(t)
         for _ in range(200):
@@ -79,7 +86,7 @@ def local_minimum(phi, v, eps, k, law, t):
                 return None
             ds = rate(phi, v, eps, k, law, s) / c
             s -= ds
-            if abs(ds) <= abs(s) * mp.mpf(10) ** (-(DPS - 8)):
+            if abs(ds) <= abs(s) * mp.mpf(10) ** -STOP_DIGITS:
                 return s, gap(phi, v, eps, k, law, s)
         return None
 

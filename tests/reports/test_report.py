@@ -13,7 +13,7 @@ def test_quick_report_has_every_section_and_its_figures(tmp_path, capsys):
     assert main(["report", "--quick", "--out", str(out)]) == 0
     text = (out / "report.md").read_text(encoding="utf-8")
     for heading in ("## Speed: exact map against the Holmes map", "## Stability on hard cases",
-                    "## How long this report took"):
+                    "### Dissipative hard cases", "## How long this report took"):
         assert heading in text
     images = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text)
     assert len(images) >= 6
