@@ -215,6 +215,77 @@ def test_eps_1_5_r_0_8_sticks_detaches_at_theta_star_and_agrees_with_fastpath(la
             + 4 * math.ulp(abs(vel) + abs(eps) + 1)
 
 
+@pytest.mark.parametrize("law, eps, k", [("linear", -1.5, 0.3), ("linear", 0.9, 0.6),
+                                         ("quadratic", -1.5, 0.3), ("quadratic", 0.9, 1.0)])
+def test_other_signs_and_drag_made_detachment_agree_with_fastpath(law, eps, k):
+    """eps < 0 (theta* + pi) and |eps| < 1 leaving the plate only through the drag (linear
+    0.9*sqrt(1.36) > 1; quadratic (2ke - 1)**2 > 4k(1 - e)), r = 0.3 at 30 digits: every episode
+    ends at the certified theta*; fastpath's first episode within the module docstring's bounds."""
+    r, phi0, w0 = 0.3, math.pi, 1e-3
+    v0 = w0 - eps * math.sin(phi0)
+    ref = verify.orbit(phi0, v0, eps, 40, dps=30, drag=k, drag_law=law, restitution=r)
+    assert ref.stopped == "collisions" and len(ref.sticking) >= 2
+    ride = riding(mp.mpf(eps), mp.mpf(k), law, 30)
+    d30 = mp.mpf(10) ** -30
+    with mp.workdps(40):
+        theta_star = (mp.mpf(ride.theta_star.a) + mp.mpf(ride.theta_star.b)) / 2
+        if law == "linear":
+            assert _phase_distance(theta_star, _closed_linear(eps, k)) < d30
+        for _, t_end in ref.sticking:
+            assert _phase_distance(phi0 + t_end, theta_star) <= 8 * d30 * (1 + t_end)
+    fast = fastpath.orbit(phi0, v0, eps, 40, drag=k, drag_law=law, restitution=r)
+    t_acc, t_end = ref.sticking[0]
+    tol = _fastpath_t_acc_tol(fast, eps, k, law, r, t_acc, w0, phi0)
+    assert abs(fast.sticking[0, 0] - t_acc) <= tol
+    flights = int(np.searchsorted(fast.t, fast.sticking[0, 1])) + 1
+    tol = 2 * flights * U * (float(t_end) + 8 * math.pi) + _fastpath_phase_tol(eps, k, law,
+                                                                                theta_star)
+    assert abs(fast.sticking[0, 1] - t_end) <= tol
+
+
+@pytest.mark.parametrize("law", ["linear", "quadratic"])
+def test_chatter_next_to_theta_star_rides_only_until_theta_star(law):
+    """Hard case (fastpath's test_chattering_next_to_drag_detachment_leaves_the_plate): a chatter
+    started 0.05 before theta*: its tail is summed only where the window proves a > 0, so the
+    episode starts before theta* and ends exactly there (t_end = theta* - phi0), never inside the
+    arc where the plate pulls away; fastpath agrees."""
+    eps, k, r = 1.5, 0.1, 0.5
+    ride = riding(mp.mpf(eps), mp.mpf(k), law, 30)
+    theta_star = float((mp.mpf(ride.theta_star.a) + mp.mpf(ride.theta_star.b)) / 2)
+    phi0 = theta_star - 0.05
+    v0 = 2e-4 - eps * math.sin(phi0)
+    ref = verify.orbit(phi0, v0, eps, 45, dps=30, drag=k, drag_law=law, restitution=r)
+    t_acc, t_end = ref.sticking[0]
+    assert 0 < t_acc < t_end
+    with mp.workdps(40):
+        theta = (mp.mpf(ride.theta_star.a) + mp.mpf(ride.theta_star.b)) / 2
+        assert abs(t_end - (theta - phi0)) <= 8 * mp.mpf(10) ** -30
+        assert _force(phi0 + t_acc, eps, k, law) > 0
+    fast = fastpath.orbit(phi0, v0, eps, 45, drag=k, drag_law=law, restitution=r)
+    assert abs(fast.sticking[0, 1] - t_end) <= 4 * U * 8 * math.pi + _fastpath_phase_tol(
+        eps, k, law, theta)
+    # fastpath's accumulation time here: see the strict xfail below
+    tol = _fastpath_t_acc_tol(fast, eps, k, law, r, t_acc, 2e-4, phi0)
+    print(f"near theta* {law}: fastpath t_acc error {float(abs(fast.sticking[0, 0] - t_acc)):.3g}"
+          f" against its documented bound {tol:.3g}")
+
+
+@pytest.mark.xfail(strict=True, reason="fastpath finding: near theta* (riding force a ~ 0.04) "
+                   "fastpath's t_acc misses by 5.5e-14, 1.5x the bound of tests/fastpath/"
+                   "test_drag_sticking.py (verify agrees with an independent 100-digit "
+                   "iteration of the impacts to 1e-28)")
+def test_fastpath_accumulation_bound_next_to_theta_star():
+    eps, k, r, law = 1.5, 0.1, 0.5, "linear"
+    ride = riding(mp.mpf(eps), mp.mpf(k), law, 30)
+    phi0 = float((mp.mpf(ride.theta_star.a) + mp.mpf(ride.theta_star.b)) / 2) - 0.05
+    v0 = 2e-4 - eps * math.sin(phi0)
+    t_acc = verify.orbit(phi0, v0, eps, 45, dps=30, drag=k, drag_law=law,
+                         restitution=r).sticking[0][0]
+    fast = fastpath.orbit(phi0, v0, eps, 45, drag=k, drag_law=law, restitution=r)
+    tol = _fastpath_t_acc_tol(fast, eps, k, law, r, t_acc, 2e-4, phi0)
+    assert abs(fast.sticking[0, 0] - t_acc) <= tol
+
+
 @pytest.mark.parametrize("law, k", [("linear", 0.5), ("quadratic", 1.0)])
 def test_eps_half_r_half_with_drag_stops_stuck(law, k):
     """Issue 16's done-when with drag: from (4, 3) the particle sticks for good (linear:
@@ -229,14 +300,14 @@ def test_eps_half_r_half_with_drag_stops_stuck(law, k):
 
 @pytest.mark.parametrize("law, k", [("linear", 0.1), ("quadratic", 0.1)])
 def test_dps_50_against_70_and_the_proved_tail_enclosure(law, k):
-    """eps = 1.5, r = 0.5 from next to chattering: the accumulation and detachment times at 50
+    """eps = 1.5, r = 0.3 from next to chattering: the accumulation and detachment times at 50
     and 70 digits (the 70-digit run iterates to w ~ 1e-23 and sums a tail ~1e-70 accurate); the
     proved enclosure of the 50-digit tail holds the 70-digit time from the same impact, and the
     model's remainder is measured: |T - T_70| <= q*T0/2 (the constant C <= 1/2 of the module
     docstring; measured, not proved)."""
-    eps, r, phi0, w0 = 1.5, 0.5, math.pi, 1e-3
+    eps, r, phi0, w0 = 1.5, 0.3, math.pi, 1e-3
     v0 = w0 - eps * math.sin(phi0)
-    lo_res = verify.orbit(phi0, v0, eps, 60, dps=50, drag=k, drag_law=law, restitution=r)
+    lo_res = verify.orbit(phi0, v0, eps, 40, dps=50, drag=k, drag_law=law, restitution=r)
     t50, end50 = lo_res.sticking[0]
     impacts = sum(1 for t in lo_res.t if t < t50) - 1
     hi_res = verify.orbit(phi0, v0, eps, impacts + 40, dps=70, drag=k, drag_law=law,
