@@ -113,6 +113,7 @@ from .sticking import Accumulation
 _GUARD_DPS = 10
 _WINDOW = 2  # the window H of the rigorous enclosure, in units of T0
 _MAX_DEPTH = 60  # halvings of a box in the sign proofs of the riding force
+_MAX_BOXES = 20_000  # boxes per sign proof of an arc: beyond it, NotDecided
 
 
 # --- the riding force a(theta) in interval arithmetic ------------------------------------------
@@ -304,12 +305,14 @@ def _prove_arc(ieps, ik, law, left, right, sign):
     if start >= end:
         return
     stack = [(start, end, 0)]
+    boxes = 0
     while stack:
         a, b, depth = stack.pop()
         val = _force(ieps, ik, law, iv.mpf([a, b]))
+        boxes += 1
         if (lo(val) > 0) if sign > 0 else (hi(val) < 0):
             continue
-        if depth >= _MAX_DEPTH:
+        if depth >= _MAX_DEPTH or boxes >= _MAX_BOXES:
             raise NotDecided(f"sign of the riding force not proved on [{mp.nstr(a, 15)}, "
                              f"{mp.nstr(b, 15)}]")
         m = (a + b) / 2
