@@ -73,8 +73,9 @@ def _phi(z, j):
     zmax = max(abs(lo(z)), abs(hi(z)))
     if zmax <= _SERIES_MAX:
         total, term, n = iv.mpf(0), iv.mpf(1) / mp.factorial(j), 0
+        tiny = _tiny()
         bound = mp.mpf(1) / mp.factorial(j)  # |z|**n/(n+j)!
-        while bound > _tiny():
+        while bound > tiny:
             total += term
             n += 1
             term = term * z / (n + j)
@@ -93,9 +94,10 @@ def _sinh_over(x):
     xmax = max(abs(lo(x)), abs(hi(x)))
     if xmax <= _SERIES_MAX:
         total, term, n = iv.mpf(0), iv.mpf(1), 0
+        tiny = _tiny()
         bound = mp.mpf(1)
         x2 = x * x
-        while bound > _tiny():
+        while bound > tiny:
             total += term
             n += 1
             term = term * x2 / ((2 * n) * (2 * n + 1))
@@ -110,8 +112,9 @@ def _log1p_over(x):
     xmax = max(abs(lo(x)), abs(hi(x)))
     if xmax <= _SERIES_MAX / 2:
         total, term, n = iv.mpf(0), iv.mpf(1), 0
+        tiny = _tiny()
         bound = mp.mpf(1)
-        while bound > _tiny():
+        while bound > tiny:
             total += term / (n + 1)
             n += 1
             term = -term * x

@@ -17,8 +17,9 @@ With the closed forms of :mod:`verify.drag` (``Y``, ``V`` from the departure vel
   ``d(t) >= w0*t - a*t**2/2 > 0`` on ``(0, 2*w0/a)``: the analytic start. The seed's
   lower-bound step uses this ``a``.
 * Concavity on ``[0, T]`` (:meth:`DragContext.concave_on`): ``d'' <= -1 - min(eta(v), eta(V(T)))
-  + |eps| <= 0`` proved in ``iv``. Then ``d(lo) > 0 > d(hi)`` with ``hi <= T`` certify the first
-  root as in the elastic ``|eps| <= 1`` case (chord argument).
+  + |eps| <= 0`` proved in ``iv``, or the ``iv`` enclosure of ``d''`` over the box ``[0, T]``
+  (:meth:`DragContext.curvature`) ``<= 0``. Then ``d(lo) > 0 > d(hi)`` with ``hi <= T``
+  certify the first root as in the elastic ``|eps| <= 1`` case (chord argument).
 * A departure at rest relative to the plate, ``w0 = 0`` exactly (:func:`departure_start`):
   ``d(0) = d'(0) = 0`` and ``d(t) = integral_0^t (t-s)*d''(s) ds``, so ``d'' > 0`` on ``(0, h]``
   gives ``d > 0`` there. ``d''`` is proved ``> 0`` on ``(0, h]`` either directly
@@ -87,13 +88,20 @@ class DragContext:
         return max(top, mp.zero) + abs(self.eps)
 
     def concave_on(self, end) -> bool:
-        """Proved ``d'' <= 0`` on ``[0, end]`` (module docstring)."""
+        """Proved ``d'' <= 0`` on ``[0, end]`` (module docstring): from the global bound, else
+        from the enclosure of ``d''`` over the box ``[0, end]`` (a short flight, e.g. one of a
+        chattering run, where ``-d''`` is close to the riding force ``1 + eta(u) - eps*cos``)."""
         try:
             eta_end = self.flight.eta(self.flight.velocity(end))
         except NotDecided:
             return False
         eta_min = min(lo(eta_end), lo(self.flight.eta(iv.mpf(self.v))))
-        return hi(-1 - iv.mpf(eta_min) + abs(self.ieps)) <= 0
+        if hi(-1 - iv.mpf(eta_min) + abs(self.ieps)) <= 0:
+            return True
+        try:
+            return hi(self.curvature(mp.zero, end)) <= 0
+        except NotDecided:
+            return False
 
     def needed(self, t):
         return 0  # no conditioning estimate with drag: the precision is doubled

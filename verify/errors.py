@@ -28,13 +28,14 @@ def _short(x) -> str:
 
 
 class ChatteringDetected(ArithmeticError):
-    """Impacts accumulate (restitution < 1): the orbit would need infinitely many collisions.
+    """Impacts accumulate (restitution < 1) but no tail could be summed.
 
-    Raised by :func:`verify.orbit` after collision ``n`` (at time ``t``, state ``phi``, ``v``)
-    when the velocity relative to the plate, ``w = v + eps*sin(phi)``, fell below the threshold
-    ``w_min`` while the gap's curvature ``d''(0)`` is negative (the plate pulls the particle
-    back), with drag > 0: verify computes the accumulation and sticking only without drag
-    (:mod:`verify.sticking`).
+    Raised by :func:`verify.orbit` with drag > 0 after collision ``n`` (at time ``t``, state
+    ``phi``, ``v``) when the velocity relative to the plate, ``w = v + eps*sin(phi)``, fell below
+    ``w_min = 10**(-dps//2)*(1 + |v| + |eps|)``, far below where :mod:`verify.drag_sticking`
+    sums the tail (``w ~ 10**(-dps/3)``), while the gap's curvature ``d''(0)`` is negative (the
+    plate pulls the particle back): the accumulation could not be proved at this precision
+    (e.g. a chatter that reaches the detachment phase), so the orbit stops instead of crawling.
     """
 
     def __init__(self, n: int, t, phi, v, w, w_min) -> None:
@@ -42,5 +43,5 @@ class ChatteringDetected(ArithmeticError):
         super().__init__(
             f"chattering: after collision {n} (t={_short(t)}, phi={_short(phi)}, v={_short(v)}) "
             f"the velocity relative to the plate is w={_short(w)} < {_short(w_min)} and falling: "
-            "impacts accumulate; verify.orbit computes sticking phases only without drag"
+            "impacts accumulate, but no accumulation tail could be proved"
         )

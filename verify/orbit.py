@@ -12,6 +12,7 @@ from ._inputs import check_physics, check_state
 from ._precision import hi, working_dps
 from .collision import step
 from .drag import DragFlight
+from .drag_sticking import drag_accumulation, drag_detachment_step, riding, riding_time
 from .errors import ChatteringDetected
 from .sticking import accumulation, can_detach, detachment_step, stay
 
@@ -56,8 +57,15 @@ def orbit(phi0, v0, eps, n: int, dps: int = 50, *, drag=0.0, drag_law: str = "li
     ``(theta*, u(theta*))`` (``w0 = 0``). The number of chattering impacts recorded depends on
     this threshold: compare implementations by their episodes and the impacts after them.
 
-    Drag with ``r < 1``: not covered; when ``w`` falls below ``w_min = 10**(-dps//3) *
-    (1 + |v| + |eps|)`` with ``d''(0) < 0`` proved, :class:`verify.errors.ChatteringDetected`.
+    Drag with ``r < 1`` (:mod:`verify.drag_sticking`): the same with the drag's tail
+    ``T = T0 + J*T0**2/(3a) - c*T0**2/6`` (its enclosure proved, ``a = 1 + eta(u) -
+    eps*cos(theta)`` the riding force), the exact decision "ever leaves" (linear drag iff
+    ``eps**2*(1 + drag**2) > 1``), the proved detachment phase (linear: ``atan(drag) -
+    arccos(1/E)``, ``E = |eps|*sqrt(1 + drag**2)``, ``+ pi`` for ``eps < 0``, mod 2*pi; quadratic:
+    the isolated root of ``a``) and the certified flight from it. Should ``w`` fall below
+    ``w_min = 10**(-dps//2) * (1 + |v| + |eps|)`` (far below where the tail is summed) with no
+    tail summed and ``d''(0) < 0`` proved, :class:`verify.errors.ChatteringDetected`.
+    Undecidable steps raise :class:`verify.errors.UndecidableCollision`.
     """
     phys = check_physics(drag, drag_law, restitution)
     phi, v, eps_, _, dps = check_state(phi0, v0, eps, dps=dps, names=("phi0", "v0", "eps"),
@@ -67,11 +75,16 @@ def orbit(phi0, v0, eps, n: int, dps: int = 50, *, drag=0.0, drag_law: str = "li
     kwargs = {} if phys.is_default else {"drag": phys.drag, "drag_law": phys.drag_law,
                                          "restitution": phys.restitution}
     sticks = phys.restitution < 1 and phys.drag == 0
+    drag_sticks = phys.restitution < 1 and phys.drag > 0
     phis, vs, ts, episodes = [phi], [v], [mp.zero], []
     t = mp.zero
     detached = False
     for k in range(int(n)):
-        if detached:
+        if detached and drag_sticks:
+            phi, v, tau = drag_detachment_step(eps_, phys.drag, phys.drag_law,
+                                               phys.restitution, dps)
+            detached = False
+        elif detached:
             phi, v, tau = detachment_step(eps_, phys.restitution, dps)
             detached = False
         else:
@@ -81,7 +94,22 @@ def orbit(phi0, v0, eps, n: int, dps: int = 50, *, drag=0.0, drag_law: str = "li
         phis.append(phi)
         vs.append(v)
         ts.append(t)
-        if sticks:
+        if drag_sticks:
+            acc = drag_accumulation(phi, v, eps_, phys.drag, phys.drag_law, phys.restitution,
+                                    dps)
+            if acc is None:
+                _check_chattering(k + 1, t, phi, v, eps_, phys, dps)
+                continue
+            ride = riding(eps_, phys.drag, phys.drag_law, dps)
+            with working_dps(dps + 10):
+                t_acc = t + acc.tail
+                if ride is None:
+                    episodes.append((t_acc, mp.inf))
+                    return Orbit(tuple(phis), tuple(vs), tuple(ts), tuple(episodes), "stuck")
+                t = t_acc + riding_time(acc.phase, ride)
+            episodes.append((t_acc, t))
+            detached = True
+        elif sticks:
             acc = accumulation(phi, v, eps_, phys.restitution, dps)
             if acc is None:
                 continue
@@ -93,14 +121,12 @@ def orbit(phi0, v0, eps, n: int, dps: int = 50, *, drag=0.0, drag_law: str = "li
                 t = t_acc + stay(acc.phase, eps_)
             episodes.append((t_acc, t))
             detached = True
-        elif phys.restitution < 1:
-            _check_chattering(k + 1, t, phi, v, eps_, phys, dps)
     return Orbit(tuple(phis), tuple(vs), tuple(ts), tuple(episodes))
 
 
 def _check_chattering(n, t, phi, v, eps, phys, dps):
     with working_dps(dps + 10):
-        w_min = mp.mpf(10) ** (-(dps // 3)) * (1 + abs(v) + abs(eps))
+        w_min = mp.mpf(10) ** (-(dps // 2)) * (1 + abs(v) + abs(eps))
         w = iv.mpf(v) + iv.mpf(eps) * iv.sin(iv.mpf(phi))
         if hi(w) >= w_min:
             return

@@ -160,8 +160,11 @@ def test_concave_shortcut_refuses_a_wrong_candidate(monkeypatch):
 
 
 def test_concave_shortcut_is_used_where_the_gap_is_concave():
+    """Concave from the global bound (eps = 0.6) or from the enclosure of d'' over [0, T]
+    (eps = 3 from phase 4: cos < 0 over the short flight); not from phase 0 (d''(0) > 0)."""
     assert verify.certify_flight(4.0, 3.0, 0.6, drag=0.01).boxes == 2
-    assert verify.certify_flight(4.0, 3.0, 3.0, drag=0.01).boxes > 2
+    assert verify.certify_flight(4.0, 3.0, 3.0, drag=0.01).boxes == 2
+    assert verify.certify_flight(0.0, 3.0, 3.0, drag=0.01).boxes > 2
 
 
 # --- departures at rest (w0 = 0 exactly) ----------------------------------------------------

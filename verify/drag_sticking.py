@@ -1,0 +1,477 @@
+"""Chattering, accumulation, sticking and detachment with drag and restitution r < 1.
+
+The verify counterpart of the dissipation spec with drag (issue 16; the no-drag case is
+:mod:`verify.sticking`, whose structure this module follows). Independent of ``fastpath``.
+
+Relative motion. Let x = y - eps*cos(theta) be the gap (particle minus plate), theta the phase
+(time), u(theta) = -eps*sin(theta) the plate's velocity and V = u + x' the particle's. In flight
+V' = -1 - eta(V) (eta(V) = k*V "linear", k*V*|V| "quadratic", nondecreasing, eta(0) = 0), so
+
+    x'' = -1 - eta(u + x') + eps*cos(theta) = -a(theta) - [eta(u + x') - eta(u)],
+    a(theta) = 1 + eta(u(theta)) - eps*cos(theta)        (the riding force)
+
+and an impact maps x' = w_in < 0 to w = -r*w_in. The bracket has the sign of x'.
+
+1. Accumulation (:func:`drag_accumulation`). After an impact at phase theta with relative
+velocity w > 0 (an interval ``iw``), take the time window [0, H], H = 2*T0, T0 = 2*w/(a*(1-r)),
+and the velocity box W = 2*hi(w). In interval arithmetic over the phase box Theta = theta + [0, H]
+and the relative velocities [-W, W]:
+
+    a_lo <= 1 + eta(u(Theta) + [-W, W]) - eps*cos(Theta) <= a_hi,     a_lo > 0,  rho = a_hi/a_lo,
+
+(eta's enclosure from the ends of its argument: eta is nondecreasing). While the motion stays
+in the window with |x'| <= W, -a_hi <= x'' <= -a_lo, and the no-drag argument applies verbatim:
+a flight from w lasts 2*w/a_hi <= tau <= 2*w/a_lo, x' decreases from w to w_in with
+-w_in in [w*(2/rho - 1), w*(2*rho - 1)], so the next w' = -r*w_in is in
+[r*w*(2/rho - 1), r*w*(2*rho - 1)] and |x'| <= w*(2*rho - 1) during the flight. With
+g = r*(2*rho - 1) < 1, w_k <= w*g**k <= w, so |x'| <= hi(w)*(2*rho - 1) < W when 2*rho - 1 < 2
+(checked): the velocity bound holds strictly wherever the acceleration bound was used, so by
+continuity (first time where |x'| = W: impossible) it holds throughout. Summing,
+
+    T_lo = 2*w/(a_hi*(1 - r*max(2/rho - 1, 0))) <= T <= T_hi = 2*w/(a_lo*(1 - g)),
+
+provided T_hi <= H (every flight then lies in the window, by induction). This is PROVED (iv
+arithmetic with outward rounding; ``ArithmeticError`` if the model value below falls outside it).
+Its width is O(T0**2).
+
+The value used (the model, derived as in ``fastpath.drag_sticking`` but independently): to first
+order x'' = -a + J*t - c*x' with J = dA/dtheta = c*eps*cos(theta) - eps*sin(theta) (A = -a at
+x' = 0) and c = eta'(u) (k, resp. 2*k*|u|). One flight from w: x = w*t - a*t**2/2 + J*t**3/6 -
+c*(w*t**2/2 - a*t**3/6), so tau = tau0 + J*tau0**2/(3a) - c*tau0**2/6 (tau0 = 2w/a) and
+w_in = -w*(1 - c*tau0/3) + J*tau0**2/6. Summing the drag part over w_k ~ r**k*w*prod(1 - c*tau0_j/3)
+gives -c*tau0**2*[r/(3(1-r)**2(1+r)) + 1/(6(1-r**2))] = -c*T0**2/6, so
+
+    T = T0 + J*T0**2/(3a) - c*T0**2/6 + R,
+
+with |R| <= C*q*T0, q = T0**2*(J**2/a**2 + |J|*c/a + c**2 + A2/a + p2*a), A2 = |eps|*(1 + k)
+(linear) or |eps| + 2*k*eps**2 (quadratic) bounding |A''|, p2 = |eta''| (0, resp. 2k). C <= 1/2
+is NOT proved: it is measured (tests/verify/test_drag_sticking_verify.py: the tail against the
+impacts iterated at 70 digits stays inside the proved enclosure and agrees to the working
+precision). The tail is summed once q*T0 <= 10**-dps (w ~ 10**(-dps/3)), so R is below the last
+digit of the orbit's times, and the proved enclosure is ~10**(-2*dps/3) wide: the accumulation is
+certified, its time to the working precision rests on the measured constant.
+
+2. Riding and detachment (:func:`riding`). From the accumulation point the particle rides the
+plate (x = x' = 0, V = u) while a >= 0 and leaves where a falls through 0.
+
+Never detaches, decided EXACTLY (the inputs are binary numbers; rational arithmetic):
+linear drag, a = 1 - eps*(cos(theta) + k*sin(theta)) = 1 - E*cos(theta - beta'), E =
+|eps|*sqrt(1 + k**2), beta' = atan(k) (eps > 0) or atan(k) + pi (eps < 0), so min a = 1 - E and
+the particle can leave iff eps**2*(1 + k**2) > 1 (at equality a touches 0 without crossing:
+never). Quadratic drag, in the frame e = |eps|, theta' = theta (eps > 0) or theta - pi:
+a = 1 - f, f = e*cos(theta') + k*e**2*sin(theta')*|sin(theta')|; on sin >= 0 f = e*c + k*e**2*(1 -
+c**2) (c = cos theta') is largest at c = 1/(2ke) if 2ke > 1 (max k*e**2 + 1/(4k)), else at c = 1
+(max e); on sin < 0 f <= e*c <= e. So the particle can leave iff e > 1 (2ke <= 1), resp.
+4*k**2*e**2 - 4*k + 1 > 0 (2ke > 1). Stuck for good: ``t_end = inf``, ``stopped = "stuck"``.
+
+Where it can leave, the detachment phase theta* and the end theta_2 of the arc where a < 0 are
+isolated in iv (:func:`_isolate`): boxes Theta*, Theta_2 with a(lo) > 0 > a(hi), a' < 0 on
+Theta* (one simple falling root) and a(lo) < 0 < a(hi), a' > 0 on Theta_2. Candidates (not
+rigorous): linear theta* = beta' - alpha, theta_2 = beta' + alpha, alpha = arccos(1/E) =
+atan(sqrt(E**2 - 1)) (the closed form of the brief: theta* = atan(k) - arccos(1/E) mod 2*pi for
+eps > 0, + pi for eps < 0); quadratic by bisection of f - 1 on its increasing branch
+[theta'_min, theta'_max] and decreasing branch [theta'_max, theta'_min + 2*pi] (theta'_max =
+arccos(1/(2ke)), theta'_min = -arccos(-1/(2ke)) if 2ke > 1, else 0 and -pi; f' =
+sin*(2k*e**2*c - e) on sin > 0, |sin|*(e + 2k*e**2*c) on sin < 0). Then :func:`_prove_arc`
+proves a < 0 on (theta*, theta_2) and a > 0 on (theta_2, theta* + 2*pi) in iv: monotone pieces
+next to each root (a' of one sign on [lo(Theta), hi(Theta) + delta], a vanishing at the root
+inside) and boxes with a proved sign in between. So the sign of a over a whole period is
+PROVED: a ride that starts where a > 0 (the accumulation phase, where a >= a_lo > 0 is proved by
+step 1) lasts until the next theta* (:func:`riding_time`), and never ends in the middle of the
+arc where the plate already pulls away. Undecided (E within ~10**-wdps of 1, where the two
+roots merge, or a degenerate root with a' = 0 such as e = 1 with 2ke > 1 quadratic) raises the
+precision and finally :class:`UndecidableCollision`: no guess.
+
+3. Flight from detachment (:func:`drag_detachment_flight`). Departure at the exact theta* with
+V = u(theta*), x = x' = 0, known only through the enclosure Theta* (the departure velocity
+is the interval u(Theta*): no rounded state with a w0 that is only nearly 0 enters the proof).
+x' > 0 on (0, theta_2 - theta*): where x' <= 0, x'' = -a - [eta(u + x') - eta(u)] >= -a > 0,
+so x' cannot reach or stay at a value <= 0 after starting at 0 (if x'(t1) <= 0, on the last
+stretch [s, t1] with x' <= 0 and x'(s) = 0, x' increases strictly: x'(t1) > 0, a contradiction).
+Hence the gap d = x > 0 on (0, free], free = lo(Theta_2) - hi(Theta*) (rounded down), for every
+nondecreasing eta. The certificate :func:`verify.certify._search` (Taylor boxes, candidate
+search) runs from there on the drag gap of :mod:`verify.drag_certify` evaluated for the phase
+interval Theta* and the velocity interval u(Theta*) (:class:`_DetachedContext`): every
+enclosure is valid for all departures in the box, the exact one included.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import NamedTuple
+
+from mpmath import iv, mp
+
+from ._precision import hi, lo, working_dps
+from .certify import _local_candidate, _search, _Undecided
+from .drag import DragFlight, NotDecided
+from .drag_certify import DragContext
+from .errors import UndecidableCollision
+from .phase import reduce_phase
+from .sticking import Accumulation
+
+_GUARD_DPS = 10
+_WINDOW = 2  # the window H of the rigorous enclosure, in units of T0
+_MAX_DEPTH = 60  # halvings of a box in the sign proofs of the riding force
+_MAX_BOXES = 20_000  # boxes per sign proof of an arc: beyond it, NotDecided
+
+
+# --- the riding force a(theta) in interval arithmetic ------------------------------------------
+def _eta(k, law, vel):
+    """``eta`` over the interval ``vel`` (nondecreasing: from the ends)."""
+    if law == "linear":
+        return k * vel
+    ends = [k * iv.mpf(x) * abs(x) for x in (lo(vel), hi(vel))]
+    return iv.mpf([min(lo(e) for e in ends), max(hi(e) for e in ends)])
+
+
+def _eta_slope(k, law, vel):
+    """``eta'`` over ``vel``: ``k`` or ``2*k*|V|``."""
+    return k if law == "linear" else 2 * k * abs(vel)
+
+
+def _force(ieps, ik, law, ith, rel=None):
+    """``1 + eta(u + rel) - eps*cos(theta)`` over the phase interval ``ith`` (``u = -eps*sin``),
+    ``rel`` an interval of relative velocities (default 0: the riding force ``a``)."""
+    vel = -ieps * iv.sin(ith)
+    if rel is not None:
+        vel = vel + rel
+    return 1 + _eta(ik, law, vel) - ieps * iv.cos(ith)
+
+
+def _force_slope(ieps, ik, law, ith):
+    """``a'(theta) = eta'(u)*u' + eps*sin(theta)``, ``u' = -eps*cos(theta)``."""
+    u = -ieps * iv.sin(ith)
+    return _eta_slope(ik, law, u) * (-ieps * iv.cos(ith)) + ieps * iv.sin(ith)
+
+
+def _mid(x):
+    return (lo(x) + hi(x)) / 2
+
+
+# --- 1. accumulation -----------------------------------------------------------------------------
+def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
+    """The summed tail from the impact state ``(phi, v)`` (exact ``mpf``) with drag ``k``, or None
+    when the module docstring's conditions (``q*T0 <= 10**-dps``, the enclosure proved) fail.
+
+    Computed at ``dps + 10`` digits; ``tail`` (the model T), ``enclosure`` ``(T_lo, T_hi)``
+    (proved) and ``phase`` (theta + T) are returned at that precision.
+    """
+    with working_dps(dps + _GUARD_DPS) as prec:
+        iphi = reduce_phase(phi, prec).enclosure
+        ieps, ik, ir = iv.mpf(eps), iv.mpf(k), iv.mpf(r)
+        iw = iv.mpf(v) + ieps * iv.sin(iphi)
+        ia = _force(ieps, ik, law, iphi)
+        if not (lo(iw) > 0 and lo(ia) > 0 and r < 1):
+            return None
+        w, a = _mid(iw), _mid(ia)
+        u = -eps * mp.sin(_mid(iphi))
+        c = k if law == "linear" else 2 * k * abs(u)
+        jerk = c * eps * mp.cos(_mid(iphi)) - eps * mp.sin(_mid(iphi))
+        a2, p2 = (abs(eps) * (1 + k), 0) if law == "linear" else (abs(eps) + 2 * k * eps**2,
+                                                                   2 * k)
+        t0 = 2 * w / (a * (1 - r))
+        q = t0**2 * (jerk**2 / a**2 + abs(jerk) * c / a + c**2 + a2 / a + p2 * a)
+        if not q * t0 <= mp.mpf(10) ** (-dps):
+            return None
+        enclosure = _enclosure(iphi, iw, ieps, ik, law, ir, _WINDOW * t0)
+        if enclosure is None:
+            return None
+        tail = t0 + jerk * t0**2 / (3 * a) - c * t0**2 / 6
+        if not enclosure[0] <= tail <= enclosure[1]:
+            raise ArithmeticError(
+                f"drag accumulation tail {mp.nstr(tail, 20)} outside its proved enclosure "
+                f"[{mp.nstr(enclosure[0], 20)}, {mp.nstr(enclosure[1], 20)}] "
+                f"(phi={phi}, v={v}, drag={k}, {law})"
+            )
+        return Accumulation(tail, enclosure, _mid(iphi) + tail)
+
+
+def _enclosure(iphi, iw, ieps, ik, law, ir, window):
+    """``(T_lo, T_hi)`` proved on the window ``[0, window]`` (module docstring, 1.), or None."""
+    big_w = 2 * hi(iw)
+    accel = _force(ieps, ik, law, iphi + iv.mpf([0, window]), iv.mpf([-big_w, big_w]))
+    a_lo, a_hi = iv.mpf(lo(accel)), iv.mpf(hi(accel))
+    if not lo(a_lo) > 0:
+        return None
+    rho = a_hi / a_lo
+    if not hi(2 * rho - 1) < 2:  # |x'| <= hi(w)*(2*rho - 1) < W
+        return None
+    growth = ir * (2 * rho - 1)
+    if not hi(growth) < 1:
+        return None
+    t_hi = hi(2 * iw / (a_lo * (1 - growth)))
+    if not t_hi <= window:
+        return None
+    shrink = max(lo(ir * (2 / rho - 1)), mp.zero)
+    t_lo = lo(2 * iw / (a_hi * (1 - iv.mpf(shrink))))
+    return t_lo, t_hi
+
+
+# --- 2. riding and detachment --------------------------------------------------------------------
+def _fraction(x) -> Fraction:
+    sign, man, exp, _ = mp.mpf(x)._mpf_
+    value = Fraction(man) * (Fraction(2) ** exp)
+    return -value if sign else value
+
+
+def can_detach(eps, k, law) -> bool:
+    """A particle riding the plate ever leaves it (module docstring, 2.): decided exactly on the
+    binary values of ``eps`` and ``k``."""
+    e, kk = abs(_fraction(eps)), _fraction(k)
+    if law == "linear":
+        return e * e * (1 + kk * kk) > 1
+    if 2 * kk * e > 1:
+        return 4 * kk * kk * e * e - 4 * kk + 1 > 0
+    return e > 1
+
+
+class Riding(NamedTuple):
+    """The sign structure of the riding force over one period (module docstring, 2.): ``a``
+    falls through 0 at the unique theta* in ``theta_star`` (an ``iv`` box, ``lo`` in
+    ``[-pi, 2*pi)``), is < 0 up to theta_2 in ``theta_2`` (an ``iv`` box right of it) and > 0
+    from there to theta* + 2*pi. ``free``: ``lo(theta_2) - hi(theta_star)`` rounded down (the gap
+    of the flight from detachment is > 0 on (0, free]). ``wdps``: the working digits."""
+
+    theta_star: object
+    theta_2: object
+    free: object
+    wdps: int
+
+
+def _candidates(eps, k, law):
+    """Non-rigorous (theta*, theta_2) at the current precision, theta* < theta_2 < theta* + 2pi."""
+    e = abs(eps)
+    shift = mp.zero if eps > 0 else mp.pi
+    if law == "linear":
+        big_e2 = e * e * (1 + k * k)
+        alpha = mp.atan(mp.sqrt(big_e2 - 1))
+        beta = mp.atan(k) + shift
+        return beta - alpha, beta + alpha
+
+    def f(x):
+        s = mp.sin(x)
+        return e * mp.cos(x) + k * e * e * s * abs(s)
+
+    if 2 * k * e > 1:
+        c = 1 / (2 * k * e)
+        t_min, t_max = -mp.acos(-c), mp.acos(c)
+    else:
+        t_min, t_max = -mp.pi, mp.zero
+    star = _bisect(f, t_min, t_max, rising=True)
+    two = _bisect(f, t_max, t_min + 2 * mp.pi, rising=False)
+    return star + shift, two + shift
+
+
+def _bisect(f, a, b, rising):
+    for _ in range(mp.prec + 20):
+        m = (a + b) / 2
+        if not a < m < b:
+            break
+        if (f(m) - 1 < 0) == rising:
+            a = m
+        else:
+            b = m
+    return (a + b) / 2
+
+
+def _isolate(ieps, ik, law, c, falling):
+    """An ``iv`` box around ``c`` holding exactly one root of ``a``, proved (module docstring):
+    opposite signs at the ends and ``a'`` of one sign over the box; else :class:`NotDecided`."""
+    for shift in (12, 24, 48):
+        delta = mp.ldexp(1 + abs(c), shift - mp.prec)
+        left, right = c - delta, c + delta
+        a_l = _force(ieps, ik, law, iv.mpf(left))
+        a_r = _force(ieps, ik, law, iv.mpf(right))
+        slope = _force_slope(ieps, ik, law, iv.mpf([left, right]))
+        if falling:
+            proved = lo(a_l) > 0 and hi(a_r) < 0 and hi(slope) < 0
+        else:
+            proved = hi(a_l) < 0 and lo(a_r) > 0 and lo(slope) > 0
+        if proved:
+            return iv.mpf([left, right])
+    raise NotDecided(f"root of the riding force near theta={mp.nstr(c, 20)} not isolated")
+
+
+def _prove_arc(ieps, ik, law, left, right, sign):
+    """Prove ``sign*a > 0`` strictly between the roots in the boxes ``left`` and ``right``
+    (module docstring, 2.); :class:`NotDecided` when it cannot be done at this precision."""
+    x0, x1 = hi(left), lo(right)
+    span = x1 - x0
+    if not span > 0:
+        raise NotDecided("the two roots of the riding force are not separated")
+    start = _monotone_end(ieps, ik, law, lo(left), x0, span, sign, +1)
+    end = _monotone_end(ieps, ik, law, hi(right), x1, span, -sign, -1)
+    if start >= end:
+        return
+    stack = [(start, end, 0)]
+    boxes = 0
+    while stack:
+        a, b, depth = stack.pop()
+        val = _force(ieps, ik, law, iv.mpf([a, b]))
+        boxes += 1
+        if (lo(val) > 0) if sign > 0 else (hi(val) < 0):
+            continue
+        if depth >= _MAX_DEPTH or boxes >= _MAX_BOXES:
+            raise NotDecided(f"sign of the riding force not proved on [{mp.nstr(a, 15)}, "
+                             f"{mp.nstr(b, 15)}]")
+        m = (a + b) / 2
+        stack += [(a, m, depth + 1), (m, b, depth + 1)]
+
+
+def _monotone_end(ieps, ik, law, outer, inner, span, slope_sign, direction):
+    """The far end of a stretch from the root box (``outer``..``inner``) on which ``a'`` has the
+    sign ``slope_sign``: a vanishes at the root, so a has the arc's sign on the rest of it."""
+    delta = span / 2
+    for _ in range(_MAX_DEPTH):
+        end = inner + direction * delta
+        box = iv.mpf([min(outer, end), max(outer, end)])
+        slope = _force_slope(ieps, ik, law, box)
+        if (lo(slope) > 0) if slope_sign > 0 else (hi(slope) < 0):
+            return end
+        delta /= 2
+    return inner
+
+
+_RIDING_CACHE: dict = {}
+
+
+def _riding_at(eps, k, law) -> Riding:
+    """:class:`Riding` proved at the current precision (module docstring, 2.), or
+    :class:`NotDecided`."""
+    ieps, ik = iv.mpf(eps), iv.mpf(k)
+    c_star, c_two = _candidates(eps, k, law)
+    star = _isolate(ieps, ik, law, c_star, falling=True)
+    two = _isolate(ieps, ik, law, c_two, falling=False)
+    _prove_arc(ieps, ik, law, star, two, -1)
+    _prove_arc(ieps, ik, law, two, star + 2 * iv.pi, +1)
+    return Riding(star, two, lo(iv.mpf(lo(two)) - hi(star)), mp.dps)
+
+
+def riding(eps, k, law, dps: int, max_dps: int | None = None) -> Riding | None:
+    """The sign structure of the riding force (module docstring, 2.): None when the particle
+    never leaves the plate (decided exactly), else a :class:`Riding` proved at the first
+    precision from ``dps + 10`` digits that decides it (doubled up to ``max_dps``, default
+    ``max(4*dps, 400)``); :class:`UndecidableCollision` beyond. Cached per inputs."""
+    if not can_detach(eps, k, law):
+        return None
+    key = (eps, k, law, dps)
+    if key not in _RIDING_CACHE:
+        _RIDING_CACHE[key] = _with_precision(lambda: _riding_at(eps, k, law), eps, k, law, dps,
+                                             max_dps, "detachment")
+    return _RIDING_CACHE[key]
+
+
+def _with_precision(attempt, eps, k, law, dps, max_dps, what):
+    """Run ``attempt`` from ``dps + 10`` digits, doubling on :class:`NotDecided` (or the
+    certificate's undecided) up to ``max_dps``; then :class:`UndecidableCollision`."""
+    max_dps = max(4 * dps, 400) if max_dps is None else max_dps
+    wdps = dps + _GUARD_DPS
+    while True:
+        try:
+            with working_dps(wdps):
+                return attempt()
+        except (_Undecided, NotDecided) as und:
+            if wdps >= max_dps:
+                with working_dps(wdps):
+                    raise UndecidableCollision(mp.nan, mp.nan, eps, wdps,
+                                               f"{what} with drag={k} ({law}): {und}") from None
+            wdps = min(max_dps, 2 * wdps)
+
+
+def detachment_phase(ride: Riding):
+    """theta* in [0, 2*pi) (midpoint of the proved box), at the current precision."""
+    theta = _mid(ride.theta_star)
+    return theta % (2 * mp.pi)
+
+
+def riding_time(phase, ride: Riding):
+    """Time riding the plate from ``phase`` (where a > 0 is proved) to the next theta*:
+    ``(theta* - phase) mod 2*pi`` in ``(0, 2*pi]`` at the current precision."""
+    two_pi = 2 * mp.pi
+    d = _mid(ride.theta_star) - phase
+    d -= two_pi * mp.floor(d / two_pi)
+    return d if d > 0 else two_pi
+
+
+# --- 3. the flight from detachment ---------------------------------------------------------------
+class _BoxFlight(DragFlight):
+    """:class:`verify.drag.DragFlight` from an interval of departure velocities (every
+    enclosure holds for each velocity in it); the velocity's sign must be decided."""
+
+    def __init__(self, iv_v, k, law):
+        if not (lo(iv_v) > 0 or hi(iv_v) < 0):
+            raise NotDecided("the velocity at detachment is within rounding of 0")
+        self.v, self.k, self.law = _mid(iv_v), k, law
+        self.iv_v, self.iv_k = iv_v, iv.mpf(k)
+        self.s = iv.sqrt(self.iv_k)
+        self.t_top = None
+        if law == "quadratic":
+            if hi(iv_v) < 0 and not hi(self.iv_k * iv_v * iv_v) < 1:
+                raise NotDecided("detachment at or below the terminal velocity")
+            if lo(iv_v) > 0:
+                self.t_top = iv.atan2(self.s * self.iv_v, 1) / self.s
+
+
+class _DetachedContext(DragContext):
+    """The drag gap from the detachment box (module docstring, 3.)."""
+
+    def __init__(self, ride: Riding, eps, k, law, dps, wdps):
+        ith = ride.theta_star
+        self.phi_exact, self.iphi, self.eps = _mid(ith), ith, eps
+        self.dps, self.wdps = dps, wdps
+        self.ieps = iv.mpf(eps)
+        self.flight = _BoxFlight(-self.ieps * iv.sin(ith), k, law)
+        self.v = self.flight.v
+
+    def curvature_bound(self):
+        """``max(1 + eta(v), 0) + |eps| >= -d''`` (V monotone, :mod:`verify.drag_certify`)."""
+        top = hi(1 + self.flight.eta(self.flight.iv_v))
+        return max(top, mp.zero) + abs(self.eps)
+
+
+def drag_detachment_flight(eps, k, law, dps: int, max_dps: int | None = None):
+    """``(ride, lo, hi, wdps)``: the proved enclosure ``(lo, hi)`` of the first root of the gap
+    from detachment (module docstring, 3.) and the :class:`Riding` it started from, both at the
+    working digits ``wdps`` (raised as :func:`verify.certify_flight` does);
+    :class:`UndecidableCollision` at ``max_dps``."""
+    def attempt():
+        ride = _riding_at(eps, k, law)
+        ctx = _DetachedContext(ride, eps, k, law, dps, mp.dps)
+        left, right, _, _ = _search(ctx, ctx.curvature_bound(), ride.free, None,
+                                    candidate=_local_candidate)
+        return ride, left, right, mp.dps
+
+    return _with_precision(attempt, eps, k, law, dps, max_dps, "flight from detachment")
+
+
+_STEP_CACHE: dict = {}
+
+
+def drag_detachment_step(eps, k, law, r, dps: int):
+    """``(phi1, v1, tau)``: the impact ending the flight from detachment (the same after every
+    episode, cached). ``tau`` is the midpoint of the proved enclosure; ``theta = theta* + tau``
+    (theta* the midpoint of its box), ``v_in = V(tau)`` of the flight from ``u(theta*)``,
+    ``u = -eps*sin(theta)``, ``v1 = (1 + r)*u - r*v_in``; phase reduced to ``[0, 2*pi)``; all at
+    the certificate's precision, rounded to ``dps``."""
+    key = (eps, k, law, r, dps)
+    if key in _STEP_CACHE:
+        return _STEP_CACHE[key]
+    ride, left, right, wdps = drag_detachment_flight(eps, k, law, dps)
+    with working_dps(wdps + _GUARD_DPS):
+        tau = (left + right) / 2
+        theta_star = _mid(ride.theta_star)
+        theta = theta_star + tau
+        v_star = -eps * mp.sin(theta_star)
+        flight = DragFlight(v_star, k, law)
+        v_in = _mid(flight.velocity(tau))
+        u = -eps * mp.sin(theta)
+        v1 = (1 + r) * u - r * v_in
+        two_pi = 2 * mp.pi
+        phi1 = theta - two_pi * mp.floor(theta / two_pi)
+    with working_dps(dps):
+        phi1, v1, tau = +phi1, +v1, +tau
+        if phi1 >= 2 * mp.pi:
+            phi1 = mp.zero
+    _STEP_CACHE[key] = (phi1, v1, tau)
+    return phi1, v1, tau
