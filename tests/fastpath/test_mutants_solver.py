@@ -1,0 +1,234 @@
+"""Tests written against surviving mutants of the scalar flight solvers (issue 12; the AST
+driver's ``solver`` group, ``scripts/mutation/ensemble.py --group solver``).
+
+The solver behind ``fastpath.flight`` answers most |eps| <= 1 flights in the lockstep lanes
+(``fastpath.lockstep``); ``fastpath.concave`` is reached from orbits, the ensembles' fallback and
+the flights the lanes give up. These tests call ``concave_flight`` (and ``flight_from`` with
+GENERAL) directly, and hold every answer to plain facts: CONVERGED, inside the certified bracket
+of DESIGN fact 2 (exact, mpmath), within K*kappa*u of the root (``fastpath_tolerances``), the
+returned sine and cosine of phi + tau within the carried-sine bound the collision assumes
+(``fastpath.collision.CARRIED_SINE_ERROR``), and eps = 0 exactly tau = 2v (DESIGN fact 9).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from fastpath_tolerances import K, U, kappa
+from mpmath import mp
+
+from fastpath.collision import CARRIED_SINE_ERROR
+from fastpath.concave import ITERATION_LIMIT, concave_flight
+from fastpath.flight import GENERAL, flight_from
+from fastpath.gap import departure
+from fastpath.status import FlightStatus
+
+DPS = 40
+CONVERGED = int(FlightStatus.CONVERGED)
+
+
+def _solve(phi, v, eps):
+    """concave_flight with libm's sine and cosine of phi (exact phase: phase_error 0)."""
+    s, c = math.sin(phi), math.cos(phi)
+    w0, w0_error = departure(phi, s, v, eps, 0.0)
+    assert w0 > w0_error
+    return concave_flight(phi, s, c, v, eps, w0_error)
+
+
+def _exact_gap(phi, v, eps, t):
+    phi, v, eps, t = (mp.mpf(x) for x in (phi, v, eps, t))
+    return 2 * eps * mp.sin(phi + t / 2) * mp.sin(t / 2) + t * (v - t / 2)  # no cancellation
+
+
+def _exact_root(phi, v, eps, tau):
+    """The positive root of the exact gap, by Newton from the fast tau, checked: the gap changes
+    sign around it (|eps| <= 1: the only positive root, DESIGN fact 2)."""
+    with mp.workdps(DPS):
+        p, w, e = mp.mpf(phi), mp.mpf(v), mp.mpf(eps)
+        t = mp.mpf(tau)
+        for _ in range(60):
+            step = _exact_gap(p, w, e, t) / (w - t + e * mp.sin(p + t))
+            t -= step
+            if abs(step) <= t * mp.mpf(10) ** (-DPS + 3):
+                break
+        delta = t * mp.mpf(10) ** (-DPS + 6)
+        assert _exact_gap(p, w, e, t - delta) > 0 > _exact_gap(p, w, e, t + delta)
+        return t
+
+
+def _exact_bracket(phi, v, eps):
+    """2*w0/(1 + |eps|) <= tau <= min(2*w0/(1 - |eps|), v + sqrt(v**2 + 4|eps|)), exact."""
+    with mp.workdps(DPS):
+        w0 = mp.mpf(v) + mp.mpf(eps) * mp.sin(mp.mpf(phi))
+        e = abs(mp.mpf(eps))
+        hi = mp.mpf(v) + mp.sqrt(mp.mpf(v) ** 2 + 4 * e)
+        if e < 1:
+            hi = min(hi, 2 * w0 / (1 - e))
+        return 2 * w0 / (1 + e), hi
+
+
+def _check(phi, v, eps, answer, units=K):
+    tau, s, c, evaluations, status = answer
+    assert status == CONVERGED, (phi, v, eps, answer)
+    assert 1 <= evaluations <= ITERATION_LIMIT
+    lo, hi = _exact_bracket(phi, v, eps)
+    assert lo <= tau <= hi, (phi, v, eps, tau, lo, hi)
+    root = _exact_root(phi, v, eps, tau)
+    with mp.workdps(DPS):
+        err = abs(mp.mpf(tau) - root) / root
+        assert err <= units * kappa(phi, v, eps, root) * U, (phi, v, eps, tau, float(err))
+        angle = mp.mpf(phi) + mp.mpf(tau)
+        assert abs(s - mp.sin(angle)) <= CARRIED_SINE_ERROR, (phi, v, eps, tau, s)
+        assert abs(c - mp.cos(angle)) <= CARRIED_SINE_ERROR, (phi, v, eps, tau, c)
+
+
+def _cases(seed, n, w0_range):
+    """(phi, v, eps) with log10(w0) uniform in w0_range, eps over the concave range."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for eps in (0.3, -0.6, 0.9, -0.999, 1.0, -1.0, 1e-9):
+        for _ in range(n):
+            phi = float(rng.uniform(-math.pi, math.pi))
+            w0 = float(10.0 ** rng.uniform(*w0_range))
+            out.append((phi, w0 - eps * math.sin(phi), eps))
+    return out
+
+
+@pytest.mark.parametrize("w0_range", [(-6.0, -0.35), (0.05, 2.5)], ids=["short", "holmes"])
+def test_concave_flights_are_in_the_bracket_and_accurate(w0_range):
+    """Both starts (half-angle for 2*w0 < 1 + |eps|, Holmes otherwise): CONVERGED, in the exact
+    bracket, within K*kappa*u, sine and cosine of phi + tau within the carried-sine bound."""
+    for phi, v, eps in _cases(12 if w0_range[0] < 0 else 13, 6, w0_range):
+        s = math.sin(phi)
+        w0, w0_error = departure(phi, s, v, eps, 0.0)
+        if not w0 > w0_error:
+            continue
+        _check(phi, v, eps, _solve(phi, v, eps))
+
+
+@pytest.mark.parametrize("v", [2.0**-30, 1e-7, 0.1, 0.25, 0.7, 1.0, 3.0, 12.5, 1e3, 2.0**40])
+@pytest.mark.parametrize("phi", [-3.0, -0.5, 0.0, 1.0, 2.5])
+def test_eps_zero_gives_exactly_twice_v(phi, v):
+    """eps = 0: d(t) = t*(v - t/2), tau = 2v exactly (DESIGN fact 9), for both starts, and the
+    sine and cosine of phi + 2v."""
+    tau, s, c, evaluations, status = _solve(phi, v, 0.0)
+    assert status == CONVERGED and tau == 2.0 * v
+    assert evaluations == 1  # either start is the root itself
+    with mp.workdps(DPS):
+        angle = mp.mpf(phi) + 2 * mp.mpf(v)
+        assert abs(s - mp.sin(angle)) <= CARRIED_SINE_ERROR
+        assert abs(c - mp.cos(angle)) <= CARRIED_SINE_ERROR
+
+
+def test_general_method_is_the_concave_solver():
+    """flight_from(..., GENERAL) for |eps| <= 1 is concave_flight, bit for bit."""
+    for phi, v, eps in _cases(14, 3, (-4.0, 1.5)):
+        s, c = math.sin(phi), math.cos(phi)
+        w0, w0_error = departure(phi, s, v, eps, 0.0)
+        if not w0 > w0_error:
+            continue
+        assert flight_from(phi, s, c, v, eps, GENERAL, 0.0) == concave_flight(phi, s, c, v, eps,
+                                                                               w0_error)
+
+
+@pytest.mark.parametrize("sin_phi, cos_phi, v, eps, w0_error, t", [
+    (math.sin(1.0), math.cos(1.0), 0.7, 0.8, 3e-16, 0.9),
+    (math.sin(-2.5), math.cos(-2.5), 3.0, -0.95, 1e-15, 5.5),
+    (math.sin(-3e-5), math.cos(-3e-5), 3e-5, 1.0, 2e-21, 6e-5),  # the triple family's scale
+    (math.sin(2.0), math.cos(2.0), -0.4, 0.3, 5e-17, 0.2),
+    (0.0, 1.0, 2.0**-1000, 0.5, 0.0, 2.0**-1000),  # SMALLEST_T: the underflow allowance shows
+])
+def test_tight_bounds_are_the_documented_ones(sin_phi, cos_phi, v, eps, w0_error, t):
+    """``tight_gap``'s E and R are the module docstring's formulas (its proof), evaluated on the
+    computed terms, times 1 + 64u plus the underflow allowance; and d, d', d'', sin and cos of
+    phi + t are those of the half-angle form. Every term of E and R is of order u here (the
+    w0_error ones too), so a dropped or subtracted term moves E or R by far more than the few u
+    of evaluation order allowed. At t = SMALLEST_T the terms underflow and E is the allowance
+    2**-1060 alone (a positive bound)."""
+    from fastpath.tight_gap import _SLACK, _UNDERFLOW, tight_gap
+
+    d, d1, d2, s, c, d_err, d1_err = tight_gap(sin_phi, cos_phi, v, eps, w0_error, t)
+    with mp.workdps(DPS):
+        sp, cp, w, e, we, tt = (mp.mpf(x) for x in (sin_phi, cos_phi, v, eps, w0_error, t))
+        sh, ch = mp.sin(tt / 2), mp.cos(tt / 2)
+        m, cm = sp * ch + cp * sh, cp * ch - sp * sh
+        s_x, c_x = m * ch + cm * sh, cm * ch - m * sh
+        plate, flight = 2 * e * sh * m, tt * (w - tt / 2)
+        d_x, d1_x = plate + flight, (w - tt) + e * s_x
+        close = 64 * U
+        for got, want in ((d, d_x), (d1, d1_x), (d2, -1 + e * c_x), (s, s_x), (c, c_x)):
+            assert abs(got - want) <= close * (abs(plate) + abs(flight) + abs(w) + tt + 1), (
+                got, want)
+        ash, asp, ae = abs(sh), abs(sp), abs(e)
+        e_doc = U * (abs(d_x) + 5 * abs(plate) + 2 * abs(flight)) + 2 * ash * (
+            U * ae * (3 * asp + 5 * ash) + we * (1 + ash))
+        r_doc = U * (abs(d1_x) + abs(w - tt) + ae * (2 * abs(s_x) + 4 * abs(m) + 6 * asp
+                                                     + 14 * ash)) + we * (1 + 3 * ash)
+        for got, doc in ((d_err, e_doc), (d1_err, r_doc)):
+            want = doc * mp.mpf(_SLACK) + _UNDERFLOW
+            assert abs(got - want) <= close * want, (got, want)
+
+
+# --- the concave solver's helpers at their boundaries (exact floats, no tolerance needed) ---
+
+
+def test_classify_at_the_error_bounds():
+    """A gap exactly at +-E (or a slope exactly at +-R) proves nothing: d > E is needed for
+    "before", d < -E for "after", d' < -R for "at the root", d' > R for "before"; else flat."""
+    from fastpath.concave import _AFTER, _AT_ROOT, _BEFORE, _FLAT, classify
+    from fastpath.gap import gap_error, rate_error
+
+    phi, v, eps, t = 0.5, 1.0, 0.5, 1.0
+    e, r = gap_error(phi, v, eps, t), rate_error(phi, v, eps, t)
+    assert classify(phi, v, eps, t, e, 0.0) == _FLAT
+    assert classify(phi, v, eps, t, -e, 0.0) == _FLAT
+    assert classify(phi, v, eps, t, 0.0, -r) == _FLAT
+    assert classify(phi, v, eps, t, 0.0, r) == _FLAT
+    assert classify(phi, v, eps, t, math.nextafter(e, 1.0), 0.0) == _BEFORE
+    assert classify(phi, v, eps, t, math.nextafter(-e, -1.0), 0.0) == _AFTER
+    assert classify(phi, v, eps, t, 0.0, math.nextafter(-r, -1.0)) == _AT_ROOT
+    assert classify(phi, v, eps, t, 0.0, math.nextafter(r, 1.0)) == _BEFORE
+
+
+def test_halley_steps_and_its_bisections():
+    """The Halley step t - 2*d*d'/(2*d'**2 - d*d''); a step onto or beyond a bracket end is
+    replaced by the arithmetic midpoint, or the geometric one where lo > 0 and hi > 4*lo (both
+    strict: at lo = 0 the geometric mean is lo itself, a step that ends the flight at lo)."""
+    from fastpath.concave import _AFTER, _BEFORE, halley
+
+    # inside: the Halley point (d'' = -1: 1 + 0.25/0.75)
+    t_next, lo, hi = halley(1.0, 0.25, -0.5, -1.0, _BEFORE, 0.5, 3.0)
+    assert (lo, hi) == (1.0, 3.0)
+    with mp.workdps(DPS):
+        assert abs(t_next - mp.mpf(4) / 3) <= 2 * U
+    # d'' = 0: the Newton step, exactly onto hi (before) or lo (after): bisected
+    assert halley(1.0, 0.25, -0.5, 0.0, _BEFORE, 0.5, 1.5) == (1.25, 1.0, 1.5)
+    assert halley(1.5, -0.25, -0.5, 0.0, _AFTER, 1.0, 2.0) == (1.25, 1.0, 1.5)
+    # beyond the bracket: lo = 0 takes the arithmetic midpoint, hi = 4*lo too, hi > 4*lo not
+    assert halley(8.0, -1.0, 0.1, 0.0, _AFTER, 0.0, 9.0) == (4.0, 0.0, 8.0)
+    assert halley(4.0, -1.0, 0.1, 0.0, _AFTER, 1.0, 9.0) == (2.5, 1.0, 4.0)
+    assert halley(8.0, -1.0, 0.1, 0.0, _AFTER, 1.0, 9.0) == (math.sqrt(8.0), 1.0, 8.0)
+
+
+def test_newton_is_final_at_its_threshold():
+    """(1 + |eps|)/2*h**2 + |h|*R <= E/16, equality included (docstring)."""
+    from fastpath.concave import newton_is_final
+
+    assert newton_is_final(1.0, 16.0, 0.0, 1.0)  # 1 <= 1
+    assert not newton_is_final(1.0, 8.0, 0.0, 1.0)  # 1 > 0.5
+    assert not newton_is_final(-1.0, 16.0, 1.0, 0.0)  # 0.5 + 1 > 1
+    assert newton_is_final(-1.0, 24.0, 1.0, 0.0)  # 1.5 <= 1.5
+
+
+def test_two_sum_is_exact():
+    """s + e == x + y exactly (Knuth's TwoSum), the Holmes start's angle phi + 2v."""
+    from fractions import Fraction
+
+    from fastpath.concave import two_sum
+
+    assert two_sum(1.0, 2.0**-60) == (1.0, 2.0**-60)
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        x, y = (float(a) for a in rng.uniform(-1e3, 1e3, 2) * 10.0 ** rng.integers(-8, 8, 2))
+        s, e = two_sum(x, y)
+        assert s == x + y and Fraction(s) + Fraction(e) == Fraction(x) + Fraction(y)
