@@ -232,3 +232,79 @@ def test_two_sum_is_exact():
         x, y = (float(a) for a in rng.uniform(-1e3, 1e3, 2) * 10.0 ** rng.integers(-8, 8, 2))
         s, e = two_sum(x, y)
         assert s == x + y and Fraction(s) + Fraction(e) == Fraction(x) + Fraction(y)
+
+
+# --- concave.bracket: the documented bounds, exactly as documented ---
+
+
+def _documented_bracket(v, w0, w0_error, eps):
+    """(lo, hi) of ``bracket_from_root``'s docstring in mpmath: lo from w0 - w0_error (0 if that
+    is not positive), hi the concave bound 2*(w0 + w0_error)/(1 - |eps|) unless that exceeds
+    2|v| + 2, then the smaller of it and the energy bound v + sqrt(v**2 + 4|eps|)."""
+    with mp.workdps(DPS):
+        w0, we, v, e = (mp.mpf(x) for x in (w0, w0_error, v, abs(eps)))
+        lo = 2 * max(w0 - we, 0) / (1 + e)
+        concave = 2 * (w0 + we) / (1 - e) if e < 1 else mp.inf
+        energy = v + mp.sqrt(v * v + 4 * e)
+        hi = concave if concave <= 2 * abs(v) + 2 else min(concave, energy)
+        return lo, hi
+
+
+@pytest.mark.parametrize("v, w0, w0_error, eps", [
+    (1.0, 1.25, 0.25, 0.5),  # a large w0_error: lo and hi move by it
+    (0.3, 0.1, 0.2, 0.6),  # w0 <= w0_error: lo = 0, never negative
+    (-0.25, 0.5, 1e-16, 1.0),  # v < 0, |eps| = 1: the energy bound 4|eps|/(root - v)
+    (-0.5, 0.2, 1e-16, 0.9),  # v < 0: the concave bound 4 > 2|v| + 2 = 3: the smaller one
+    (0.5, 0.6, 1e-16, 0.9),  # concave 12 > 3: min(12, energy)
+    (2.0, 1.2, 1e-16, 0.5),  # concave 4.8 <= 6: the concave bound alone
+    (1e-151, 0.5, 1e-16, 1.0),  # tiny v: hypot
+])
+def test_bracket_is_the_documented_one(v, w0, w0_error, eps):
+    """Sound (lo below, hi above the documented bounds) and tight: lo within (1 - 4u) and a few
+    u of its formula, hi within (1 + 4u) and a few u of its own."""
+    from fastpath.concave import bracket
+
+    lo, hi = bracket(v, w0, w0_error, eps)
+    doc_lo, doc_hi = _documented_bracket(v, w0, w0_error, eps)
+    assert lo >= 0.0
+    with mp.workdps(DPS):
+        assert doc_lo * (1 - 8 * U) <= lo <= doc_lo, (lo, doc_lo)
+        assert doc_hi <= hi <= doc_hi * (1 + 8 * U), (hi, doc_hi)
+
+
+def test_an_infinite_bracket_is_an_overflow_before_any_evaluation():
+    """hi = inf (v + sqrt(v**2 + 4|eps|) overflows): OVERFLOW with 0 evaluations."""
+    for v, eps in ((1e308, 1.0), (1.7e308, 0.6)):
+        tau, s, c, evaluations, status = _solve(0.5, v, eps)
+        assert status == int(FlightStatus.OVERFLOW) and evaluations == 0
+        assert math.isnan(tau) and math.isnan(s) and math.isnan(c)
+
+
+def test_holmes_start_at_equality():
+    """The Holmes start is taken unless the lower bound 2*w0/(1 + |eps|) is below 1 (module
+    docstring): at 2*w0 = 1 + |eps| exactly (phi = 0, w0 = v) it is the Holmes start's answer."""
+    from fastpath.concave import _flight_from_holmes, bracket
+
+    for v, eps in ((0.75, 0.5), (1.0, 1.0), (0.5, 0.0), (0.625, -0.25)):
+        w0, w0_error = departure(0.0, 0.0, v, eps, 0.0)
+        assert 2.0 * w0 == 1.0 + abs(eps)
+        lo, hi = bracket(v, w0, w0_error, eps)
+        assert _solve(0.0, v, eps) == _flight_from_holmes(0.0, 0.0, 1.0, v, eps, lo, hi)
+
+
+@pytest.mark.parametrize("phi, v", [(-2.0, 0.75), (0.4, 0.75), (1.3, 0.75), (-2.0, 1.0),
+                                    (0.4, 1.0), (2.9, 1.0), (-2.0, 3.5), (1.3, 3.5)])
+def test_a_first_evaluation_at_the_root_takes_the_newton_correction(phi, v):
+    """eps tiny: at the Holmes start t = 2v the gap d = eps*(cos(phi) - cos(phi + 2v)) is within
+    its bound E, d' = -v + eps*sin ~ -v beyond its bound: the root is t - d/d' (one Newton
+    correction, unclamped: it lies inside the bracket). Its error is the rounding of t - d/d' and
+    of d, d' (u*eps and u*v: below an ulp of t), and the neglected second order
+    (d/d')**2/(2v) ~ 1e-30: within one ulp of the exact root. eps is chosen so that d/d' is
+    several ulps of t: a stop at t itself is off by that much."""
+    eps = 3.0 * math.ulp(2.0 * v) * v / abs(math.cos(phi) - math.cos(phi + 2.0 * v))
+    tau, _, _, evaluations, status = _solve(phi, v, eps)
+    assert status == CONVERGED and evaluations == 1
+    root = _exact_root(phi, v, eps, tau)
+    with mp.workdps(DPS):
+        assert abs(mp.mpf(tau) - root) <= math.ulp(tau), (tau, float(root), 2.0 * v)
+        assert abs(root - 2 * v) >= 2 * math.ulp(tau)  # the correction matters
