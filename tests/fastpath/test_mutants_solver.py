@@ -302,9 +302,30 @@ def test_a_first_evaluation_at_the_root_takes_the_newton_correction(phi, v):
     (d/d')**2/(2v) ~ 1e-30: within one ulp of the exact root. eps is chosen so that d/d' is
     several ulps of t: a stop at t itself is off by that much."""
     eps = 3.0 * math.ulp(2.0 * v) * v / abs(math.cos(phi) - math.cos(phi + 2.0 * v))
-    tau, _, _, evaluations, status = _solve(phi, v, eps)
+    tau, s, c, evaluations, status = _solve(phi, v, eps)
     assert status == CONVERGED and evaluations == 1
     root = _exact_root(phi, v, eps, tau)
     with mp.workdps(DPS):
         assert abs(mp.mpf(tau) - root) <= math.ulp(tau), (tau, float(root), 2.0 * v)
         assert abs(root - 2 * v) >= 2 * math.ulp(tau)  # the correction matters
+        # sin, cos moved by h = tau - 2v to first order (|h| < 1e-8): within the carried bound
+        angle = mp.mpf(phi) + mp.mpf(tau)
+        assert abs(s - mp.sin(angle)) <= CARRIED_SINE_ERROR, (s, float(mp.sin(angle)))
+        assert abs(c - mp.cos(angle)) <= CARRIED_SINE_ERROR, (c, float(mp.cos(angle)))
+
+
+@pytest.mark.xfail(strict=True, reason="open: a long Holmes step's libm sine is of a rounded "
+                   "angle; the returned sine is 9.07u off, CARRIED_SINE_ERROR claims 8u")
+def test_long_holmes_step_sine_within_the_carried_bound():
+    """Found by the solver mutation pass (issue 12), NOT fixed: from the Holmes start 2v a step
+    longer than SMALL_ANGLE = 0.125 takes fresh libm sines of fl(fl(theta0 + theta0_error) +
+    delta) + h (``rotate``), an angle rounded twice at ~24 (ulp 3.6e-15 = 32u), and the TwoSum
+    remainder theta0_error is lost in the first sum (|theta0_error| <= ulp/2: it rounds back to
+    theta0). The returned sin(phi + tau) is then 1.007e-15 = 9.07u from the exact value, above
+    the 8u that ``collide_from`` adds to the next departure's phase error
+    (``CARRIED_SINE_ERROR``); for angles up to ~35 the rounding can reach a few tens of u."""
+    phi, v, eps = 2.8535527917488874, 10.72350022083204, 1.0
+    tau, s, _, _, status = _solve(phi, v, eps)
+    assert status == CONVERGED
+    with mp.workdps(DPS):
+        assert abs(s - mp.sin(mp.mpf(phi) + mp.mpf(tau))) <= CARRIED_SINE_ERROR
