@@ -329,3 +329,36 @@ def test_long_holmes_step_sine_within_the_carried_bound():
     assert status == CONVERGED
     with mp.workdps(DPS):
         assert abs(s - mp.sin(mp.mpf(phi) + mp.mpf(tau))) <= CARRIED_SINE_ERROR
+
+
+# --- fastpath.flight helpers (the lower-bound steps of |eps| > 1, the departure) ---
+
+
+def test_first_root_without_a_root_and_at_its_rounding_threshold():
+    """d + r*s + k*s**2/2 with d > 0: r = k = 0 (or r >= 0, k >= 0) has no root: inf. A
+    discriminant r**2 - 2*k*d that is negative by less than 4u*(r**2 + 2|k|*d) counts as zero:
+    r = -1, k*d = (1 + 2**-51)/2 gives -2**-51 (exact), within 4u*2: the double root 2*d/(-r)."""
+    from fastpath.flight import first_root
+
+    assert first_root(1.0, 0.0, 0.0) == math.inf
+    assert first_root(1.0, 0.5, 0.0) == math.inf
+    assert first_root(0.5, -1.0, 1.0 + 2.0**-51) == 1.0
+    assert first_root(0.5, -1.0, 1.0 + 2.0**-40) == math.inf  # clearly negative: no root
+
+
+def test_phase_error_of_a_centred_phase():
+    """0 for a phase used as given, one ulp-scale bound 2u*|centred| for a reduced one."""
+    from fastpath.flight import phase_error_of
+    from fastpath.phase import centre_phase
+
+    assert phase_error_of(1.0, 1.0) == 0.0
+    centred = centre_phase(7.0)
+    assert centred != 7.0 and phase_error_of(7.0, centred) == 2.0 * U * abs(centred)
+
+
+def test_an_overflowing_w0_is_an_overflow():
+    """w0 = v + eps*sin(phi) = inf: OVERFLOW (not UNCERTAIN), before any evaluation."""
+    s, c = math.sin(1.0), math.cos(1.0)
+    for method in (0, GENERAL):
+        tau, _, _, evaluations, status = flight_from(1.0, s, c, 1.5e308, 1e308, method, 0.0)
+        assert status == int(FlightStatus.OVERFLOW) and evaluations == 0 and math.isnan(tau)
