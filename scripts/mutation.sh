@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Mutation testing (issue 12 item 5). Not part of the default test run: it takes minutes.
 #
-#   scripts/mutation.sh [verify|runs|kernel|ensemble|certify|all]     (default: all)
+#   scripts/mutation.sh [verify|runs|kernel|ensemble|solver|certify|all]     (default: all)
 #
 # verify, runs, kernel, certify: mutmut 3 on the pure-Python targets, configured by scripts/mutation/<group>.cfg
 #   (copied to setup.cfg in a scratch copy of the worktree, so the worktree is never mutated).
 # ensemble: fastpath/ensemble.py is numba-compiled, which mutmut's trampolines cannot be, so a
 #   small AST driver (scripts/mutation/ensemble.py) applies one operator swap at a time to a
-#   scratch copy and runs the ensemble tests with a per-mutant NUMBA_CACHE_DIR.
+#   scratch copy and runs the ensemble tests with NUMBA_DISABLE_JIT=1.
+# solver: the same driver (--group solver) on the scalar flight solvers (fastpath/concave.py,
+#   tight_gap, flight, gap, short_flight, phase, collision); MUTATION_FILES=fastpath/concave.py,...
+#   restricts it to some of them.
 #
 # One worker, under nice -n 19: the machine is shared. MUTATION_NAMES=FILE runs the globs in FILE
 # instead of scripts/mutation/<group>.names (e.g. only the functions added to a group). Scratch copies live under $MUTATION_DIR
@@ -17,7 +20,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 work=${MUTATION_DIR:-/tmp/bouncer-mutation}
 groups=${1:-all}
-[ "$groups" = all ] && groups="verify runs kernel ensemble certify"  # cheapest first
+[ "$groups" = all ] && groups="verify runs kernel ensemble solver certify"  # cheapest first
 
 scratch_copy() {  # $1: destination; tracked and untracked-but-not-ignored files only
     rm -rf "$1" && mkdir -p "$1"
@@ -66,6 +69,10 @@ for g in $groups; do
         ensemble)
             scratch_copy "$work/ensemble"
             nice -n 19 python "$root/scripts/mutation/ensemble.py" "$work/ensemble" ;;
-        *) echo "unknown group: $g (verify, runs, kernel, ensemble, certify, all)" >&2; exit 2 ;;
+        solver)
+            scratch_copy "$work/solver"
+            nice -n 19 python "$root/scripts/mutation/ensemble.py" --group solver \
+                ${MUTATION_FILES:+--files "$MUTATION_FILES"} "$work/solver" ;;
+        *) echo "unknown group: $g (verify, runs, kernel, ensemble, solver, certify, all)" >&2; exit 2 ;;
     esac
 done
