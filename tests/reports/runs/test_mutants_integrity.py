@@ -4,10 +4,12 @@ check cannot hide behind another one."""
 
 from fractions import Fraction
 
+import numpy as np
 import pytest
 
 from reports.runs.counts import Tally
 from reports.runs.integrity import (
+    curve_problems,
     parse_counts,
     survival_problems,
     tally_problems,
@@ -199,3 +201,178 @@ def test_stuck_rows_count_under_their_clock(tplan):
     assert problems == [] and stuck == {(1, "collisions"): 5, (1, "time"): 2}
     assert counts.stuck_n[1, 2] == 5 and counts.stuck_n.sum() == 5
     assert counts.stuck_t[1, 1] == 2 and counts.stuck_t.sum() == 2
+
+
+# ---- the checkpoint's tally ------------------------------------------------------------------
+
+ARRAYS = ("esc_n", "esc_t", "cens_n", "cens_t", "portrait", "stuck_n", "stuck_t")
+
+
+def _consistent(plan, chunks):
+    """An empty tally with ``chunks`` finished and every started particle censored on both
+    clocks (in the first bin): all invariants hold."""
+    tally = Tally.empty(plan)
+    for key in chunks:
+        tally.finished.add(key)
+    for e in range(len(plan.experiments)):
+        done = tally.finished.particles_done(plan, e)
+        tally.cens_n[e, 0] = tally.cens_t[e, 0] = done
+    return tally
+
+
+def test_a_consistent_tally_passes(tplan):
+    assert tally_problems(tplan, _consistent(tplan, [(0, 0), (1, 3), (1, 1)])) == []
+    assert tally_problems(tplan, _consistent(tplan, tplan.chunks)) == []
+
+
+@pytest.mark.parametrize("name", ARRAYS)
+def test_misshapen_array_is_named_and_stops_the_checks(tplan, name):
+    tally = _consistent(tplan, [(0, 0)])
+    good = getattr(tally, name).shape
+    setattr(tally, name, np.zeros((3, *good[1:]), np.int64))
+    tally.finished.add((0, 1))  # 64 particles unaccounted for: not reported, shapes first
+    assert tally_problems(tplan, tally) == [
+        f"{name} has shape {(3, *good[1:])}, the plan needs {good}"]
+
+
+@pytest.mark.parametrize("name", ARRAYS)
+def test_negative_count_is_named(tplan, name):
+    plan = tplan
+    tally = _consistent(plan, [(0, 0)])
+    a = getattr(tally, name)
+    if a.size == 0:  # the portrait of a scene that draws none: a phase-space plan's
+        plan = make_plan(parse_scene(PORTRAIT))
+        tally = Tally.empty(plan)
+        a = tally.portrait
+    a.flat[a.size - 1] = -1
+    assert tally_problems(plan, tally) == [f"{name} has negative counts"]
+
+
+@pytest.mark.parametrize(("collisions", "settled"), [(-1, 0), (0, -1)])
+def test_negative_totals_are_named(tplan, collisions, settled):
+    tally = _consistent(tplan, [(0, 0)])
+    tally.collisions, tally.settled = collisions, settled
+    assert tally_problems(tplan, tally) == [
+        f"negative totals: collisions {collisions}, settled {settled}"]
+
+
+@pytest.mark.parametrize("prefix", [[1], [1, 0, 0], [5, 0], [0, -1]])
+def test_finished_prefixes_that_do_not_fit_the_plan(tplan, prefix):
+    tally = Tally.empty(tplan)
+    tally.finished.prefix = prefix
+    assert tally_problems(tplan, tally) == [
+        f"finished-chunk prefixes {prefix} do not fit 2 curves x 4 chunks"]
+
+
+@pytest.mark.parametrize("extra", [{(2, 1)}, {(-1, 1)}, {(0, 1)}, {(0, 0)}, {(0, 4)}])
+def test_finished_chunks_outside_the_plan(tplan, extra):
+    """prefix [1, 0]: chunk (0, 0) is in the prefix, (0, 1) and (0, 4) ... are not extras."""
+    tally = _consistent(tplan, [(0, 0)])
+    tally.finished.extra = set(extra)
+    assert tally_problems(tplan, tally) == [
+        f"finished chunks outside the plan: {sorted(extra)}"]
+
+
+def test_a_full_prefix_and_an_extra_at_the_edge_fit(tplan):
+    tally = _consistent(tplan, [(0, 0), (0, 1), (0, 2), (0, 3), (1, 3)])
+    assert tally.finished.prefix == [4, 0] and tally.finished.extra == {(1, 3)}
+    assert tally_problems(tplan, tally) == []
+
+
+@pytest.mark.parametrize("clock", ["collisions", "time"])
+def test_every_curve_and_clock_must_add_up(tplan, clock):
+    tally = _consistent(tplan, [(0, 0), (1, 0), (1, 1)])
+    cens = tally.cens_n if clock == "collisions" else tally.cens_t
+    cens[1, 0] -= 1
+    assert tally_problems(tplan, tally) == [
+        f"curve 'from hole 2', clock {clock}: 0 escaped + 127 censored + 0 stuck = 127, but 128"
+        " particles were run"]
+    esc = tally.esc_n if clock == "collisions" else tally.esc_t
+    esc[1, 1, 3] = 1  # an escape through the second hole completes it
+    stuck = tally.stuck_n if clock == "collisions" else tally.stuck_t
+    stuck[0, 2] = 2
+    assert tally_problems(tplan, tally) == [
+        f"curve 'from hole 1', clock {clock}: 0 escaped + 64 censored + 2 stuck = 66, but 64"
+        " particles were run"]
+
+
+def test_curve_problems_take_stuck_from_the_dict_when_given(tplan):
+    tally = _consistent(tplan, [(0, 0)])
+    tally.stuck_n[0, 0] = 5  # ignored: the dict is given
+    assert curve_problems(tplan, tally, [64, 0], {}) == []
+    assert curve_problems(tplan, tally, [64, 0], {(0, "time"): 1}) == [
+        (0, "time", "curve 'from hole 1', clock time: 0 escaped + 64 censored + 1 stuck = 65,"
+         " but 64 particles were run")]
+    assert curve_problems(tplan, tally, [64, 0]) == [
+        (0, "collisions", "curve 'from hole 1', clock collisions: 0 escaped + 64 censored + 5"
+         " stuck = 69, but 64 particles were run")]
+
+
+PORTRAIT = """
+name = "portrait"
+kind = "phase-space"
+eps = 0.6
+particles = 100
+seed = 3
+chunk_size = 50
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[horizon]
+collisions = 30
+[record]
+phi_bins = 4
+v_bins = 3
+v_range = [0.0, 10.0]
+verify_samples = 4
+"""
+
+
+def test_phase_space_has_no_curves_but_its_visits_are_bounded():
+    plan = make_plan(parse_scene(PORTRAIT))
+    tally = Tally.empty(plan)
+    tally.finished.add((0, 0))
+    assert curve_problems(plan, tally, [100]) == []  # nothing escapes or is censored
+    tally.portrait[1, 2] = 7
+    tally.collisions = 7
+    assert tally_problems(plan, tally) == []
+    tally.collisions = 6
+    assert tally_problems(plan, tally) == ["7 portrait visits but only 6 collisions"]
+
+
+def _row(e, k):
+    return [e, k] + [0.0] * 8
+
+
+def test_sample_rows_must_belong_to_finished_sampled_chunks(tplan):
+    tally = _consistent(tplan, [(0, 0), (1, 0)])
+    tally.samples = [_row(0, 0)] * 5 + [_row(1, 0)] * 5
+    assert tally_problems(tplan, tally) == []
+    for e, k in [(0, 1), (2, 0), (-1, 0)]:
+        tally.samples = [_row(0, 0), _row(e, k), _row(e, k)]
+        assert tally_problems(tplan, tally) == [
+            f"sample rows of chunk ({e}, {k}), which is not a finished sampled chunk"]
+    tally.samples = [_row(0, 0)] * 6 + [_row(1, 0)] * 7
+    assert tally_problems(tplan, tally) == [
+        "6 sample rows in chunk (0, 0), at most 5 are drawn"]
+
+
+def test_rows_of_an_unsampled_chunk_are_refused():
+    plan = make_plan(parse_scene(TINY))
+    plan.sample_stride = 2  # chunks (0, 1), (0, 3), (1, 1), (1, 3) carry no picks
+    tally = _consistent(plan, [(0, 0), (0, 1)])
+    tally.samples = [_row(0, 0)]
+    assert tally_problems(plan, tally) == []
+    tally.samples = [_row(0, 1)]
+    assert tally_problems(plan, tally) == [
+        "sample rows of chunk (0, 1), which is not a finished sampled chunk"]
+
+
+def test_velocity_tallies_are_checked_for_shape_and_sums(vplan):
+    tally = Tally.empty(vplan)
+    tally.moving = None
+    assert tally_problems(vplan, tally) == [
+        f"moving has shape None, the plan needs {Tally.empty(vplan).moving.shape}"]
+    tally = Tally.empty(vplan)
+    tally.finished.add((0, 0))  # 64 particles run, none recorded moving or stuck
+    assert tally_problems(vplan, tally) != []
