@@ -1,0 +1,291 @@
+"""Tests that kill mutants of ``reports/runs/recheck.py`` (scripts/mutation.sh integrity):
+``bouncer verify RUN`` on a tiny transport run and a tiny phase-space run, each fault alone
+(its hash updated where the deeper check is the one under test), with the report's wording."""
+
+import csv
+import json
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from reports.runs import driver, executor, rundir
+from reports.runs.counts import Tally
+from reports.runs.plan import make_plan
+from reports.runs.recheck import _compare, _hashes, load_run, recheck
+from reports.runs.rundir import RunInterrupted
+from reports.runs.scenes import parse_scene
+
+TINY = """
+name = "tiny"
+kind = "transport"
+eps = 0.6
+particles = 200
+seed = 3
+chunk_size = 64
+[start]
+v = [2.0, 4.0]
+[holes]
+centres = [0.0, 3.141592653589793]
+widths = [1.0]
+[horizon]
+collisions = 200
+"""
+
+PORTRAIT = """
+name = "portrait"
+kind = "phase-space"
+eps = 0.6
+particles = 100
+seed = 3
+chunk_size = 50
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[horizon]
+collisions = 30
+[record]
+phi_bins = 4
+v_bins = 3
+v_range = [0.0, 10.0]
+verify_samples = 4
+"""
+
+
+@pytest.fixture(scope="module")
+def tiny_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("tiny") / "run"
+    driver.run(parse_scene(TINY), out, progress=False)
+    return out
+
+
+@pytest.fixture(scope="module")
+def portrait_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("portrait") / "run"
+    driver.run(parse_scene(PORTRAIT), out, progress=False)
+    return out
+
+
+@pytest.fixture
+def run(tiny_run, tmp_path):
+    return Path(shutil.copytree(tiny_run, tmp_path / "run"))
+
+
+def manifest_of(run_dir):
+    return json.loads((run_dir / "manifest.json").read_text())
+
+
+def edit_manifest(run_dir, edit):
+    manifest = manifest_of(run_dir)
+    edit(manifest)
+    (run_dir / "manifest.json").write_text(json.dumps(manifest))
+
+
+def rehash(run_dir, name):
+    """Record the edited file's hash, as a careful forger would."""
+    edit_manifest(run_dir, lambda m: m["hashes"].__setitem__(
+        name, rundir.sha256_file(run_dir / name)))
+
+
+def problems_of(lines):
+    """The discrepancy lines of a report: between the 'checked:' line and the verdict."""
+    start = next(i for i, x in enumerate(lines) if x.startswith("checked: "))
+    return lines[start + 1:-1]
+
+
+def edit_rows(path, edit):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    edit(rows)
+    with open(path, "w", newline="") as f:
+        csv.writer(f, lineterminator="\n").writerows(rows)
+
+
+# ---- a clean run and the report's form ------------------------------------------------------
+
+def test_clean_run_report(run):
+    ok, lines = recheck(run)
+    manifest = manifest_of(run)
+    worst = manifest["verification"]["worst_error"]
+    n = manifest["verification"]["sampled"]
+    assert ok is True
+    assert lines == [
+        f"run {run}: scene tiny, status complete",
+        f"{n} sampled collisions recomputed by verify: worst error {worst:.3g} kappa*u"
+        f" (recorded {worst:.3g}), 0 overstepped (tolerance 16 kappa*u)",
+        "checked: content hashes, checkpoint invariants, counts.csv and survival.csv"
+        " re-derived, sample.csv, the manifest's figures",
+        "OK"]
+    assert recheck(str(run))[0] is True  # a path given as a string
+
+
+def test_clean_phase_space_report(portrait_run):
+    ok, lines = recheck(portrait_run)
+    assert ok is True and lines[-1] == "OK"
+    assert lines[2] == ("checked: content hashes, checkpoint invariants, portrait.npy"
+                        " re-derived, sample.csv, the manifest's figures")
+
+
+def test_phase_space_portrait_must_match_the_checkpoint(portrait_run, tmp_path):
+    run_dir = Path(shutil.copytree(portrait_run, tmp_path / "run"))
+    portrait = np.load(run_dir / "portrait.npy")
+    portrait[0, 0] += 1
+    np.save(run_dir / "portrait.npy", portrait)
+    rehash(run_dir, "portrait.npy")
+    ok, lines = recheck(run_dir)
+    assert not ok and problems_of(lines) == [
+        "portrait.npy: differs from the checkpoint's portrait (or is missing)"]
+    (run_dir / "portrait.npy").unlink()
+    ok, lines = recheck(run_dir)
+    assert problems_of(lines) == [
+        "portrait.npy: missing (the manifest records its hash)",
+        "portrait.npy: differs from the checkpoint's portrait (or is missing)"]
+
+
+def test_phase_space_hashes_its_portrait(portrait_run, tmp_path):
+    run_dir = Path(shutil.copytree(portrait_run, tmp_path / "run"))
+    edit_manifest(run_dir, lambda m: m["hashes"].pop("portrait.npy"))
+    ok, lines = recheck(run_dir)
+    assert not ok and problems_of(lines) == ["manifest.json: no hash recorded for portrait.npy"]
+
+
+def test_the_report_shows_twenty_discrepancies_and_counts_the_rest(run):
+    """k edited sample errors (the file's hash updated): 2k discrepancies, each row differing
+    from the checkpoint and from verify's recomputation."""
+    def edit(k):
+        edit_rows(run / "sample.csv", lambda rows: [r.__setitem__(10, "0.5")
+                                                   for r in rows[1:k + 1]])
+        rehash(run, "sample.csv")
+        return recheck(run)
+
+    original = (run / "sample.csv").read_bytes()
+    ok, lines = edit(10)
+    assert not ok and len(problems_of(lines)) == 20 and lines[-1] == "FAILED: 20 discrepancies"
+    (run / "sample.csv").write_bytes(original)
+    ok, lines = edit(11)
+    assert lines[-2] == "... and 2 more" and lines[-1] == "FAILED: 22 discrepancies"
+    assert len(problems_of(lines)) == 21  # 20 shown and the count of the rest
+
+
+def test_recorded_worst_error_is_reported_or_nan(run):
+    edit_manifest(run, lambda m: m["verification"].__setitem__("worst_error", 0.125))
+    ok, lines = recheck(run)
+    assert "(recorded 0.125)" in lines[1]
+    edit_manifest(run, lambda m: m["verification"].pop("worst_error"))
+    ok, lines = recheck(run)
+    assert "(recorded nan)" in lines[1]
+    assert any(x.startswith("manifest.json: verification.worst_error is None") for x in lines)
+    edit_manifest(run, lambda m: m.pop("verification"))
+    assert "(recorded nan)" in recheck(run)[1][1]
+
+
+# ---- what the run directory must hold -------------------------------------------------------
+
+@pytest.mark.parametrize("name", ["manifest.json", "scene.toml"])
+def test_not_a_run_directory(run, name):
+    (run / name).unlink()
+    with pytest.raises(ValueError, match=r"is not a run directory \(no manifest.json and"
+                                         r" scene.toml\)"):
+        load_run(run)
+
+
+def test_unreadable_manifest_or_scene(run):
+    (run / "manifest.json").write_text("{not json")
+    with pytest.raises(ValueError, match=r"run: manifest.json or scene.toml is unreadable: "):
+        load_run(run)
+
+
+def test_load_run_names_the_scene_file_in_its_errors(run):
+    manifest, scene = load_run(str(run))
+    assert manifest["status"] == "complete" and scene.name == "tiny"
+    (run / "scene.toml").write_text(TINY.replace("widths = [1.0]", "widths = [0.0]"))
+    with pytest.raises(ValueError) as err:
+        load_run(run)
+    assert str(err.value).startswith(f"{run / 'scene.toml'}")
+
+
+def test_a_partial_run_without_a_sample_cannot_be_verified_yet(run):
+    edit_manifest(run, lambda m: m.__setitem__("status", "partial"))
+    ok, lines = recheck(run)  # it has a sample: audited, and fails for being partial
+    assert not ok and problems_of(lines) == [
+        "manifest.json: the run is not complete (status partial)"]
+    (run / "sample.csv").unlink()
+    with pytest.raises(ValueError, match=r"has no sample.csv \(status partial\): nothing to"
+                                         r" verify yet"):
+        recheck(run)
+    edit_manifest(run, lambda m: m.__setitem__("status", "complete"))
+    ok, lines = recheck(run)  # complete without a sample: audited, and fails
+    assert not ok and "sample.csv: missing (the manifest records its hash)" in lines
+    assert "sample.csv is missing or not UTF-8 text" in lines
+
+
+def test_an_interrupted_run_is_reported_with_its_finished_chunks(tmp_path, monkeypatch):
+    real, calls = executor.run_chunk, []
+
+    def stop_after_three(*args):
+        calls.append(args)
+        if len(calls) > 3:
+            raise KeyboardInterrupt
+        return real(*args)
+
+    monkeypatch.setattr(executor, "run_chunk", stop_after_three)
+    with pytest.raises(RunInterrupted):
+        driver.run(parse_scene(TINY), tmp_path / "cut", progress=False, threads=1)
+    monkeypatch.setattr(executor, "run_chunk", real)
+    manifest = manifest_of(tmp_path / "cut")
+    cut = tmp_path / "cut"
+    assert not (cut / "sample.csv").is_file()
+    with pytest.raises(ValueError, match="nothing to verify yet"):
+        recheck(cut)
+    plan = make_plan(parse_scene(TINY))
+    (cut / "sample.csv").write_text(
+        driver.result_files(plan, Tally.load(cut / "checkpoint.npz"))["sample.csv"])
+    ok, lines = recheck(tmp_path / "cut")
+    done = manifest["chunks_done"]
+    assert not ok and 0 < done < 8
+    assert f"checkpoint.npz: {done} of 8 chunks finished" in lines
+    assert f"manifest.json: the run is not complete (status {manifest['status']})" in lines
+
+
+# ---- hashes ---------------------------------------------------------------------------------
+
+def test_hashes(run):
+    manifest = manifest_of(run)
+    expected = ["scene.toml", "sample.csv", "checkpoint.npz", "survival.csv", "counts.csv"]
+    assert _hashes(run, manifest, expected) == []
+    assert _hashes(run, {}, expected) == [
+        "manifest.json: no content hashes (a run of an earlier version): its files cannot be"
+        " checked against it"]
+    del manifest["hashes"]["counts.csv"]
+    assert _hashes(run, manifest, expected) == ["manifest.json: no hash recorded for counts.csv"]
+    manifest["hashes"]["extra.txt"] = "0" * 64
+    (run / "sample.csv").write_text("edited\n")
+    assert _hashes(run, manifest, expected[:2]) == [
+        "sample.csv: SHA-256 differs from the manifest's (edited or corrupted)",
+        "extra.txt: missing (the manifest records its hash)"]
+
+
+def test_a_run_without_hashes_fails_with_one_reason(run):
+    edit_manifest(run, lambda m: m.pop("hashes"))
+    ok, lines = recheck(run)
+    assert not ok and problems_of(lines) == [
+        "manifest.json: no content hashes (a run of an earlier version): its files cannot be"
+        " checked against it"]
+
+
+# ---- line comparisons ------------------------------------------------------------------------
+
+def test_compare_names_lines_from_one_and_counts_them():
+    assert _compare("f.csv", "a\nb\nc\n", "a\nb\nc\n", "w") == []
+    assert _compare("f.csv", "a\nb\nc\n", "a\nB\nc\n", "w") == ["f.csv:2: w has 'b', the file 'B'"]
+    assert _compare("f.csv", "a\nb\n", "a\nb\nc\n", "w") == ["f.csv: 3 lines, w has 2"]
+    assert _compare("f.csv", "a\nb\nc\n", "x\nb\n", "w") == [
+        "f.csv:1: w has 'a', the file 'x'", "f.csv: 2 lines, w has 3"]
+
+
+def test_worst_error_nan_is_not_equal(run):
+    """A manifest figure compared with ``!=``: a NaN worst error is a discrepancy."""
+    edit_manifest(run, lambda m: m["verification"].__setitem__("worst_error", math.nan))
+    assert not recheck(run)[0]
