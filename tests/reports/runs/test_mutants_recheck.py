@@ -289,3 +289,74 @@ def test_worst_error_nan_is_not_equal(run):
     """A manifest figure compared with ``!=``: a NaN worst error is a discrepancy."""
     edit_manifest(run, lambda m: m["verification"].__setitem__("worst_error", math.nan))
     assert not recheck(run)[0]
+
+
+# ---- the manifest's figures ------------------------------------------------------------------
+
+FIGURES = [("collisions",), ("chunks_done",), ("chunks",), ("particles_total",),
+           ("verification", "sampled"), ("verification", "uncertain_settled"),
+           ("curves", "from hole 1", "censored"), ("curves", "from hole 2", "stuck"),
+           ("curves", "from hole 1", "escaped", "P12"), ("curves", "from hole 2", "escaped", "P21")]
+
+
+def _at(manifest, path):
+    for key in path[:-1]:
+        manifest = manifest[key]
+    return manifest, path[-1]
+
+
+@pytest.mark.parametrize("path", FIGURES, ids=".".join)
+def test_each_manifest_figure_is_checked(run, path):
+    key = ".".join(path)
+    value = _at(manifest_of(run), path)[0][path[-1]]
+    edit_manifest(run, lambda m: _at(m, path)[0].__setitem__(path[-1], value + 1))
+    ok, lines = recheck(run)
+    assert not ok and problems_of(lines) == [
+        f"manifest.json: {key} is {value + 1!r}, the checkpoint and sample give {value!r}"]
+
+
+@pytest.mark.parametrize("path", [("verification",), ("curves",), ("curves", "from hole 2"),
+                                  ("curves", "from hole 2", "escaped")], ids=".".join)
+def test_missing_manifest_sections_are_discrepancies(run, path):
+    edit_manifest(run, lambda m: _at(m, path)[0].pop(path[-1]))
+    ok, lines = recheck(run)
+    found = problems_of(lines)
+    assert not ok and found and all(x.startswith("manifest.json: ") and " is None, " in x
+                                    for x in found)
+
+
+ESCAPE = """
+name = "one-clock"
+kind = "escape"
+eps = 0.6
+particles = 150
+seed = 4
+chunk_size = 64
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[holes]
+centres = [2.0]
+widths = [0.5]
+[horizon]
+collisions = 60
+time = 90.0
+[record]
+verify_samples = 6
+"""
+
+
+@pytest.mark.parametrize("clock", ["collisions", "time"])
+def test_a_one_clock_run_passes_and_its_figures_are_that_clocks(tmp_path, clock):
+    """The manifest's escaped / censored figures come from the first recorded clock; a run
+    that records only one clock has nothing on the other."""
+    scene = parse_scene(ESCAPE.replace("[record]", f'[record]\nclocks = ["{clock}"]'))
+    driver.run(scene, tmp_path / "run", progress=False)
+    curve = manifest_of(tmp_path / "run")["curves"]["phi_c=2"]
+    assert curve["censored"] > 0 and curve["escaped"]["phi_c=2"] > 0
+    ok, lines = recheck(tmp_path / "run")
+    assert ok is True, lines
+    edit_manifest(tmp_path / "run", lambda m: m["curves"]["phi_c=2"].__setitem__("censored", 0))
+    assert problems_of(recheck(tmp_path / "run")[1]) == [
+        f"manifest.json: curves.phi_c=2.censored is 0, the checkpoint and sample give"
+        f" {curve['censored']}"]
