@@ -24,6 +24,8 @@ Discrepancies are reported by file and line; any one fails the audit (exit statu
 
 from __future__ import annotations
 
+import csv
+import io
 import json
 import sys
 from pathlib import Path
@@ -168,7 +170,9 @@ def _manifest_figures(manifest, plan, tally, worst):
 
 def _sample(run_dir, scene, progress):
     """Step 5: (rows, worst recomputed error, overstepped lines, discrepancies)."""
-    rows = rundir.read_csv(run_dir / "sample.csv") if (run_dir / "sample.csv").is_file() else []
+    # a missing or non-UTF-8 sample.csv is reported by _outputs: no rows to recompute
+    text = _text(run_dir / "sample.csv")
+    rows = list(csv.DictReader(io.StringIO(text, newline=""))) if text is not None else []
     worst, overstepped, out = 0.0, [], []
     bar = None
     if progress:
