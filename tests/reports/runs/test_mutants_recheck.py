@@ -360,3 +360,141 @@ def test_a_one_clock_run_passes_and_its_figures_are_that_clocks(tmp_path, clock)
     assert problems_of(recheck(tmp_path / "run")[1]) == [
         f"manifest.json: curves.phi_c=2.censored is 0, the checkpoint and sample give"
         f" {curve['censored']}"]
+
+
+# ---- the output files ------------------------------------------------------------------------
+
+def test_edited_counts_with_its_hash_updated(run):
+    edit_rows(run / "counts.csv", lambda rows: rows[3].__setitem__(4, str(int(rows[3][4]) + 1)))
+    rehash(run, "counts.csv")
+    line = (run / "counts.csv").read_text().splitlines()[3]
+    ok, lines = recheck(run)
+    found = problems_of(lines)
+    assert not ok and found[0].startswith("counts.csv:4: the checkpoint has '")
+    assert found[0].endswith(f"the file '{line}'")
+    assert found[1] == ("counts.csv:2: curve 'from hole 1', clock collisions: 200 escaped + 1"
+                        " censored + 0 stuck = 201, but 200 particles were run")
+    assert all(x.startswith("survival.csv:") for x in found[2:]) and len(found) > 2
+
+
+def test_forged_counts_and_survival_without_checkpoint(run):
+    """A forger who edits counts.csv, writes survival.csv from it with the run's own writer,
+    deletes the checkpoint and records the new hashes: the invariant and the range of the
+    survival curve still fail, by line."""
+    from reports.runs.driver import survival_rows
+    from reports.runs.integrity import parse_counts
+
+    edit_rows(run / "counts.csv", lambda rows: rows[1].__setitem__(4, str(int(rows[1][4]) + 50)))
+    plan = make_plan(parse_scene(TINY))
+    counts = parse_counts(plan, (run / "counts.csv").read_text())[0]
+    with np.errstate(invalid="ignore"):
+        text = rundir.csv_text(["curve", "clock", "x", "p", "p_lo", "p_hi"],
+                               survival_rows(plan, counts))
+    (run / "survival.csv").write_text(text)
+    (run / "checkpoint.npz").unlink()
+    for name in ("counts.csv", "survival.csv"):
+        rehash(run, name)
+    edit_manifest(run, lambda m: m["hashes"].pop("checkpoint.npz"))
+    ok, lines = recheck(run)
+    found = problems_of(lines)
+    assert not ok and found[0] == "manifest.json: no hash recorded for checkpoint.npz"
+    assert found[1].startswith("checkpoint ") and "is unreadable" in found[1]
+    assert found[2] == ("counts.csv:2: curve 'from hole 1', clock collisions: 249 escaped + 1"
+                        " censored + 0 stuck = 250, but 200 particles were run")
+    assert found[3] == ("survival.csv:2: P11 (collisions): p 1.15 with band [nan, nan] is not"
+                        " 0 <= p_lo <= p <= p_hi <= 1")  # the time clock's rows are unchanged
+    assert not any("the checkpoint has" in x for x in found)  # nothing to compare with
+
+
+@pytest.mark.parametrize("name", ["counts.csv", "survival.csv", "sample.csv"])
+def test_output_that_is_not_utf8(run, name):
+    (run / name).write_bytes(b"\xff\xfe not text\n")
+    rehash(run, name)
+    ok, lines = recheck(run)
+    message = ("sample.csv is missing or not UTF-8 text" if name == "sample.csv"
+               else "counts.csv or survival.csv is missing or not UTF-8 text")
+    assert not ok and message in problems_of(lines)
+
+
+def test_a_sample_that_is_not_utf8_fails_the_audit_naming_the_file(run, capsys):
+    """Not an error exit without the file's name (exit 2, 'codec can't decode'): a failed
+    audit (exit 1) that names sample.csv."""
+    from reports.cli import main
+
+    (run / "sample.csv").write_bytes(b"\xff\xfe not text\n")
+    assert main(["verify", str(run), "--quiet"]) == 1
+    out = capsys.readouterr().out
+    assert "sample.csv is missing or not UTF-8 text" in out and "FAILED" in out
+
+
+def test_edited_sample_row_with_its_hash_updated(run):
+    edit_rows(run / "sample.csv", lambda rows: rows[3].__setitem__(10, "0.5"))
+    rehash(run, "sample.csv")
+    line = (run / "sample.csv").read_text().splitlines()[3]
+    found = problems_of(recheck(run)[1])
+    assert found[0].startswith("sample.csv:4: the checkpoint has '")
+    assert found[0].endswith(f"the file '{line}'") and len(found) == 2
+    assert found[1].startswith("sample.csv:4: verify gives tau_ref ")
+
+
+VELOCITY = """
+name = "tiny-velocity"
+kind = "velocity"
+eps = 2.0
+particles = 100
+seed = 3
+chunk_size = 50
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[horizon]
+collisions = 100
+[record]
+bins_per_decade = 5
+verify_samples = 6
+[physics]
+restitution = [1.0, 0.9]
+"""
+
+
+@pytest.fixture(scope="module")
+def velocity_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("velocity") / "run"
+    driver.run(parse_scene(VELOCITY), out, progress=False)
+    return out
+
+
+def test_velocity_run_report_and_missing_file(velocity_run, tmp_path):
+    run_dir = Path(shutil.copytree(velocity_run, tmp_path / "run"))
+    ok, lines = recheck(run_dir)
+    assert ok is True and lines[2] == ("checked: content hashes, checkpoint invariants,"
+                                       " velocity.csv re-derived, sample.csv, the manifest's"
+                                       " figures")
+    (run_dir / "velocity.csv").write_bytes(b"\xff")
+    rehash(run_dir, "velocity.csv")
+    assert problems_of(recheck(run_dir)[1]) == ["velocity.csv is missing or not UTF-8 text"]
+
+
+def test_velocity_file_is_compared_and_checked(velocity_run, tmp_path):
+    run_dir = Path(shutil.copytree(velocity_run, tmp_path / "run"))
+    rows = (run_dir / "velocity.csv").read_text().splitlines()
+    cells = rows[3].split(",")
+    cells[2] = str(int(cells[2]) - 1)  # one particle lost at a grid point
+    rows[3] = ",".join(cells)
+    (run_dir / "velocity.csv").write_text("\n".join(rows) + "\n")
+    rehash(run_dir, "velocity.csv")
+    found = problems_of(recheck(run_dir)[1])
+    assert found[0].startswith("velocity.csv:4: the checkpoint has '")
+    assert any("moving" in x and ":4:" in x for x in found[1:])
+
+
+@pytest.mark.parametrize("key", ["moving", "stuck", "mean_v_at_horizon"])
+def test_velocity_manifest_figures(velocity_run, tmp_path, key):
+    run_dir = Path(shutil.copytree(velocity_run, tmp_path / "run"))
+    value = manifest_of(run_dir)["curves"]["r=0.9"][key]
+    edit_manifest(run_dir, lambda m: m["curves"]["r=0.9"].__setitem__(key, value + 1))
+    assert problems_of(recheck(run_dir)[1]) == [
+        f"manifest.json: curves.r=0.9.{key} is {value + 1!r}, the checkpoint and sample give"
+        f" {value!r}"]
+    edit_manifest(run_dir, lambda m: m["curves"]["r=0.9"].__setitem__("particles_done", 7))
+    assert len(problems_of(recheck(run_dir)[1])) == 1  # particles_done is not a figure checked
