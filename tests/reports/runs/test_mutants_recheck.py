@@ -498,3 +498,83 @@ def test_velocity_manifest_figures(velocity_run, tmp_path, key):
         f" {value!r}"]
     edit_manifest(run_dir, lambda m: m["curves"]["r=0.9"].__setitem__("particles_done", 7))
     assert len(problems_of(recheck(run_dir)[1])) == 1  # particles_done is not a figure checked
+
+
+# ---- the recomputed sample -------------------------------------------------------------------
+
+def _edit_sample(run_dir, edits):
+    """edits: {line: {column: value}} (lines numbered from the header, 1)."""
+    def edit(rows):
+        header = rows[0]
+        for line, cells in edits.items():
+            for col, value in cells.items():
+                rows[line - 1][header.index(col)] = value
+    edit_rows(run_dir / "sample.csv", edit)
+    rehash(run_dir, "sample.csv")
+
+
+def _sample_problems(run_dir):
+    return [x for x in problems_of(recheck(run_dir)[1])
+            if x.startswith("sample.csv:") and "the checkpoint has" not in x]
+
+
+def test_a_sample_row_verify_refuses_fails_the_audit_by_line(run, capsys):
+    """v = -1 is no departure: fastpath and verify both refuse it. Without the guard verify's
+    ValueError ended the audit (exit 2, no file or line named)."""
+    from reports.cli import main
+
+    _edit_sample(run, {3: {"v": "-1.0"}})
+    found = _sample_problems(run)
+    assert found[0].startswith("sample.csv:3: fastpath.step refuses the row: not a departure")
+    assert found[1].startswith("sample.csv:3: verify refuses the row: no departure")
+    assert len(found) == 2
+    assert main(["verify", str(run), "--quiet"]) == 1
+    assert "sample.csv:3: verify refuses the row" in capsys.readouterr().out
+
+
+def test_unparsable_sample_rows_are_named_and_the_rest_checked(run):
+    _edit_sample(run, {2: {"phi": "x"}, 3: {"experiment": "x"}, 4: {"experiment": "x"},
+                       5: {"tau_ref": ""}, 6: {"error": "0.5"}})
+    found = _sample_problems(run)
+    assert found[:4] == [
+        "sample.csv:2: not a sample row",
+        "sample.csv:3: not a sample row (experiment)",
+        "sample.csv:4: not a sample row (experiment)",
+        "sample.csv:5: not a sample row"]
+    assert found[4].startswith("sample.csv:6: verify gives tau_ref ") and len(found) == 5
+
+
+def test_a_velocity_sample_row_of_no_curve(velocity_run, tmp_path):
+    run_dir = Path(shutil.copytree(velocity_run, tmp_path / "run"))
+    _edit_sample(run_dir, {2: {"experiment": "9"}})
+    assert _sample_problems(run_dir) == ["sample.csv:2: not a sample row (experiment)"]
+
+
+def test_a_fast_result_not_reproduced_bit_for_bit(run):
+    rows = (run / "sample.csv").read_text().splitlines()
+    phi1 = float(rows[3].split(",")[6])
+    _edit_sample(run, {4: {"phi1": repr(float(np.nextafter(phi1, 10.0)))}})
+    found = _sample_problems(run)
+    assert len(found) == 1 and found[0].startswith("sample.csv:4: fastpath.step gives (")
+    assert found[0].endswith(f", the file ({float(np.nextafter(phi1, 10.0))!r}, "
+                             f"{float(rows[3].split(',')[7])!r}, "
+                             f"{float(rows[3].split(',')[8])!r}) (not reproduced bit for bit)")
+
+
+def test_an_overstep_is_counted_in_the_report(run):
+    rows = (run / "sample.csv").read_text().splitlines()
+    tau = float(rows[1].split(",")[8])
+    _edit_sample(run, {2: {"tau": repr(tau * (1 + 1e-9))}})
+    ok, lines = recheck(run)
+    assert not ok and ", 1 overstepped (tolerance 16 kappa*u)" in lines[1]
+    assert ("sample.csv:2: OVERSTEP: tau exceeds verify's first root by more than"
+            " 16*kappa*u") in lines
+
+
+def test_progress_bar_counts_the_recomputed_collisions(run, capsys):
+    n = manifest_of(run)["verification"]["sampled"]
+    assert recheck(run, progress=True)[0] is True
+    err = capsys.readouterr().err
+    assert "verify sample" in err and f"{n}/{n}" in err and "collision/s" in err
+    assert recheck(run, progress=False)[0] is True
+    assert capsys.readouterr().err == ""
