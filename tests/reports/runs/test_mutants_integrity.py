@@ -376,3 +376,15 @@ def test_velocity_tallies_are_checked_for_shape_and_sums(vplan):
     tally = Tally.empty(vplan)
     tally.finished.add((0, 0))  # 64 particles run, none recorded moving or stuck
     assert tally_problems(vplan, tally) != []
+
+
+def test_a_bin_written_twice_counts_twice(tplan):
+    """counts.csv holds one row a bin; a second row of the same bin (an edit) adds to it, so
+    that the invariant sees every particle the file claims."""
+    text = (COUNTS_HEADER + "from hole 1,collisions,P12,3.0,4\n"
+            "from hole 1,collisions,censored,5.0,2\nfrom hole 1,collisions,P12,3.0,1\n"
+            "from hole 1,collisions,censored,5.0,3\n")
+    counts, _, problems, _ = parse_counts(tplan, text)
+    assert problems == []
+    assert counts.esc_n[0, 1, 2] == 5 and counts.esc_n.sum() == 5
+    assert counts.cens_n[0, 4] == 5 and counts.cens_n.sum() == 5
