@@ -1,0 +1,95 @@
+"""Mutation tests of ``chunk.kernel``'s dissipative branch (scripts/mutation.sh kernel): the
+stuck accumulators add over passes like the escape ones (test_mutants_plan.py), and the
+dissipative kernel gets the scene's physics (drag, its law, restitution)."""
+
+import numpy as np
+
+from reports.runs.chunk import kernel
+from reports.runs.counts import Counts
+from reports.runs.plan import chunk_starts, make_plan
+from reports.runs.scenes import parse_scene
+
+STICK = """
+name = "stick"
+kind = "escape"
+eps = 0.6
+particles = 200
+seed = 5
+chunk_size = 200
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[holes]
+centres = [2.0]
+widths = [0.3]
+[horizon]
+collisions = 2000
+time = 1e5
+[record]
+verify_samples = 20
+[physics]
+restitution = 0.5
+"""
+
+
+def _pass(plan, out):
+    exp = plan.experiments[0]
+    phi, v, _, _, _ = chunk_starts(plan, 0, 0)
+    m = len(phi)
+    return kernel(plan, exp, (phi, v, np.zeros(m), np.zeros(m, np.int64)), np.full(m, -1),
+                  np.zeros(m, np.int64), np.zeros((0, 6)), out)
+
+
+def test_a_second_dissipative_pass_adds_to_every_count():
+    plan = make_plan(parse_scene(STICK))
+    once, thrice = Counts.zeros(plan, 1), Counts.zeros(plan, 1)
+    _pass(plan, once)
+    for _ in range(3):
+        _pass(plan, thrice)
+    assert once.stuck_n.sum() > 0 and once.stuck_t.sum() > 0 and once.esc_n.sum() > 0
+    for name in ("esc_n", "esc_t", "cens_n", "cens_t", "stuck_n", "stuck_t"):
+        np.testing.assert_array_equal(getattr(thrice, name), 3 * getattr(once, name), name)
+    assert thrice.collisions == 3 * once.collisions
+    # every particle ends once on each clock: escaped, censored or stuck (per bin, not the
+    # total added to every bin)
+    for esc, cens, stuck in ((once.esc_n, once.cens_n, once.stuck_n),
+                             (once.esc_t, once.cens_t, once.stuck_t)):
+        assert esc.sum() + cens.sum() + stuck.sum() == 200
+
+
+def test_the_dissipative_kernel_stops_at_each_horizon():
+    """A short collision horizon (then a short time horizon) censors particles there: no
+    escape or sticking is counted beyond it on its clock."""
+    plan = make_plan(parse_scene(STICK.replace("collisions = 2000", "collisions = 30")))
+    out = Counts.zeros(plan, 1)
+    _pass(plan, out)
+    beyond = plan.n_edges > 30
+    assert out.cens_n.sum() > 0 and out.esc_n[0, beyond].sum() == 0
+    assert out.stuck_n[beyond].sum() == 0 and out.cens_n[beyond].sum() == 0
+    plan = make_plan(parse_scene(STICK.replace("time = 1e5", "time = 10.0")))
+    out = Counts.zeros(plan, 1)
+    _pass(plan, out)
+    beyond = plan.t_edges > 10.0  # (a censored particle's time is its first beyond 10)
+    assert out.cens_t.sum() > 0 and out.esc_t[0, beyond].sum() == 0
+    assert out.stuck_t[beyond].sum() == 0
+
+
+def _counts_for(text):
+    plan = make_plan(parse_scene(text))
+    out = Counts.zeros(plan, 1)
+    _pass(plan, out)
+    return out
+
+
+def test_the_dissipative_kernel_gets_the_scenes_physics():
+    """Drag on or off, and its law, change the counts: the kernel is given sc.drag and
+    _law_code(sc.drag_law), not defaults."""
+    base = _counts_for(STICK)
+    linear = _counts_for(STICK.replace("restitution = 0.5", "restitution = 0.5\ndrag = 0.05"))
+    quadratic = _counts_for(STICK.replace("restitution = 0.5", "restitution = 0.5\ndrag = 0.05"
+                                          '\ndrag_law = "quadratic"'))
+    r8 = _counts_for(STICK.replace("restitution = 0.5", "restitution = 0.8"))
+    for other in (linear, quadratic, r8):
+        assert not np.array_equal(other.esc_n, base.esc_n) or other.collisions != base.collisions
+    assert (not np.array_equal(linear.esc_n, quadratic.esc_n)
+            or linear.collisions != quadratic.collisions)
