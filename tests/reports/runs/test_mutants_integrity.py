@@ -388,3 +388,25 @@ def test_a_bin_written_twice_counts_twice(tplan):
     assert problems == []
     assert counts.esc_n[0, 1, 2] == 5 and counts.esc_n.sum() == 5
     assert counts.cens_n[0, 4] == 5 and counts.cens_n.sum() == 5
+
+
+def test_an_extra_chunk_of_the_first_curve_fits(tplan):
+    tally = _consistent(tplan, [(0, 2)])
+    assert tally.finished.prefix == [0, 0] and tally.finished.extra == {(0, 2)}
+    assert tally_problems(tplan, tally) == []
+
+
+def test_chunks_outside_the_plan_are_shown_three_at_most(tplan):
+    tally = _consistent(tplan, [(0, 0)])
+    tally.finished.extra = {(0, 4), (0, 5), (0, 6), (0, 7)}
+    assert tally_problems(tplan, tally) == [
+        "finished chunks outside the plan: [(0, 4), (0, 5), (0, 6)]"]
+
+
+def test_velocity_shape_problems_come_with_the_others(vplan):
+    tally = Tally.empty(vplan)
+    tally.collisions = -2
+    tally.stuck_at = None
+    assert tally_problems(vplan, tally) == [
+        "negative totals: collisions -2, settled 0",
+        f"stuck_at has shape None, the plan needs {tally.moving.shape}"]
