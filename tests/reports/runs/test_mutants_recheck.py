@@ -578,3 +578,14 @@ def test_progress_bar_counts_the_recomputed_collisions(run, capsys):
     assert "verify sample" in err and f"{n}/{n}" in err and "collision/s" in err
     assert recheck(run, progress=False)[0] is True
     assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize(("key", "value"), [("censored", 5), ("stuck", 1)])
+def test_a_forged_phase_space_curve_figure_fails(portrait_run, tmp_path, key, value):
+    """The driver writes curves.portrait (zeros: a portrait records no escapes); until issue
+    12's mutation pass verify skipped it for phase-space runs and accepted any value."""
+    run_dir = Path(shutil.copytree(portrait_run, tmp_path / "run"))
+    edit_manifest(run_dir, lambda m: m["curves"]["portrait"].__setitem__(key, value))
+    ok, lines = recheck(run_dir)
+    assert not ok and problems_of(lines) == [
+        f"manifest.json: curves.portrait.{key} is {value}, the checkpoint and sample give 0"]
