@@ -93,3 +93,76 @@ def test_the_dissipative_kernel_gets_the_scenes_physics():
         assert not np.array_equal(other.esc_n, base.esc_n) or other.collisions != base.collisions
     assert (not np.array_equal(linear.esc_n, quadratic.esc_n)
             or linear.collisions != quadratic.collisions)
+
+
+# ---- Counts.zeros ----------------------------------------------------------------------------
+
+PORTRAIT = """
+name = "portrait"
+kind = "phase-space"
+eps = 0.6
+particles = 100
+seed = 3
+chunk_size = 50
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[horizon]
+collisions = 30
+[record]
+phi_bins = 4
+v_bins = 3
+v_range = [0.0, 10.0]
+verify_samples = 4
+"""
+
+VELOCITY = """
+name = "tiny-velocity"
+kind = "velocity"
+eps = 2.0
+particles = 100
+seed = 3
+chunk_size = 50
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[horizon]
+collisions = 100
+[record]
+bins_per_decade = 5
+[physics]
+restitution = [1.0, 0.9]
+"""
+
+
+def _int_zeros(a, shape):
+    assert a.dtype == np.int64 and a.shape == shape and not a.any()
+
+
+def test_zeros_are_integer_counts_of_the_plans_shape():
+    """Counts are int64 (the checkpoint and counts.csv hold integers); the portrait is drawn
+    only by phase-space scenes, the velocity arrays only exist for velocity scenes."""
+    plan = make_plan(parse_scene(STICK))
+    nb, tb = len(plan.n_edges), len(plan.t_edges)
+    for lead in ((), (3,)):
+        c = Counts.zeros(plan, 2, experiments=lead[0] if lead else None)
+        _int_zeros(c.esc_n, (*lead, 2, nb))
+        _int_zeros(c.esc_t, (*lead, 2, tb))
+        _int_zeros(c.cens_n, (*lead, nb))
+        _int_zeros(c.cens_t, (*lead, tb))
+        _int_zeros(c.stuck_n, (*lead, nb))
+        _int_zeros(c.stuck_t, (*lead, tb))
+        _int_zeros(c.portrait, (0, 0))
+        assert c.moving is None and c.sum_v is None
+    plan = make_plan(parse_scene(PORTRAIT))
+    _int_zeros(Counts.zeros(plan, 1).portrait, (4, 3))
+    plan = make_plan(parse_scene(VELOCITY))
+    for lead in ((), (2,)):
+        c = Counts.zeros(plan, 1, experiments=lead[0] if lead else None)
+        grid = (*lead, len(plan.n_grid))
+        _int_zeros(c.moving, grid)
+        _int_zeros(c.stuck_at, grid)
+        _int_zeros(c.portrait, (0, 0))
+        for a in (c.sum_v, c.sum_v2):
+            assert a.shape == grid and all(x == 0 and type(x).__name__ == "Fraction"
+                                           for x in a.flat)
