@@ -589,3 +589,21 @@ def test_a_forged_phase_space_curve_figure_fails(portrait_run, tmp_path, key, va
     ok, lines = recheck(run_dir)
     assert not ok and problems_of(lines) == [
         f"manifest.json: curves.portrait.{key} is {value}, the checkpoint and sample give 0"]
+
+
+@pytest.mark.parametrize("path", [("curves",), ("curves", "r=0.9")], ids=".".join)
+def test_velocity_manifest_without_its_curves(velocity_run, tmp_path, path):
+    run_dir = Path(shutil.copytree(velocity_run, tmp_path / "run"))
+    edit_manifest(run_dir, lambda m: _at(m, path)[0].pop(path[-1]))
+    found = problems_of(recheck(run_dir)[1])
+    assert found and all(x.startswith("manifest.json: curves.r=") and " is None, " in x
+                         for x in found)
+    assert any(x.startswith("manifest.json: curves.r=0.9.moving is None") for x in found)
+
+
+def test_velocity_run_totals_are_checked_too(velocity_run, tmp_path):
+    run_dir = Path(shutil.copytree(velocity_run, tmp_path / "run"))
+    value = manifest_of(run_dir)["collisions"]
+    edit_manifest(run_dir, lambda m: m.__setitem__("collisions", value + 1))
+    assert problems_of(recheck(run_dir)[1]) == [
+        f"manifest.json: collisions is {value + 1}, the checkpoint and sample give {value}"]
