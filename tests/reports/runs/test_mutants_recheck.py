@@ -339,27 +339,32 @@ v = [2.0, 4.0]
 centres = [2.0]
 widths = [0.5]
 [horizon]
-collisions = 60
-time = 90.0
+collisions = 40
+time = 8.0
 [record]
 verify_samples = 6
+[physics]
+restitution = 0.5
 """
 
 
 @pytest.mark.parametrize("clock", ["collisions", "time"])
 def test_a_one_clock_run_passes_and_its_figures_are_that_clocks(tmp_path, clock):
-    """The manifest's escaped / censored figures come from the first recorded clock; a run
-    that records only one clock has nothing on the other."""
+    """The manifest's escaped / censored / stuck figures come from the first recorded clock; a
+    run that records only one clock has nothing on the other (restitution 0.5: some stick)."""
     scene = parse_scene(ESCAPE.replace("[record]", f'[record]\nclocks = ["{clock}"]'))
     driver.run(scene, tmp_path / "run", progress=False)
     curve = manifest_of(tmp_path / "run")["curves"]["phi_c=2"]
-    assert curve["censored"] > 0 and curve["escaped"]["phi_c=2"] > 0
+    assert curve["censored"] > 0 and curve["escaped"]["phi_c=2"] > 0 and curve["stuck"] > 0
     ok, lines = recheck(tmp_path / "run")
     assert ok is True, lines
-    edit_manifest(tmp_path / "run", lambda m: m["curves"]["phi_c=2"].__setitem__("censored", 0))
-    assert problems_of(recheck(tmp_path / "run")[1]) == [
-        f"manifest.json: curves.phi_c=2.censored is 0, the checkpoint and sample give"
-        f" {curve['censored']}"]
+    for key in ("censored", "stuck"):
+        edit_manifest(tmp_path / "run", lambda m, k=key: m["curves"]["phi_c=2"].__setitem__(k, 0))
+        assert problems_of(recheck(tmp_path / "run")[1]) == [
+            f"manifest.json: curves.phi_c=2.{key} is 0, the checkpoint and sample give"
+            f" {curve[key]}"]
+        edit_manifest(tmp_path / "run",
+                      lambda m, k=key: m["curves"]["phi_c=2"].__setitem__(k, curve[k]))
 
 
 # ---- the output files ------------------------------------------------------------------------
