@@ -66,12 +66,15 @@ def test_the_dissipative_kernel_stops_at_each_horizon():
     beyond = plan.n_edges > 30
     assert out.cens_n.sum() > 0 and out.esc_n[0, beyond].sum() == 0
     assert out.stuck_n[beyond].sum() == 0 and out.cens_n[beyond].sum() == 0
+    assert out.esc_n.sum() + out.cens_n.sum() + out.stuck_n.sum() == 200
     plan = make_plan(parse_scene(STICK.replace("time = 1e5", "time = 10.0")))
     out = Counts.zeros(plan, 1)
     _pass(plan, out)
     beyond = plan.t_edges > 10.0  # (a censored particle's time is its first beyond 10)
     assert out.cens_t.sum() > 0 and out.esc_t[0, beyond].sum() == 0
     assert out.stuck_t[beyond].sum() == 0
+    # censored per bin, not the chunk's total added to every bin
+    assert out.esc_t.sum() + out.cens_t.sum() + out.stuck_t.sum() == 200
 
 
 def _counts_for(text):
