@@ -3,6 +3,7 @@ stuck accumulators add over passes like the escape ones (test_mutants_plan.py), 
 dissipative kernel gets the scene's physics (drag, its law, restitution)."""
 
 import numpy as np
+import pytest
 
 from reports.runs.chunk import kernel
 from reports.runs.counts import Counts
@@ -169,3 +170,46 @@ def test_zeros_are_integer_counts_of_the_plans_shape():
         for a in (c.sum_v, c.sum_v2):
             assert a.shape == grid and all(x == 0 and type(x).__name__ == "Fraction"
                                            for x in a.flat)
+
+
+# ---- make_plan -------------------------------------------------------------------------------
+
+TINY = """
+name = "tiny"
+kind = "transport"
+eps = 0.6
+particles = 200
+seed = 3
+chunk_size = 64
+[start]
+v = [2.0, 4.0]
+[holes]
+centres = [0.0, 3.141592653589793]
+widths = [1.0]
+[horizon]
+collisions = 200
+"""
+
+
+def test_sample_picks_are_spread_over_every_chunk_of_every_curve():
+    """Two curves of 200 particles in chunks of 64: 8 chunks, all sampled (stride 1), and
+    min(verify_samples, 400 // 10) = 40 picks make 5 a chunk."""
+    plan = make_plan(parse_scene(TINY))
+    assert (plan.chunks_per_experiment, plan.n_chunks) == (4, 8)
+    assert plan.sample_stride == 1 and plan.samples_per_chunk == 5 and plan.sampled_chunks == 8
+
+
+def test_more_chunks_than_sampled_chunks_gives_a_stride():
+    from reports.runs.plan import MAX_SAMPLED_CHUNKS
+
+    scene = parse_scene(TINY.replace("chunk_size = 64", "chunk_size = 16"))
+    plan = make_plan(scene, particles=16 * MAX_SAMPLED_CHUNKS // 2 + 16)
+    assert plan.n_chunks == MAX_SAMPLED_CHUNKS + 2 and plan.sample_stride == 2
+    assert plan.sampled_chunks == MAX_SAMPLED_CHUNKS // 2 + 1 and plan.samples_per_chunk == 1
+
+
+def test_phase_space_physics_refusal_names_what_does_take_physics():
+    with pytest.raises(ValueError) as err:
+        make_plan(parse_scene(PORTRAIT + "[physics]\nrestitution = 0.9\n"))
+    assert str(err.value).endswith("needs a dissipative portrait kernel, which fastpath does not"
+                                   " have; escape and transport scenes take [physics]")
