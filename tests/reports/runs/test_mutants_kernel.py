@@ -213,3 +213,35 @@ def test_phase_space_physics_refusal_names_what_does_take_physics():
         make_plan(parse_scene(PORTRAIT + "[physics]\nrestitution = 0.9\n"))
     assert str(err.value).endswith("needs a dissipative portrait kernel, which fastpath does not"
                                    " have; escape and transport scenes take [physics]")
+
+
+ONE = STICK.replace("[physics]\nrestitution = 0.5\n", "").replace(
+    "chunk_size = 200", "chunk_size = 64").replace("verify_samples = 20", "")  # 1000 wanted
+
+
+@pytest.mark.parametrize(("particles", "per_chunk"), [(5, 1), (19, 1), (205, 5), (260, 6)])
+def test_samples_a_chunk_from_a_tenth_of_the_particles(particles, per_chunk):
+    """One curve: wanted = min(verify_samples, max(1, particles // 10)) picks over its chunks,
+    rounded up: 5 or 19 particles in one chunk want 1 (not 2); 205 particles (4 chunks) want
+    20 (not 20.5, which would give 6 a chunk): 5; 260 (5 chunks) want 26: 6."""
+    plan = make_plan(parse_scene(ONE), particles=particles)
+    assert len(plan.experiments) == 1 and plan.sample_stride == 1
+    assert plan.samples_per_chunk == per_chunk
+
+
+def test_many_picks_over_strided_chunks():
+    """verify_samples 30000 over 16386 chunks sampled every other one (8193): 26217 wanted
+    (a tenth of 262176) make 4 a sampled chunk."""
+    from reports.runs.plan import MAX_SAMPLED_CHUNKS
+
+    scene = parse_scene(TINY.replace("chunk_size = 64", "chunk_size = 16").replace(
+        "[horizon]", "[record]\nverify_samples = 30000\n[horizon]"))
+    plan = make_plan(scene, particles=16 * MAX_SAMPLED_CHUNKS // 2 + 16)
+    assert plan.sample_stride == 2 and plan.samples_per_chunk == 4
+
+
+def test_bin_edges():
+    plan = make_plan(parse_scene(TINY))
+    assert plan.n_edges[:5].tolist() == [1.0, 2.0, 3.0, 4.0, 5.0]
+    assert np.array_equal(plan.n_edges, np.unique(np.round(plan.n_edges)))
+    assert plan.t_edges[0] == 0.0 and plan.t_edges[1] > 0.0
