@@ -612,3 +612,19 @@ def test_velocity_run_totals_are_checked_too(velocity_run, tmp_path):
     edit_manifest(run_dir, lambda m: m.__setitem__("collisions", value + 1))
     assert problems_of(recheck(run_dir)[1]) == [
         f"manifest.json: collisions is {value + 1}, the checkpoint and sample give {value}"]
+
+
+def test_no_progress_bar_unless_asked(run, capsys):
+    assert recheck(run)[0] is True
+    assert capsys.readouterr().err == ""
+
+
+def test_the_plan_is_the_manifests_seed_and_particles(run, capsys):
+    """The audit plans the run from the manifest's particles and seed (not the scene's): a
+    seed make_plan refuses is an error (exit 2, one line), never a passed audit."""
+    from reports.cli import main
+
+    edit_manifest(run, lambda m: m.__setitem__("seed", -1))
+    assert main(["verify", str(run), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("bouncer: ") and "seed" in err and err.count("\n") == 1
