@@ -628,3 +628,26 @@ def test_the_plan_is_the_manifests_seed_and_particles(run, capsys):
     assert main(["verify", str(run), "--quiet"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("bouncer: ") and "seed" in err and err.count("\n") == 1
+
+
+def test_a_forged_checkpoint_that_breaks_the_invariants(run):
+    """Its own digest recomputed and its hash recorded: the invariants name the fault, and the
+    outputs are then checked from counts.csv alone (the checkpoint is not used)."""
+    import io
+
+    from reports.runs import counts
+
+    path = run / "checkpoint.npz"
+    with np.load(path) as z:
+        arrays = {k: z[k] for k in z.files}
+    arrays["cens_n"] = arrays["cens_n"].copy()
+    arrays["cens_n"][0, 3] += 40
+    arrays["digest"] = np.array(counts._digest(arrays, str(arrays["meta"])))
+    buf = io.BytesIO()
+    np.savez(buf, **arrays)
+    path.write_bytes(buf.getvalue())
+    rehash(run, "checkpoint.npz")
+    ok, lines = recheck(run)
+    assert not ok and problems_of(lines) == [
+        "checkpoint.npz: curve 'from hole 1', clock collisions: 199 escaped + 41 censored + 0"
+        " stuck = 240, but 200 particles were run"]
