@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Mutation testing (issue 12 item 5). Not part of the default test run: it takes minutes.
 #
-#   scripts/mutation.sh [verify|runs|kernel|ensemble|solver|certify|all]     (default: all)
+#   scripts/mutation.sh [verify|runs|kernel|integrity|ensemble|solver|certify|all]     (default: all)
 #
-# verify, runs, kernel, certify: mutmut 3 on the pure-Python targets, configured by scripts/mutation/<group>.cfg
+# verify, runs, kernel, integrity, certify: mutmut 3 on the pure-Python targets, configured by scripts/mutation/<group>.cfg
 #   (copied to setup.cfg in a scratch copy of the worktree, so the worktree is never mutated).
 # ensemble: fastpath/ensemble.py is numba-compiled, which mutmut's trampolines cannot be, so a
 #   small AST driver (scripts/mutation/ensemble.py) applies one operator swap at a time to a
@@ -20,7 +20,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 work=${MUTATION_DIR:-/tmp/bouncer-mutation}
 groups=${1:-all}
-[ "$groups" = all ] && groups="verify runs kernel ensemble solver certify"  # cheapest first
+[ "$groups" = all ] && groups="verify runs kernel integrity ensemble solver certify"  # cheapest first
 
 scratch_copy() {  # $1: destination; tracked and untracked-but-not-ignored files only
     rm -rf "$1" && mkdir -p "$1"
@@ -65,7 +65,7 @@ EOF
 
 for g in $groups; do
     case $g in
-        verify|runs|kernel|certify) run_mutmut "$g" ;;
+        verify|runs|kernel|integrity|certify) run_mutmut "$g" ;;
         ensemble)
             scratch_copy "$work/ensemble"
             nice -n 19 python "$root/scripts/mutation/ensemble.py" "$work/ensemble" ;;
@@ -73,6 +73,6 @@ for g in $groups; do
             scratch_copy "$work/solver"
             nice -n 19 python "$root/scripts/mutation/ensemble.py" --group solver \
                 ${MUTATION_FILES:+--files "$MUTATION_FILES"} "$work/solver" ;;
-        *) echo "unknown group: $g (verify, runs, kernel, ensemble, solver, certify, all)" >&2; exit 2 ;;
+        *) echo "unknown group: $g (verify, runs, kernel, integrity, ensemble, solver, certify, all)" >&2; exit 2 ;;
     esac
 done
