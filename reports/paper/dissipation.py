@@ -377,7 +377,7 @@ def dissipation_claims(d):
             seed_says="Inelastic impacts confine the chaotic orbits to a velocity strip of "
                       "width ~ 1/(1 - r) (Barroso, Carneiro, Macau, PRE 79, 026206 (2009), "
                       "abstract: 'bounded by a velocity strip v = +-Gamma/(1 - r)'); in our "
-                      "units its edge is V*(r) ~ 2|eps|/(1 - r), derived in "
+                      "units its edge is V*(r) ~ 2*abs(eps)/(1 - r), derived in "
                       "reports/paper/dissipation.py",
             verdict=strip_verdict(d.one_minus_r, d.strip_max, d.eps),
             evidence=f"eps = {d.eps:g}, {d.strip_orbits} orbits of {int(d.n[-1]):,} "
