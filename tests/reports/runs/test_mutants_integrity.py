@@ -6,6 +6,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from scene_texts import PORTRAIT
 
 from reports.runs.counts import Tally
 from reports.runs.integrity import (
@@ -308,24 +309,6 @@ def test_curve_problems_take_stuck_from_the_dict_when_given(tplan):
          " stuck = 69, but 64 particles were run")]
 
 
-PORTRAIT = """
-name = "portrait"
-kind = "phase-space"
-eps = 0.6
-particles = 100
-seed = 3
-chunk_size = 50
-[start]
-phi = [3.85, 4.15]
-v = [2.0, 4.0]
-[horizon]
-collisions = 30
-[record]
-phi_bins = 4
-v_bins = 3
-v_range = [0.0, 10.0]
-verify_samples = 4
-"""
 
 
 def test_phase_space_has_no_curves_but_its_visits_are_bounded():

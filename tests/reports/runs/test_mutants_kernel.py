@@ -4,6 +4,7 @@ dissipative kernel gets the scene's physics (drag, its law, restitution)."""
 
 import numpy as np
 import pytest
+from scene_texts import PORTRAIT
 
 from reports.runs.chunk import kernel
 from reports.runs.counts import Counts
@@ -101,24 +102,6 @@ def test_the_dissipative_kernel_gets_the_scenes_physics():
 
 # ---- Counts.zeros ----------------------------------------------------------------------------
 
-PORTRAIT = """
-name = "portrait"
-kind = "phase-space"
-eps = 0.6
-particles = 100
-seed = 3
-chunk_size = 50
-[start]
-phi = [3.85, 4.15]
-v = [2.0, 4.0]
-[horizon]
-collisions = 30
-[record]
-phi_bins = 4
-v_bins = 3
-v_range = [0.0, 10.0]
-verify_samples = 4
-"""
 
 VELOCITY = """
 name = "tiny-velocity"
