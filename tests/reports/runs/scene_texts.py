@@ -18,3 +18,40 @@ v_bins = 3
 v_range = [0.0, 10.0]
 verify_samples = 4
 """
+
+# a transport scene small enough for any audit test (two exits, one width)
+TINY = """
+name = "tiny"
+kind = "transport"
+eps = 0.6
+particles = 200
+seed = 3
+chunk_size = 64
+[start]
+v = [2.0, 4.0]
+[holes]
+centres = [0.0, 3.141592653589793]
+widths = [1.0]
+[horizon]
+collisions = 200
+"""
+
+# a velocity scene with r = 1 and r = 0.9
+SMALL_VELOCITY = """
+name = "small-velocity"
+kind = "velocity"
+eps = 2.0
+particles = 300
+seed = 3
+chunk_size = 64
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[horizon]
+collisions = 300
+[record]
+bins_per_decade = 5
+verify_samples = 30
+[physics]
+restitution = [1.0, 0.9]
+"""

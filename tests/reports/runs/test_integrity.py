@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scene_texts import TINY
 
 from reports.cli import main
 from reports.runs import counts, plan, rundir
@@ -24,21 +25,6 @@ from reports.runs.scenes import parse_scene
 
 ROOT = Path(__file__).resolve().parents[3]
 
-TINY = """
-name = "tiny"
-kind = "transport"
-eps = 0.6
-particles = 200
-seed = 3
-chunk_size = 64
-[start]
-v = [2.0, 4.0]
-[holes]
-centres = [0.0, 3.141592653589793]
-widths = [1.0]
-[horizon]
-collisions = 200
-"""
 
 # a few seconds in many chunks: time to interrupt it
 SLOW = """

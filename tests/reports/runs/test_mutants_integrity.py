@@ -6,7 +6,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from scene_texts import PORTRAIT
+from scene_texts import PORTRAIT, SMALL_VELOCITY, TINY
 
 from reports.runs.counts import Tally
 from reports.runs.integrity import (
@@ -19,29 +19,10 @@ from reports.runs.integrity import (
 from reports.runs.plan import make_plan
 from reports.runs.scenes import parse_scene
 
-VELOCITY = """
-name = "small-velocity"
-kind = "velocity"
-eps = 2.0
-particles = 300
-seed = 3
-chunk_size = 64
-[start]
-phi = [3.85, 4.15]
-v = [2.0, 4.0]
-[horizon]
-collisions = 300
-[record]
-bins_per_decade = 5
-verify_samples = 30
-[physics]
-restitution = [1.0, 0.9]
-"""
-
 
 @pytest.fixture(scope="module")
 def vplan():
-    return make_plan(parse_scene(VELOCITY))
+    return make_plan(parse_scene(SMALL_VELOCITY))
 
 
 def test_velocity_arrays_of_an_empty_tally_pass(vplan):
@@ -134,21 +115,6 @@ def test_checks_go_on_after_an_unparsable_row():
 
 # ---- counts.csv ------------------------------------------------------------------------------
 
-TINY = """
-name = "tiny"
-kind = "transport"
-eps = 0.6
-particles = 200
-seed = 3
-chunk_size = 64
-[start]
-v = [2.0, 4.0]
-[holes]
-centres = [0.0, 3.141592653589793]
-widths = [1.0]
-[horizon]
-collisions = 200
-"""
 
 COUNTS_HEADER = "experiment,clock,outcome,lower_edge,count\n"
 

@@ -4,7 +4,7 @@ dissipative kernel gets the scene's physics (drag, its law, restitution)."""
 
 import numpy as np
 import pytest
-from scene_texts import PORTRAIT
+from scene_texts import PORTRAIT, TINY
 
 from reports.runs.chunk import kernel
 from reports.runs.counts import Counts
@@ -157,21 +157,6 @@ def test_zeros_are_integer_counts_of_the_plans_shape():
 
 # ---- make_plan -------------------------------------------------------------------------------
 
-TINY = """
-name = "tiny"
-kind = "transport"
-eps = 0.6
-particles = 200
-seed = 3
-chunk_size = 64
-[start]
-v = [2.0, 4.0]
-[holes]
-centres = [0.0, 3.141592653589793]
-widths = [1.0]
-[horizon]
-collisions = 200
-"""
 
 
 def test_sample_picks_are_spread_over_every_chunk_of_every_curve():

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scene_texts import PORTRAIT
+from scene_texts import PORTRAIT, TINY
 
 from reports.runs import driver, executor, rundir
 from reports.runs.counts import Tally
@@ -18,23 +18,6 @@ from reports.runs.plan import make_plan
 from reports.runs.recheck import _compare, _hashes, load_run, recheck
 from reports.runs.rundir import RunInterrupted
 from reports.runs.scenes import parse_scene
-
-TINY = """
-name = "tiny"
-kind = "transport"
-eps = 0.6
-particles = 200
-seed = 3
-chunk_size = 64
-[start]
-v = [2.0, 4.0]
-[holes]
-centres = [0.0, 3.141592653589793]
-widths = [1.0]
-[horizon]
-collisions = 200
-"""
-
 
 
 @pytest.fixture(scope="module")

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scene_texts import SMALL_VELOCITY as SMALL
 
 import fastpath
 from fastpath.moments import moments
@@ -23,24 +24,6 @@ from reports.runs.velocity import file_problems, velocity_text
 
 U = 2.0**-53
 
-SMALL = """
-name = "small-velocity"
-kind = "velocity"
-eps = 2.0
-particles = 300
-seed = 3
-chunk_size = 64
-[start]
-phi = [3.85, 4.15]
-v = [2.0, 4.0]
-[horizon]
-collisions = 300
-[record]
-bins_per_decade = 5
-verify_samples = 30
-[physics]
-restitution = [1.0, 0.9]
-"""
 
 # |eps| <= 1 and r = 0.5: the impacts accumulate and particles stick to the plate for good
 STICKY = SMALL.replace("eps = 2.0", "eps = 0.6").replace("[1.0, 0.9]", "[0.5]")
