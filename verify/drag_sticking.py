@@ -108,7 +108,7 @@ from .drag import DragFlight, NotDecided
 from .drag_certify import DragContext
 from .errors import UndecidableCollision
 from .phase import reduce_phase
-from .sticking import Accumulation
+from .sticking import Accumulation, geometric_enclosure
 
 _GUARD_DPS = 10
 _WINDOW = 2  # the window H of the rigorous enclosure, in units of T0
@@ -192,20 +192,9 @@ def _enclosure(iphi, iw, ieps, ik, law, ir, window):
     big_w = 2 * hi(iw)
     accel = _force(ieps, ik, law, iphi + iv.mpf([0, window]), iv.mpf([-big_w, big_w]))
     a_lo, a_hi = iv.mpf(lo(accel)), iv.mpf(hi(accel))
-    if not lo(a_lo) > 0:
+    if not lo(a_lo) > 0 or not hi(2 * (a_hi / a_lo) - 1) < 2:  # |x'| <= hi(w)*(2*rho - 1) < W
         return None
-    rho = a_hi / a_lo
-    if not hi(2 * rho - 1) < 2:  # |x'| <= hi(w)*(2*rho - 1) < W
-        return None
-    growth = ir * (2 * rho - 1)
-    if not hi(growth) < 1:
-        return None
-    t_hi = hi(2 * iw / (a_lo * (1 - growth)))
-    if not t_hi <= window:
-        return None
-    shrink = max(lo(ir * (2 / rho - 1)), mp.zero)
-    t_lo = lo(2 * iw / (a_hi * (1 - iv.mpf(shrink))))
-    return t_lo, t_hi
+    return geometric_enclosure(a_lo, a_hi, iw, ir, window)
 
 
 # --- 2. riding and detachment --------------------------------------------------------------------

@@ -113,7 +113,13 @@ def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
 def _enclosure(iphi, iw, ieps, ir, window):
     """``(T_lo, T_hi)`` proved on the window ``[0, window]`` (module docstring), or None."""
     accel = -1 + ieps * iv.cos(iphi + iv.mpf([0, window]))
-    a_lo, a_hi = iv.mpf(-hi(accel)), iv.mpf(-lo(accel))
+    return geometric_enclosure(iv.mpf(-hi(accel)), iv.mpf(-lo(accel)), iw, ir, window)
+
+
+def geometric_enclosure(a_lo, a_hi, iw, ir, window):
+    """``(T_lo, T_hi)``: the geometric sums of the module docstring for flights from ``iw`` on
+    which ``a_lo <= -x'' <= a_hi`` (intervals), restitution ``ir``; None unless ``a_lo > 0``,
+    ``r*(2*rho - 1) < 1`` and ``T_hi <= window`` are proved (``verify.drag_sticking`` too)."""
     if not lo(a_lo) > 0:
         return None
     rho = a_hi / a_lo
