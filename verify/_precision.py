@@ -35,3 +35,8 @@ def lo(x) -> mp.mpf:
 def hi(x) -> mp.mpf:
     """Upper end of an ``iv`` interval as an exact ``mpf``."""
     return mp.make_mpf(x._mpi_[1])
+
+
+def mid(x) -> mp.mpf:
+    """Midpoint of an ``iv`` interval, at the current ``mp`` precision."""
+    return (lo(x) + hi(x)) / 2

@@ -102,7 +102,7 @@ from typing import NamedTuple
 
 from mpmath import iv, mp
 
-from ._precision import hi, lo, working_dps
+from ._precision import hi, lo, mid, working_dps
 from .certify import _local_candidate, _search, _Undecided
 from .drag import DragFlight, NotDecided
 from .drag_certify import DragContext
@@ -145,10 +145,6 @@ def _force_slope(ieps, ik, law, ith):
     return _eta_slope(ik, law, u) * (-ieps * iv.cos(ith)) + ieps * iv.sin(ith)
 
 
-def _mid(x):
-    return (lo(x) + hi(x)) / 2
-
-
 # --- 1. accumulation -----------------------------------------------------------------------------
 def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
     """The summed tail from the impact state ``(phi, v)`` (exact ``mpf``) with drag ``k``, or None
@@ -164,10 +160,10 @@ def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
         ia = _force(ieps, ik, law, iphi)
         if not (lo(iw) > 0 and lo(ia) > 0 and r < 1):
             return None
-        w, a = _mid(iw), _mid(ia)
-        u = -eps * mp.sin(_mid(iphi))
+        w, a = mid(iw), mid(ia)
+        u = -eps * mp.sin(mid(iphi))
         c = k if law == "linear" else 2 * k * abs(u)
-        jerk = c * eps * mp.cos(_mid(iphi)) - eps * mp.sin(_mid(iphi))
+        jerk = c * eps * mp.cos(mid(iphi)) - eps * mp.sin(mid(iphi))
         a2, p2 = (abs(eps) * (1 + k), 0) if law == "linear" else (abs(eps) + 2 * k * eps**2,
                                                                    2 * k)
         t0 = 2 * w / (a * (1 - r))
@@ -184,7 +180,7 @@ def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
                 f"[{mp.nstr(enclosure[0], 20)}, {mp.nstr(enclosure[1], 20)}] "
                 f"(phi={phi}, v={v}, drag={k}, {law})"
             )
-        return Accumulation(tail, enclosure, _mid(iphi) + tail)
+        return Accumulation(tail, enclosure, mid(iphi) + tail)
 
 
 def _enclosure(iphi, iw, ieps, ik, law, ir, window):
@@ -370,7 +366,7 @@ def _with_precision(attempt, eps, k, law, dps, max_dps, what):
 
 def detachment_phase(ride: Riding):
     """theta* in [0, 2*pi) (midpoint of the proved box), at the current precision."""
-    theta = _mid(ride.theta_star)
+    theta = mid(ride.theta_star)
     return theta % (2 * mp.pi)
 
 
@@ -378,7 +374,7 @@ def riding_time(phase, ride: Riding):
     """Time riding the plate from ``phase`` (where a > 0 is proved) to the next theta*:
     ``(theta* - phase) mod 2*pi`` in ``(0, 2*pi]`` at the current precision."""
     two_pi = 2 * mp.pi
-    d = _mid(ride.theta_star) - phase
+    d = mid(ride.theta_star) - phase
     d -= two_pi * mp.floor(d / two_pi)
     return d if d > 0 else two_pi
 
@@ -391,7 +387,7 @@ class _BoxFlight(DragFlight):
     def __init__(self, iv_v, k, law):
         if not (lo(iv_v) > 0 or hi(iv_v) < 0):
             raise NotDecided("the velocity at detachment is within rounding of 0")
-        self.v, self.k, self.law = _mid(iv_v), k, law
+        self.v, self.k, self.law = mid(iv_v), k, law
         self.iv_v, self.iv_k = iv_v, iv.mpf(k)
         self.s = iv.sqrt(self.iv_k)
         self.t_top = None
@@ -407,7 +403,7 @@ class _DetachedContext(DragContext):
 
     def __init__(self, ride: Riding, eps, k, law, dps, wdps):
         ith = ride.theta_star
-        self.phi_exact, self.iphi, self.eps = _mid(ith), ith, eps
+        self.phi_exact, self.iphi, self.eps = mid(ith), ith, eps
         self.dps, self.wdps = dps, wdps
         self.ieps = iv.mpf(eps)
         self.flight = _BoxFlight(-self.ieps * iv.sin(ith), k, law)
@@ -449,11 +445,11 @@ def drag_detachment_step(eps, k, law, r, dps: int):
     ride, left, right, wdps = drag_detachment_flight(eps, k, law, dps)
     with working_dps(wdps + _GUARD_DPS):
         tau = (left + right) / 2
-        theta_star = _mid(ride.theta_star)
+        theta_star = mid(ride.theta_star)
         theta = theta_star + tau
         v_star = -eps * mp.sin(theta_star)
         flight = DragFlight(v_star, k, law)
-        v_in = _mid(flight.velocity(tau))
+        v_in = mid(flight.velocity(tau))
         u = -eps * mp.sin(theta)
         v1 = (1 + r) * u - r * v_in
         two_pi = 2 * mp.pi

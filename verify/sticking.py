@@ -61,7 +61,7 @@ from typing import NamedTuple
 import mpmath
 from mpmath import iv, mp
 
-from ._precision import hi, lo, working_dps
+from ._precision import hi, lo, mid, working_dps
 from .certify import _local_candidate, _search, _Undecided
 from .drag import NotDecided
 from .errors import UndecidableCollision
@@ -93,7 +93,7 @@ def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
         ia = 1 - ieps * iv.cos(iphi)
         if not (lo(iw) > 0 and lo(ia) > 0 and r < 1):
             return None
-        w, a, jerk = _mid(iw), _mid(ia), _mid(-ieps * iv.sin(iphi))
+        w, a, jerk = mid(iw), mid(ia), mid(-ieps * iv.sin(iphi))
         t0 = 2 * w / (a * (1 - r))
         q = t0**2 * (jerk**2 / a**2 + abs(eps) / a)
         if not q * t0 <= mp.mpf(10) ** (-dps):
@@ -107,7 +107,7 @@ def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
                 f"accumulation tail {mp.nstr(tail, 20)} outside its proved enclosure "
                 f"[{mp.nstr(enclosure[0], 20)}, {mp.nstr(enclosure[1], 20)}] (phi={phi}, v={v})"
             )
-        return Accumulation(tail, enclosure, _mid(iphi) + tail)
+        return Accumulation(tail, enclosure, mid(iphi) + tail)
 
 
 def _enclosure(iphi, iw, ieps, ir, window):
@@ -132,10 +132,6 @@ def geometric_enclosure(a_lo, a_hi, iw, ir, window):
     shrink = max(lo(ir * (2 / rho - 1)), mp.zero)
     t_lo = lo(2 * iw / (a_hi * (1 - iv.mpf(shrink))))
     return t_lo, t_hi
-
-
-def _mid(x):
-    return (lo(x) + hi(x)) / 2
 
 
 def can_detach(eps) -> bool:
@@ -188,7 +184,7 @@ class _DetachedGap:
 
     def point(self, t):
         d_iv, p_iv = self._at(iv.mpf(t))
-        return _mid(d_iv), _mid(p_iv)
+        return mid(d_iv), mid(p_iv)
 
     def needed(self, t):
         return 0
