@@ -40,8 +40,9 @@ iterates move the angles along by angle addition (``fastpath.rotation``):
 - Unless the flight may be short (lower bound 2*w0/(1+|eps|) below 1), start at the Holmes
   flight time t = 2*v, where t*(v - t/2) vanishes, and
   write t = 2*v + delta: d = eps*(cos(phi) - cos(phi + t)) - t*delta/2, d' = -v - delta +
-  eps*sin(phi + t), d'' = -1 + eps*cos(phi + t), with the angle phi + t = theta0 + delta,
-  theta0 = phi + 2*v (its rounding error kept exactly by TwoSum). Here t >= 1, so the plate
+  eps*sin(phi + t), d'' = -1 + eps*cos(phi + t), the sine and cosine at the start taken of the
+  exact sum phi + 2*v (``sin_cos_of_sum``: TwoSum, libm, the remainder by angle addition) and
+  rotated on by the steps in delta. Here t >= 1, so the plate
   term's rounding error, ~|eps|*u, is within the gap's error bound (``fastpath.gap``).
 - Otherwise start at the root of w0*t - (1 - eps*cos(phi))*t**2/2 (the plate's acceleration
   frozen at departure) and use the half angle t/2: d = 2*eps*sin(t/2)*sin(phi + t/2) +
@@ -54,7 +55,7 @@ import math
 
 from fastpath._jit import inline_jit, jit
 from fastpath.gap import UNIT_ROUNDOFF, gap_error, rate_error
-from fastpath.rotation import rotate
+from fastpath.rotation import rotate, sin_cos_of_sum
 from fastpath.status import FlightStatus
 from fastpath.tight_gap import SMALLEST_T, tight_gap
 
@@ -146,14 +147,6 @@ def newton_is_final(newton, d_err, d1_err, eps):
 
 
 @jit
-def two_sum(x, y):
-    """(s, e) with s = fl(x + y) and x + y = s + e exactly (Knuth)."""
-    s = x + y
-    y_virtual = s - x
-    return s, (x - (s - y_virtual)) + (y - y_virtual)
-
-
-@jit
 def concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
     """(tau, sin(phi + tau), cos(phi + tau), evaluations, status) for |eps| <= 1, w0 > w0_error.
 
@@ -169,7 +162,7 @@ def concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
 
 
 @jit
-def _finish(t, d, d1, s, c, angle, lo, hi, evaluations, where):
+def _finish(t, d, d1, s, c, phi, lo, hi, evaluations, where):
     """The answer from the last evaluation at t (module docstring)."""
     if where == _FLAT:
         return t, s, c, evaluations, UNCERTAIN
@@ -180,15 +173,14 @@ def _finish(t, d, d1, s, c, angle, lo, hi, evaluations, where):
     h = tau - t
     if abs(h) < 1e-8:  # first order: the neglected h**2/2 is below u/2
         return tau, s + c * h, c - s * h, evaluations, CONVERGED
-    s, c = rotate(s, c, angle, h)
+    s, c = rotate(s, c, h, phi, tau)
     return tau, s, c, evaluations, CONVERGED
 
 
 @jit
 def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
     two_v = 2.0 * v
-    theta0, theta0_error = two_sum(phi, two_v)
-    s, c = rotate(math.sin(theta0), math.cos(theta0), theta0, theta0_error)
+    s, c = sin_cos_of_sum(phi, two_v)
     delta, t = 0.0, two_v
     for evaluations in range(1, ITERATION_LIMIT + 1):
         d = eps * (cos_phi - c) - 0.5 * t * delta
@@ -197,19 +189,16 @@ def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
             return math.nan, math.nan, math.nan, evaluations, OVERFLOW
         where = classify(phi, v, eps, t, d, d1)
         if where >= _AT_ROOT:
-            return _finish(t, d, d1, s, c, theta0 + theta0_error + delta, lo, hi, evaluations,
-                           where)
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, where)
         d1_err = rate_error(phi, v, eps, t)
         if d1 < -d1_err and newton_is_final(-d / d1, gap_error(phi, v, eps, t), d1_err, eps):
             lo, hi = (t, hi) if where == _BEFORE else (lo, t)
-            return _finish(t, d, d1, s, c, theta0 + theta0_error + delta, lo, hi, evaluations,
-                           _AT_ROOT)
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _AT_ROOT)
         t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, where, lo, hi)
         if t_next == lo or t_next == hi:
-            return _finish(t, d, d1, s, c, theta0 + theta0_error + delta, lo, hi, evaluations,
-                           _BEFORE)
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _BEFORE)
         delta_next = t_next - two_v
-        s, c = rotate(s, c, theta0 + theta0_error + delta, delta_next - delta)
+        s, c = rotate(s, c, delta_next - delta, phi, t_next)
         delta, t = delta_next, t_next
     return t, s, c, ITERATION_LIMIT, MAX_ITERATIONS
 
@@ -250,20 +239,20 @@ def _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi, done):
         elif d1 < -d1_err:
             where = _AT_ROOT
         else:
-            return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, _FLAT)
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _FLAT)
         if where == _AT_ROOT:
-            last = _finish(t, d, d1, s, c, phi + t, lo, hi, ITERATION_LIMIT, _AT_ROOT)
+            last = _finish(t, d, d1, s, c, phi, lo, hi, ITERATION_LIMIT, _AT_ROOT)
             t_next = last[0]
             step = abs(t_next - t)
             if not step < 0.5 * last_step:
                 stalls += 1
             if stalls > _NEWTON_STALLS or not _newton_inexact(t, d, d1, d2, eps):
-                return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, _AT_ROOT)
+                return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _AT_ROOT)
             last_step = step
         else:
             t_next, lo, hi = halley(t, d, d1, d2, where, lo, hi)
             if t_next == lo or t_next == hi:
-                return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, _BEFORE)
+                return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _BEFORE)
         t = t_next
     return last
 
@@ -293,10 +282,10 @@ def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error):
                 if refined[4] != MAX_ITERATIONS:
                     return refined
                 evaluations = ITERATION_LIMIT  # refinement ran out: the loose verdict stands
-            return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, where)
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, where)
         t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, where, lo, hi)
         if t_next == lo or t_next == hi:
-            return _finish(t, d, d1, s, c, phi + t, lo, hi, evaluations, _BEFORE)
-        sin_h, cos_h = rotate(sin_h, cos_h, 0.5 * t, 0.5 * (t_next - t))
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _BEFORE)
+        sin_h, cos_h = rotate(sin_h, cos_h, 0.5 * (t_next - t), 0.0, 0.5 * t_next)
         t = t_next
     return t, s, c, ITERATION_LIMIT, MAX_ITERATIONS

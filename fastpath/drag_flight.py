@@ -55,6 +55,7 @@ from fastpath.flight import (
     lower_bound_step,
 )
 from fastpath.gap import UNIT_ROUNDOFF, departure
+from fastpath.rotation import sin_cos_of_sum
 from fastpath.sincos import sin_cos
 from fastpath.status import FlightStatus
 
@@ -88,10 +89,12 @@ def drag_flight(phi, sin_phi, cos_phi, v, eps, drag, law, w0_error, method=AUTO)
     if method == AUTO and abs(eps) < 1.0 and 1.0 + eta(v, drag, law) >= 0.0:
         tau, iterations, status = concave_drag_flight(phi, cos_phi, v, eps, drag, law, w0, lo)
         if status != MAX_ITERATIONS or iterations == ITERATION_LIMIT:
-            return tau, math.sin(phi + tau), math.cos(phi + tau), iterations, status
+            sin1, cos1 = sin_cos_of_sum(phi, tau)
+            return tau, sin1, cos1, iterations, status
         used, lo = iterations, tau  # not certified concave: lower-bound steps from its lo
     tau, iterations, status = lower_bound_drag_flight(phi, v, eps, drag, law, lo, used)
-    return tau, math.sin(phi + tau), math.cos(phi + tau), iterations, status
+    sin1, cos1 = sin_cos_of_sum(phi, tau)
+    return tau, sin1, cos1, iterations, status
 
 
 @jit

@@ -32,12 +32,12 @@ from numba import get_num_threads, prange
 
 from fastpath._jit import inline_jit, jit, parallel_jit
 from fastpath.collision import collide
-from fastpath.concave import two_sum
 from fastpath.flight import CONVERGED, GENERAL, departure_phase
 from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.holmes import holmes_collide
 from fastpath.lockstep import _select, lockstep_collide
 from fastpath.phase import TWO_PI, centre_moderate, reduce_moderate
+from fastpath.rotation import two_sum
 from fastpath.sincos import sin_cos, sin_cos_error
 
 NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only

@@ -50,6 +50,7 @@ from fastpath.concave import concave_flight
 from fastpath.gap import UNIT_ROUNDOFF, departure, gap, gap_error, gap_rate, rate_error
 from fastpath.lockstep import lockstep_flight_one
 from fastpath.phase import centre_phase
+from fastpath.rotation import sin_cos_of_sum
 from fastpath.sincos import sin_cos, sin_cos_error
 from fastpath.status import FlightStatus
 
@@ -173,7 +174,8 @@ def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, phase_error=0.0):
                 return tau, sin1, cos1, evaluations, CONVERGED
         return concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error)
     tau, iterations, status = lower_bound_flight(phi, v, eps, w0)
-    return tau, math.sin(phi + tau), math.cos(phi + tau), iterations, status
+    sin1, cos1 = sin_cos_of_sum(phi, tau)
+    return tau, sin1, cos1, iterations, status
 
 
 @jit

@@ -34,8 +34,9 @@ ensemble (a batch) return the same bits for the same departure.
 import math
 
 from fastpath._jit import inline_jit, jit
-from fastpath.concave import bracket_from_root, newton_is_final, two_sum
+from fastpath.concave import bracket_from_root, newton_is_final
 from fastpath.gap import departure, gap_error, rate_error
+from fastpath.rotation import two_sum
 from fastpath.sincos import SIN_COS_LIMIT, sin_cos
 
 LOCKSTEP_EVALUATIONS = 4

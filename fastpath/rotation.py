@@ -32,9 +32,42 @@ def small_sin_cos(h):
 
 
 @jit
-def rotate(sin_x, cos_x, x, h):
-    """(sin(x + h), cos(x + h)) from sin x and cos x: angle addition for small h, else libm."""
+def two_sum(x, y):
+    """(s, e) with s = fl(x + y) and x + y = s + e exactly (Knuth)."""
+    s = x + y
+    y_virtual = s - x
+    return s, (x - (s - y_virtual)) + (y - y_virtual)
+
+
+@jit
+def sin_cos_of_sum(x, y):
+    """(sin(x + y), cos(x + y)) of the EXACT sum of two doubles.
+
+    With a = fl(x + y) and the remainder e = x + y - a (``two_sum``, exact, |e| <= ulp(a)/2),
+
+        sin(x + y) = sin(a)*cos(e) + cos(a)*sin(e),   cos(x + y) = cos(a)*cos(e) - sin(a)*sin(e),
+
+    libm at a and the Taylor polynomials at e. The error is libm's (< 1 ulp) plus a few
+    roundings, whatever |x + y|: libm's sine of fl(x + y) alone is off by up to |e|, which is
+    16u at x + y ~ 24 (issue 12: a carried sine 9u off). e = 0 gives libm's values unchanged.
+    """
+    a, e = two_sum(x, y)
+    sin_a, cos_a = math.sin(a), math.cos(a)
+    if abs(e) > SMALL_ANGLE:  # only for |x + y| >= 2**51, where the angle is mostly noise
+        sin_e, cos_e = math.sin(e), math.cos(e)
+    else:
+        sin_e, cos_e = small_sin_cos(e)
+    return sin_a * cos_e + cos_a * sin_e, cos_a * cos_e - sin_a * sin_e
+
+
+@jit
+def rotate(sin_x, cos_x, h, phi, t):
+    """(sin(phi + t), cos(phi + t)) from the sine and cosine at phi + t - h.
+
+    Angle addition for small steps, |h| <= SMALL_ANGLE; a longer step takes libm afresh at the
+    exact sum phi + t (``sin_cos_of_sum``), never at a rounded angle.
+    """
     if abs(h) > SMALL_ANGLE:
-        return math.sin(x + h), math.cos(x + h)
+        return sin_cos_of_sum(phi, t)
     s, c = small_sin_cos(h)
     return sin_x * c + cos_x * s, cos_x * c - sin_x * s

@@ -54,6 +54,7 @@ from fastpath._jit import jit
 from fastpath.flight import CONVERGED, UNCERTAIN, lower_bound_flight
 from fastpath.gap import UNIT_ROUNDOFF, gap, gap_error
 from fastpath.phase import PI, TWO_PI, centre_phase
+from fastpath.rotation import sin_cos_of_sum
 from fastpath.short_flight import departure_deceleration
 
 TAIL_Q = UNIT_ROUNDOFF  # sum the tail once its second-order size q is <= u (docstring)
@@ -134,4 +135,5 @@ def detachment_flight(eps):
     tau, iterations, status = lower_bound_flight(phi, v, eps, 0.0, t_c)
     if status != CONVERGED:
         return tau, math.nan, math.nan, iterations, status
-    return tau, math.sin(phi + tau), math.cos(phi + tau), iterations, status
+    sin1, cos1 = sin_cos_of_sum(phi, tau)
+    return tau, sin1, cos1, iterations, status

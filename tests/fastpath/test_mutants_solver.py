@@ -224,7 +224,7 @@ def test_two_sum_is_exact():
     """s + e == x + y exactly (Knuth's TwoSum), the Holmes start's angle phi + 2v."""
     from fractions import Fraction
 
-    from fastpath.concave import two_sum
+    from fastpath.rotation import two_sum
 
     assert two_sum(1.0, 2.0**-60) == (1.0, 2.0**-60)
     rng = np.random.default_rng(3)
@@ -314,16 +314,13 @@ def test_a_first_evaluation_at_the_root_takes_the_newton_correction(phi, v):
         assert abs(c - mp.cos(angle)) <= CARRIED_SINE_ERROR, (c, float(mp.cos(angle)))
 
 
-@pytest.mark.xfail(strict=True, reason="open: a long Holmes step's libm sine is of a rounded "
-                   "angle; the returned sine is 9.07u off, CARRIED_SINE_ERROR claims 8u")
 def test_long_holmes_step_sine_within_the_carried_bound():
-    """Found by the solver mutation pass (issue 12), NOT fixed: from the Holmes start 2v a step
-    longer than SMALL_ANGLE = 0.125 takes fresh libm sines of fl(fl(theta0 + theta0_error) +
-    delta) + h (``rotate``), an angle rounded twice at ~24 (ulp 3.6e-15 = 32u), and the TwoSum
-    remainder theta0_error is lost in the first sum (|theta0_error| <= ulp/2: it rounds back to
-    theta0). The returned sin(phi + tau) is then 1.007e-15 = 9.07u from the exact value, above
-    the 8u that ``collide_from`` adds to the next departure's phase error
-    (``CARRIED_SINE_ERROR``); for angles up to ~35 the rounding can reach a few tens of u."""
+    """Found by the solver mutation pass (issue 12) and fixed in session 6. From the Holmes
+    start 2v a step longer than SMALL_ANGLE = 0.125 took libm's sine of fl(fl(theta0 +
+    theta0_error) + delta) + h, an angle rounded twice at ~24 (ulp 32u) with the TwoSum remainder
+    lost: the returned sin(phi + tau) was 9.07u off, above the 8u that ``collide_from`` adds to
+    the next departure's phase error (``CARRIED_SINE_ERROR``). ``rotate`` now takes libm afresh
+    at the exact sum phi + t (``sin_cos_of_sum``)."""
     phi, v, eps = 2.8535527917488874, 10.72350022083204, 1.0
     tau, s, _, _, status = _solve(phi, v, eps)
     assert status == CONVERGED

@@ -1,0 +1,91 @@
+"""The sine and cosine that a flight returns are those of the exact angle phi + tau.
+
+``fastpath.rotation.sin_cos_of_sum`` takes libm at a = fl(x + y) and adds the TwoSum remainder
+e = x + y - a by angle addition. Its error bound, from the precision: libm's sine and cosine are
+within 1 ulp (<= 2u for values below 1), the two products and the sum add 1.5u, the Taylor
+polynomials' truncation is below u/40: 4u in all (u = 2**-53). libm at fl(x + y) alone is off by
+up to |e| = ulp(x + y)/2, 16u at x + y ~ 24 and growing with the angle: the issue-12 finding that
+a carried sine was 9u off (``CARRIED_SINE_ERROR`` = 8u).
+"""
+
+import math
+
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+from mpmath import mp
+
+from fastpath.collision import CARRIED_SINE_ERROR
+from fastpath.flight import CONVERGED, flight_from
+from fastpath.gap import UNIT_ROUNDOFF
+from fastpath.phase import centre_phase
+from fastpath.rotation import SMALL_ANGLE, rotate, sin_cos_of_sum, small_sin_cos, two_sum
+
+SUM_ERROR = 4.0 * UNIT_ROUNDOFF
+
+angles = st.floats(-1e6, 1e6, allow_nan=False, allow_infinity=False)
+
+
+def _exact(x, y):
+    with mp.workdps(60):
+        angle = mp.mpf(x) + mp.mpf(y)
+        return mp.sin(angle), mp.cos(angle)
+
+
+@settings(max_examples=300)
+@given(angles, angles)
+def test_sin_cos_of_sum_is_of_the_exact_sum(x, y):
+    s, c = sin_cos_of_sum(x, y)
+    s_ref, c_ref = _exact(x, y)
+    assert abs(s - s_ref) <= SUM_ERROR and abs(c - c_ref) <= SUM_ERROR, (x, y)
+
+
+def test_the_rounded_angle_alone_is_not_enough():
+    """The witness: libm at fl(x + y) misses by more than the carried bound, the sum does not."""
+    x, y = 2.8535527917488874, 21.44700044166408  # phi and 2v of the issue-12 reproducer
+    a, e = two_sum(x, y)
+    assert e != 0.0
+    s_ref, _ = _exact(x, y)
+    found = False
+    for k in range(-64, 65):  # neighbours of y: some give a remainder near ulp/2
+        yk = y + k * math.ulp(y)
+        s_ref, c_ref = _exact(x, yk)
+        if abs(math.sin(x + yk) - s_ref) > CARRIED_SINE_ERROR:
+            found = True
+        s, c = sin_cos_of_sum(x, yk)
+        assert abs(s - s_ref) <= SUM_ERROR and abs(c - c_ref) <= SUM_ERROR
+    assert found  # the old way exceeds 8u for at least one of them
+
+
+def test_sin_cos_of_sum_without_a_remainder_is_libm():
+    for x, y in [(0.0, 24.0), (1.5, 0.25), (-3.0, 3.0), (0.0, 1e300)]:
+        assert two_sum(x, y)[1] == 0.0
+        assert sin_cos_of_sum(x, y) == (math.sin(x + y), math.cos(x + y))
+
+
+def test_rotate_small_steps_by_angle_addition_long_ones_afresh():
+    phi, t = 0.7, 3.0
+    s0, c0 = math.sin(phi + t - 0.1), math.cos(phi + t - 0.1)
+    sh, ch = small_sin_cos(0.1)
+    assert rotate(s0, c0, 0.1, phi, t) == (s0 * ch + c0 * sh, c0 * ch - s0 * sh)
+    h = math.nextafter(SMALL_ANGLE, 1.0)  # just longer than SMALL_ANGLE: the given sine is unused
+    assert rotate(0.0, 1.0, h, phi, t) == sin_cos_of_sum(phi, t)
+    assert rotate(0.0, 1.0, -h, phi, t) == sin_cos_of_sum(phi, t)
+    sh, ch = small_sin_cos(SMALL_ANGLE)
+    assert rotate(0.0, 1.0, SMALL_ANGLE, phi, t) == (sh, ch)  # at SMALL_ANGLE itself: addition
+
+
+@pytest.mark.parametrize("eps", [1.2, 2.0, 4.0, -3.0])
+@settings(max_examples=60, deadline=None)
+@given(phi=st.floats(-math.pi, math.pi, exclude_max=True), v=st.floats(5.0, 40.0))
+def test_long_flights_carry_the_sine_of_the_exact_angle(eps, phi, v):
+    """|eps| > 1 (lower-bound steps): long flights, angles phi + tau up to ~90, where libm at the
+    rounded angle was off by up to 64u. Every returned sine and cosine is within the bound the
+    next flight assumes for it."""
+    phi = centre_phase(phi)
+    tau, s, c, _, status = flight_from(phi, math.sin(phi), math.cos(phi), v, eps)
+    assume(status == CONVERGED)
+    with mp.workdps(60):
+        angle = mp.mpf(phi) + mp.mpf(tau)
+        assert abs(s - mp.sin(angle)) <= CARRIED_SINE_ERROR, (phi, v, eps, tau)
+        assert abs(c - mp.cos(angle)) <= CARRIED_SINE_ERROR, (phi, v, eps, tau)
