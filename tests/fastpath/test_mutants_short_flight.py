@@ -1,0 +1,94 @@
+"""Tests written against the survivors of the solver mutation pass on ``fastpath/short_flight.py``
+(issue 12, ``scripts/mutation.sh solver``): the relative-coordinate gap of chattering impacts.
+
+The solver only evaluates S3 and C4 for t <= SERIES_LIMIT = 1 (the window h <= 1), so their
+closed forms for t > 1 were never run by the flight tests; they are public helpers (the drag
+solver calls ``s3`` too) and are held to their formulas here. Bounds from the precision:
+u = 2**-53, libm's sine within 1 ulp (<= 2u below 1 in magnitude).
+"""
+
+import math
+
+import pytest
+from mpmath import mp
+
+from fastpath.gap import UNIT_ROUNDOFF as U
+from fastpath.short_flight import c4, departure_deceleration, s3, short_window
+
+DPS = 50
+
+
+def _dps(t):
+    """Enough digits for t - sin(t) ~ t**3/6 and 1 - cos(t) - t**2/2 ~ t**4/24 at tiny t."""
+    return DPS + (4 * int(-math.log10(t)) if 0.0 < t < 1.0 else 0)
+
+
+def _s3(t):
+    with mp.workdps(_dps(t)):
+        return mp.mpf(t) - mp.sin(mp.mpf(t))
+
+
+def _c4(t):
+    with mp.workdps(_dps(t)):
+        t = mp.mpf(t)
+        return 1 - mp.cos(t) - t * t / 2
+
+
+@pytest.mark.parametrize("t", [math.nextafter(1.0, 2.0), 1.5, 2.0, 3.0, 7.5, 40.0])
+def test_closed_forms_beyond_the_series(t):
+    """Mutants ``t - sin(t)`` -> ``t + sin(t)``, ``2*sin(t/2)**2 - t**2/2`` -> ``+``, and the
+    square -> a cube. For t > 1: t - sin(t) has the error of libm's sine (<= 2u) and one
+    subtraction (u*|S3|); 2*sin(t/2)**2 - t**2/2 that of the sine squared and doubled
+    (<= 3*2u*2*sin**2... bounded by 8u*2*sin(t/2)**2) and of t*t/2 and the subtraction
+    (u*t**2/2 each, and u*|C4|)."""
+    s_ref, c_ref = _s3(t), _c4(t)
+    assert abs(s3(t) - s_ref) <= 2 * U + U * abs(s_ref)
+    sq = 2.0 * math.sin(0.5 * t) ** 2
+    assert abs(c4(t) - c_ref) <= 8 * U * sq + U * t * t + U * abs(c_ref)
+
+
+@pytest.mark.parametrize("t", [0.0, 1e-70, 1e-8, 0.01, 0.3, 0.75, 1.0])
+def test_series_within_a_few_u_relative(t):
+    """The series branch (t <= 1), relative to the exact values: cancellation-free, so a few u
+    relative (eight Horner steps, each with a term below 1/20 of the sum, and three roundings
+    at the end: < 5u). At t = 0 both are exactly 0."""
+    s_ref, c_ref = _s3(t), _c4(t)
+    assert abs(s3(t) - s_ref) <= 5 * U * abs(s_ref)
+    assert abs(c4(t) - c_ref) <= 5 * U * abs(c_ref)
+
+
+@pytest.mark.parametrize("eps", [0.3, -0.9, 1.5, -4.0, 20.0])
+@pytest.mark.parametrize("cos_phi", [-1.0, -0.4, 0.0, 0.3, 0.999])
+def test_departure_deceleration_is_a_lower_bound_by_the_documented_margin(eps, cos_phi):
+    """a = 1 - eps*cos(phi) lowered by 8u*(1 + 14|eps|): below the exact value of the given
+    cosine (kills the margin added instead of subtracted, and 1 + 14|eps| -> 1 - 14|eps|, which
+    turns the margin negative for |eps| > 1/14), and not by more than the margin plus the
+    rounding of the products (2u*(1 + |eps|))."""
+    a = departure_deceleration(cos_phi, eps)
+    with mp.workdps(DPS):
+        exact = 1 - mp.mpf(eps) * mp.mpf(cos_phi)
+        margin = 8 * U * (1 + 14 * abs(eps))
+        assert a < exact
+        assert exact - a <= margin + 2 * U * (1 + abs(eps))
+        assert exact - a >= margin - 2 * U * (1 + abs(eps))
+
+
+@pytest.mark.parametrize("sin_phi, cos_phi, w, eps", [
+    (0.0, -1.0, 1e-3, 1.5), (0.6, -0.8, 1e-5, 1.5), (-0.28, -0.96, 3e-2, 3.0),
+    (0.8, 0.6, 1e-4, -1.2), (0.1, 0.3, 1e-10, 0.5),
+])
+def test_short_window_rounds_its_bound_up(sin_phi, cos_phi, w, eps):
+    """The window is 2*w/m_h (m_h from the lowered deceleration a, h = 4w/a) rounded UP by the
+    factor 1 + 4u: never below the exact quotient of the float w and m_h (kills 1 + 4u -> 1 - 4u,
+    which gives at most (1 + u)*(1 - 4u) < 1 times it). m_h is formed here as the docstring
+    defines it, from a and h, each exact quotient rounded once (relative 1e-15 of m_h at most,
+    covered by the 2u below the 4u factor)."""
+    upper = short_window(sin_phi, cos_phi, w, eps)
+    assert upper > 0.0
+    a = departure_deceleration(cos_phi, eps)
+    h = 4.0 * w / a
+    m_h = a - abs(eps * sin_phi) * h - 0.5 * abs(eps) * h * h
+    with mp.workdps(DPS):
+        quotient = 2 * mp.mpf(w) / mp.mpf(m_h)
+        assert upper >= quotient
+        assert upper <= quotient * (1 + 6 * U)
