@@ -316,3 +316,74 @@ def test_refinement_at_a_slope_exactly_its_bound_is_flat():
     tau, _, _, reported, status = concave._refine(phi, sin_phi, cos_phi, v, eps, w0_error, t,
                                                   lo, hi, done)
     assert status == int(FlightStatus.UNCERTAIN) and tau == t and reported == done + 1
+
+
+# --- the refinement's Newton continuation and its stall counter ---
+
+
+def _replay_refinement(points, eps):
+    """The refinement's rule (``_refine`` docstring) replayed on its recorded evaluations:
+    (index of the evaluation where it must stop, why, stalls, continuations). Each point is
+    classified by E and R; one with |d| <= E and d' < -R gives the Newton point t - d/d', the
+    next iterate while the correction may miss by more than u*t/2 in second order
+    (``_newton_inexact``: (|d''| + |eps*delta|)*delta**2 > u*t*|d'|, delta = d/d'), except
+    that a Newton step not shorter than half the previous one is a stall, and the third stall
+    stops it (_NEWTON_STALLS = 2 may fail to halve)."""
+    last_step, stalls, continuations = math.inf, 0, 0
+    for i, (_, t, d, d1, d2, _, _, d_err, d1_err) in enumerate(points):
+        if d > d_err or (d >= -d_err and d1 > d1_err) or d < -d_err:
+            continue  # a Halley step (or a bisection) follows
+        if not d1 < -d1_err:
+            return i, "flat", stalls, continuations
+        newton = t - d / d1
+        step = abs(newton - t)
+        if not step < 0.5 * last_step:
+            stalls += 1
+        if stalls > 2:
+            return i, "stalls", stalls, continuations
+        delta = d / d1
+        if not (abs(d2) + abs(eps * delta)) * delta * delta > U * t * abs(d1):
+            return i, "exact", stalls, continuations
+        assert i + 1 < len(points) and points[i + 1][1] == newton  # the Newton point is next
+        last_step = step
+        continuations += 1
+    return None, "ran out", stalls, continuations
+
+
+_NEAR_TRIPLE = [  # phi = -x*(1 + a), v = x, eps ~ 1, x ~ 1e-9: flat to rounding around the root
+    (-9.99999999999e-10, 1e-09, 1.0 - 1e-15),  # stops on the third stall
+    (-1.2134827665356604e-09, 1.213482767749143e-09, 1.0 - 1e-12),  # exact after 3 Newton steps
+    (-9.999999990000001e-10, 1e-09, 1.0 - 1e-12),  # after 2
+    (-1.3367506985829556e-09, 1.3367506999197064e-09, 1.0 - 1e-15),  # at the first
+    (-2.3886430765959576e-09, 2.3886430789846004e-09, 1.0 - 1e-15),  # after 2
+]
+
+
+def test_refinement_stops_where_its_rule_says(evaluations):
+    """Mutants 63 (``stalls = 0`` -> 1), 71 (``stalls += 1`` -> ``-= 1``), 76 (the step
+    ``|t_next - t|`` -> ``|t_next + t|``), 78 (``stalls += 2``), 79 (``stalls > _NEWTON_STALLS``
+    -> ``>=``) in ``_refine``.
+
+    Near-triple flights (eps -> 1, phi ~ -v ~ -1e-9) whose root float64 can only place to
+    within the noise of the computed gap: the refinement goes on from Newton point to Newton
+    point until the correction is exact to second order or the steps stop halving (module
+    docstring: then rounding dominates). Its recorded evaluations are replayed against that
+    rule (``_replay_refinement``): it must stop exactly where the rule says, having taken
+    each Newton point as the next iterate. Among the flights one stops on its third stall, and
+    others after two and three continuations (asserted, so that the rule is exercised); each
+    answer is CONVERGED inside the certified bracket."""
+    seen = set()
+    for phi, v, eps in _NEAR_TRIPLE:
+        sin_phi, cos_phi = math.sin(phi), math.cos(phi)
+        w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
+        lo, hi = bracket(v, w0, w0_error, eps)
+        evaluations.clear()
+        tau, _, _, reported, status = _python(concave._flight_half_angle)(
+            phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
+        tight = [point for point in evaluations if point[0] == "tight"]
+        stop, why, stalls, continuations = _replay_refinement(tight, eps)
+        assert stop == len(tight) - 1, (phi, v, eps, stop, len(tight), why)
+        assert reported == len(evaluations) <= ITERATION_LIMIT
+        assert status == CONVERGED and lo <= tau <= hi
+        seen.add((why, stalls if why == "stalls" else continuations))
+    assert ("stalls", 3) in seen and ("exact", 2) in seen and ("exact", 3) in seen, seen
