@@ -387,3 +387,68 @@ def test_refinement_stops_where_its_rule_says(evaluations):
         assert status == CONVERGED and lo <= tau <= hi
         seen.add((why, stalls if why == "stalls" else continuations))
     assert ("stalls", 3) in seen and ("exact", 2) in seen and ("exact", 3) in seen, seen
+
+
+# --- a gap that overflows ---
+
+
+def test_an_overflowing_gap_is_an_overflow():
+    """Mutants 53 and 98: ``not abs(d) < math.inf`` -> ``<=`` (Holmes and half-angle loops).
+
+    Given the brackets ``concave_flight`` builds, every iterate is below ~2|v| + 2 and d stays
+    finite; given a sound but loose bracket [lo, 2**1023] the loops reach points where
+    t*(v - t/2) overflows, and d = -inf must end the flight as OVERFLOW (NaN answer, the
+    evaluations made so far) rather than be classified and stepped from (inf/inf is NaN).
+    Half-angle (phi = -1.5, v = 0.25, eps = 1e-3, as in the budget test): the start is the
+    midpoint 2**1022, where t**2/2 overflows: OVERFLOW at the first evaluation. Holmes (phi =
+    pi/2, v = 0, eps = 1: 2*w0 = 2 = 1 + |eps|): at the start t = 2v = 0 the gap is exactly 0
+    and rising, Halley's step is 0 (not inside the bracket) and the bisection of [0, 2**1023]
+    is the arithmetic midpoint 2**1022 (lo = 0), where t*delta/2 overflows: OVERFLOW at the
+    second evaluation."""
+    overflow = int(FlightStatus.OVERFLOW)
+    phi, v, eps = -1.5, 0.25, 1e-3
+    sin_phi, cos_phi = math.sin(phi), math.cos(phi)
+    w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
+    lo = 2.0 * w0 / (1.0 - eps * cos_phi)
+    assert 2.0 * w0 < 1.0 + abs(eps) and _exact_gap(phi, v, eps, lo) > 0
+    tau, s, c, reported, status = concave._flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo,
+                                                             2.0**1023, w0_error)
+    assert status == overflow and reported == 1 and math.isnan(tau) and math.isnan(s)
+
+    phi, v, eps = math.pi / 2, 0.0, 1.0
+    sin_phi, cos_phi = math.sin(phi), math.cos(phi)
+    w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
+    assert 2.0 * w0 >= 1.0 + abs(eps)
+    lo, _ = bracket(v, w0, w0_error, eps)
+    tau, s, c, reported, status = concave._flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo,
+                                                              2.0**1023)
+    assert status == overflow and reported == 2 and math.isnan(tau) and math.isnan(c)
+
+
+@pytest.mark.parametrize("phi, v, eps, end", [(-1.5, 0.6, 0.5, "lo"), (1.5, 0.25, 0.5, "hi")])
+def test_a_first_guess_on_a_bracket_end_is_replaced_by_the_midpoint(evaluations, phi, v, eps,
+                                                                     end):
+    """Mutants 84, 85: ``_flight_half_angle``'s ``not lo < t < hi`` with either ``<`` -> ``<=``.
+
+    The half-angle start is the root of the frozen-acceleration parabola,
+    2*w0/(1 - eps*cos(phi)), if it lies strictly inside the bracket, else the bracket's midpoint
+    (an end is a bound, not a candidate). Here the bracket is given with that guess as one end,
+    a sound one: for phi = -1.5 the plate's pull weakens along the flight (cos(phi + t) rises),
+    so the exact gap is still positive at the guess and it is a lower end; for phi = 1.5 it
+    strengthens, the gap is negative there and the guess is an upper end (both checked in
+    mpmath). The first evaluation must be at the midpoint, which the mutants skip."""
+    sin_phi, cos_phi = math.sin(phi), math.cos(phi)
+    w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
+    assert 2.0 * w0 < 1.0 + abs(eps)  # the half-angle start
+    guess = 2.0 * w0 / (1.0 - eps * cos_phi)
+    natural_lo, natural_hi = bracket(v, w0, w0_error, eps)
+    if end == "lo":
+        assert _exact_gap(phi, v, eps, guess) > 0
+        lo, hi = guess, natural_hi
+    else:
+        assert _exact_gap(phi, v, eps, guess) < 0
+        lo, hi = natural_lo, guess
+    tau, _, _, _, status = _python(concave._flight_half_angle)(phi, sin_phi, cos_phi, v, eps, lo,
+                                                               hi, w0_error)
+    assert evaluations[0][1] == 0.5 * (lo + hi) != guess
+    assert status == CONVERGED and lo <= tau <= hi
