@@ -452,3 +452,76 @@ def test_a_first_guess_on_a_bracket_end_is_replaced_by_the_midpoint(evaluations,
                                                                hi, w0_error)
     assert evaluations[0][1] == 0.5 * (lo + hi) != guess
     assert status == CONVERGED and lo <= tau <= hi
+
+
+# --- when the half-angle loop hands over to the refinement ---
+
+
+@pytest.mark.parametrize("phi, v, eps", [
+    (-0.00018229153862124727, 0.000182291539037519, 0.9999997499131908),
+    (3.1396782760976083, 0.001914377242062036, -1.0),
+    (-0.002435281146165613, 0.0024352801687179157, 1.0),
+])
+def test_no_refinement_where_the_newton_correction_is_exact(evaluations, phi, v, eps):
+    """Mutant 107: the d'' passed to ``_newton_inexact`` from ``_flight_half_angle`` as
+    -1 - eps*cos(phi + t) instead of -1 + eps*cos(phi + t).
+
+    Short near-triple flights (found by a search over such flights) whose loose loop stops at a
+    point with |d| <= E and d' < -R where the Newton correction delta = d/d' is exact to second
+    order by a wide margin: (|d''| + |eps*delta|)*delta**2, with the exact d'' = -1 +
+    eps*cos(phi + t) (small here: eps*cos ~ 1), is below u*t*|d'|/100 (checked in mpmath from
+    the computed d, d'). The module docstring's rule then answers with that correction: no
+    refinement, no ``tight_gap`` evaluation. With d'' = -1 - eps*cos(phi + t) ~ -2 the same
+    term exceeds 100*u*t*|d'| (checked), and the mutant refines."""
+    sin_phi, cos_phi = math.sin(phi), math.cos(phi)
+    w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
+    assert 2.0 * w0 < 1.0 + abs(eps)
+    lo, hi = bracket(v, w0, w0_error, eps)
+    tau, _, _, reported, status = _python(concave._flight_half_angle)(
+        phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
+    assert status == CONVERGED and lo <= tau <= hi
+    _, t, d, d1 = evaluations[-1]
+    assert all(point[0] == "loose" for point in evaluations) and reported == len(evaluations)
+    with mp.workdps(DPS):
+        delta, c = mp.mpf(d) / mp.mpf(d1), mp.cos(mp.mpf(phi) + mp.mpf(t))
+        scale = U * mp.mpf(t) * abs(mp.mpf(d1))
+        assert (abs(-1 + eps * c) + abs(eps * delta)) * delta**2 < scale / 100
+        assert (abs(-1 - eps * c) + abs(eps * delta)) * delta**2 > 100 * scale
+
+
+def test_the_refinement_is_tried_at_the_smallest_t():
+    """Mutant 103: ``t >= SMALLEST_T`` -> ``>`` in ``_flight_half_angle``.
+
+    ``tight_gap`` is proved for t >= SMALLEST_T = 2**-1000 (t/2 exact, the underflow
+    allowance), and a point the loose bound leaves flat at such a t goes to the refinement.
+    The flight phi = 0, eps = 1/2, v = 2**-1001 (exact root 4v*(1 - O(v**2)), just below
+    2**-999) with the sound bracket (0, 2**-999): the frozen guess 2*w0/(1 - eps) = 2**-999 is
+    its upper end, so the first point is the midpoint, exactly 2**-1000. There the gap and its
+    slope are below every rounding bound (both underflow): flat by the loose test, and the
+    refinement must evaluate ``tight_gap`` there (it finds it flat too: UNCERTAIN after two
+    evaluations). The mutant stops at the loose verdict without trying."""
+    from fastpath.tight_gap import SMALLEST_T
+
+    phi, v, eps = 0.0, 2.0**-1001, 0.5
+    sin_phi, cos_phi = math.sin(phi), math.cos(phi)
+    w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
+    assert 2.0 * w0 / (1.0 - eps * cos_phi) == 2.0**-999
+    points = []
+    classify, tight_gap = concave.classify, concave.tight_gap
+
+    def counted_classify(*args):
+        points.append(("loose", args[3]))
+        return classify(*args)
+
+    def counted_tight_gap(*args):
+        points.append(("tight", args[5]))
+        return tight_gap(*args)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(concave, "classify", counted_classify)
+        patch.setattr(concave, "tight_gap", counted_tight_gap)
+        patch.setattr(concave, "_refine", _python(concave._refine))
+        tau, _, _, reported, status = _python(concave._flight_half_angle)(
+            phi, sin_phi, cos_phi, v, eps, 0.0, 2.0**-999, w0_error)
+    assert points == [("loose", SMALLEST_T), ("tight", SMALLEST_T)]
+    assert status == int(FlightStatus.UNCERTAIN) and tau == SMALLEST_T and reported == 2
