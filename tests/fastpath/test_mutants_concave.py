@@ -525,3 +525,30 @@ def test_the_refinement_is_tried_at_the_smallest_t():
             phi, sin_phi, cos_phi, v, eps, 0.0, 2.0**-999, w0_error)
     assert points == [("loose", SMALLEST_T), ("tight", SMALLEST_T)]
     assert status == int(FlightStatus.UNCERTAIN) and tau == SMALLEST_T and reported == 2
+
+
+# --- bracket: the documented choice at its exact ties (both bounds are sound: these pin it) ---
+
+
+def test_bracket_at_its_ties():
+    """Mutants 8 (``not hi_concave <= 2|v| + 2`` -> ``<``) and 6 (``v >= 0`` -> ``>``) in
+    ``bracket_from_root``. Both alternatives give certified upper bounds; these pin the
+    documented choice (``test_mutants_solver._documented_bracket``: the concave bound unless it
+    EXCEEDS 2|v| + 2, the energy bound v + sqrt(v**2 + 4|eps|) in that form for v >= 0).
+
+    v = 1, w0 = 1, w0_error = 0 (phi = 0: w0 = v exactly), eps = 1/2: the concave bound
+    2*w0/(1 - |eps|) = 4 is exactly 2|v| + 2, so it is the bound, hi = 4*(1 + 4u); the mutant
+    takes the energy bound 1 + sqrt(3). v = 0 (a departure at rest, w0 = eps*sin(phi)) with
+    eps = 0.6066357757671799 and a concave bound above 2: the energy bound is
+    0 + sqrt(4|eps|), one correctly rounded square root; the mutant's 4|eps|/sqrt(4|eps|)
+    rounds a second time and lands one ulp lower here."""
+    lo, hi = bracket(1.0, 1.0, 0.0, 0.5)
+    assert 2.0 * 1.0 / (1.0 - 0.5) == 2.0 * 1.0 + 2.0  # the tie, exact
+    assert hi == 4.0 * (1.0 + 4.0 * U)
+    eps = 0.6066357757671799
+    w0 = eps * math.sin(1.5)
+    assert 2.0 * w0 / (1.0 - eps) > 2.0  # the energy bound is the one used
+    root = math.sqrt(4.0 * eps)
+    assert 4.0 * eps / root != root  # the two forms differ here (one rounding more)
+    lo, hi = bracket(0.0, w0, 2.0 * U * w0, eps)
+    assert hi == root * (1.0 + 4.0 * U)
