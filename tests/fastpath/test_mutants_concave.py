@@ -10,6 +10,24 @@ wrapped to count the evaluations: one ``classify`` per evaluation of the loose g
 for any input"; the reported count must be the number made, and MAX_ITERATIONS must mean that
 all ITERATION_LIMIT were made (module docstring: "At most ITERATION_LIMIT evaluations (then
 MAX_ITERATIONS)").
+
+The budget, the overflow check and a start on a bracket end cannot be reached through
+``concave_flight``: its brackets keep every flight below ~2|v| + 2 (natural flights need at most
+38 evaluations over 200,000 near-triple ones). Those tests call the loops with a sound but loose
+bracket, which is what the loops are specified for; the exact ties of ``_refine`` use crafted
+states (eps = 0, or a flight found by search) with a w0_error chosen to put d or d' exactly on
+its bound.
+
+Not killed (equivalent): ``bracket``'s ``1e-150 < |v| < 1e150`` ends (at |v| = 1e150,
+sqrt(fl(v*v)) = |v| = hypot; at 1e-150 the two roots differ, by an ulp, only for |eps| below
+~1e-290, where the energy bound is not used since w0_error < w0), ``hi_energy < hi_concave`` and
+``w0 - w0_error > 0`` at equality (the same value either way), ``_finish``'s ``|h| < 1e-8`` at
+|h| = 1e-8 (``small_sin_cos(+-1e-8)`` is exactly (+-1e-8, 1.0): the rotation is the first-order
+formula bit for bit), the Holmes loop's ``d1 < -d1_err`` before ``newton_is_final`` at
+d' = -R (there |d| > E, so |h|*R >= |d|*(1 - u)**2 > E/16: not final either way),
+``_refine``'s ``d >= -d_err`` at d = -E with d' > R (d' > R proves d' > 0, so the exact gap,
+concave with d(0) = 0, is >= t*d' > 0, and the computed one > -E). Open: ``_refine``'s
+``step < 0.5*last_step`` at exact halving (not constructed).
 """
 
 import math
