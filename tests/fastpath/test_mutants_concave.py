@@ -20,7 +20,8 @@ its bound.
 
 Not killed (equivalent): ``bracket``'s ``1e-150 < |v| < 1e150`` ends (at |v| = 1e150,
 sqrt(fl(v*v)) = |v| = hypot; at 1e-150 the two roots differ, by an ulp, only for |eps| below
-~1e-290, where the energy bound is not used since w0_error < w0), ``hi_energy < hi_concave`` and
+~1e-284, and with w0_error < w0 the energy bound is used only for |eps| > 1/3),
+``hi_energy < hi_concave`` and
 ``w0 - w0_error > 0`` at equality (the same value either way), ``_finish``'s ``|h| < 1e-8`` at
 |h| = 1e-8 (``small_sin_cos(+-1e-8)`` is exactly (+-1e-8, 1.0): the rotation is the first-order
 formula bit for bit), the Holmes loop's ``d1 < -d1_err`` before ``newton_is_final`` at
