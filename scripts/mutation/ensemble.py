@@ -97,7 +97,10 @@ SOLVER_DESELECT = [
 GROUPS = {  # name: (targets, tests, deselected, new tests' glob, timeout, environment)
     "ensemble": (TARGETS, TESTS, DESELECT, "tests/**/test_mutants_ensemble*.py", TIMEOUT, {}),
     # hypothesis derandomized and without its database (``nopython_shims``)
-    "solver": (SOLVER_TARGETS, SOLVER_TESTS, SOLVER_DESELECT, "tests/**/test_mutants_solver*.py",
+    "solver": (SOLVER_TARGETS, SOLVER_TESTS, SOLVER_DESELECT,
+               ("tests/fastpath/test_mutants_solver*.py", "tests/fastpath/test_mutants_concave*.py",
+                "tests/fastpath/test_mutants_flight*.py",
+                "tests/fastpath/test_mutants_short_flight*.py"),
                SOLVER_TIMEOUT, {"HYPOTHESIS_PROFILE": "mutation"}),
 }
 _SWAP = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt,
@@ -149,7 +152,9 @@ def functions_of(source, functions):
 
 def run_tests(root, group="ensemble"):
     _, tests, deselect, pattern, timeout, environment = GROUPS[group]
-    extra = sorted(glob.glob(os.path.join(root, pattern), recursive=True))
+    patterns = (pattern,) if isinstance(pattern, str) else pattern
+    extra = sorted({p for g in patterns
+                    for p in glob.glob(os.path.join(root, g), recursive=True)})
     if os.environ.get("MUTATION_NO_NEW_TESTS"):  # the existing suite alone (first-run scores)
         extra = []
     cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider",
