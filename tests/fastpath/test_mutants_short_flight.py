@@ -92,3 +92,37 @@ def test_short_window_rounds_its_bound_up(sin_phi, cos_phi, w, eps):
         quotient = 2 * mp.mpf(w) / mp.mpf(m_h)
         assert upper >= quotient
         assert upper <= quotient * (1 + 6 * U)
+
+
+def test_the_window_is_open_at_h_exactly_one():
+    """The window needs h = 4w/a <= SERIES_LIMIT = 1 (the series hold for t <= 1, and the flight
+    ends before 2w/m_h <= h): at h = 1 exactly it is open (kills h <= 1 -> h < 1). w = a/4 is
+    an exact scaling, so h = 4w/a is exactly 1; eps = 0.1 at cos(phi) = -1 keeps m_h >= a/2."""
+    eps, sin_phi, cos_phi = 0.1, 0.0, -1.0
+    a = departure_deceleration(cos_phi, eps)
+    w = a / 4.0
+    assert 4.0 * w / a == 1.0
+    assert short_window(sin_phi, cos_phi, w, eps) > 0.0
+
+
+def test_the_window_is_open_at_m_h_exactly_half_a():
+    """The window needs m_h >= a/2; at equality it is open (kills >= -> >). With sin(phi) = 0,
+    m_h = a - (|eps|/2)*h*h, and a - X is exact for X near a/2 (Sterbenz), so m_h == a/2
+    exactly when the rounded X is a/2: h is searched among the floats next to sqrt(a/|eps|),
+    then w such that fl(4w/a) is that h."""
+    eps, cos_phi = 2.0, 0.3
+    a = departure_deceleration(cos_phi, eps)
+    h0 = math.sqrt(a / abs(eps))
+    found = None
+    for k in range(-2000, 2000):
+        h = h0 + k * math.ulp(h0)
+        if a - 0.5 * abs(eps) * h * h == 0.5 * a:
+            for j in range(-50, 51):
+                w = h * a / 4.0 + j * math.ulp(h * a / 4.0)
+                if 4.0 * w / a == h:
+                    found = w
+                    break
+        if found is not None:
+            break
+    assert found is not None
+    assert short_window(0.0, cos_phi, found, eps) > 0.0
