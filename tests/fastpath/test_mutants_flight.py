@@ -6,7 +6,8 @@ chosen so that the compared quantities are exact), or from an error bound derive
 unit roundoff u = 2**-53 and checked against mpmath; none is copied from the program's output.
 Several tests call ``lower_bound_flight``'s plain-Python body (``py_func``; the function itself
 under NUMBA_DISABLE_JIT) with ``gap`` and ``certified_step`` wrapped, to count the evaluations and
-to see the lower models each step is given; every other callee is the compiled kernel.
+to see the lower models each step is given; every other callee is the kernel itself (compiled
+unless NUMBA_DISABLE_JIT).
 
 Two surviving mutants of ``may_be_graze`` are equivalent and have no test: ``curvature < 0`` ->
 ``<= 0`` and ``r < 0`` -> ``<= 0``. Where they differ (curvature = +-0, resp. r = +-0) the
@@ -110,8 +111,8 @@ def test_a_departure_exactly_at_its_error_bound_is_uncertain(method, eps):
 
     phi = 0 (sin 0, cos 1), v = 1: w0 = 1 exactly, and with phase_error = (1 - 2**-52)/|eps|
     (exact: |eps| is 1 or 2) the bound is fl(2u*1 + 3u*0) + |eps|*phase_error = 2**-52 + (1 -
-    2**-52) = 1 = w0 exactly. The exact w0 may then be anything in [0, 2]: zero, a departure
-    that float64 cannot confirm: UNCERTAIN ("a w0 within its rounding bound of zero is
+    2**-52) = 1 = w0 exactly. The exact w0 lies in [w0 - bound, w0 + bound] = [0, 2]: it may be
+    zero, so the departure is not certain: UNCERTAIN ("a w0 within its rounding bound of zero is
     UNCERTAIN"), decided before any evaluation (0 iterations, NaN results)."""
     phase_error = (1.0 - 2.0**-52) / abs(eps)
     w0, bound = departure(0.0, 0.0, 1.0, eps, phase_error)
@@ -129,8 +130,8 @@ def test_no_evaluation_before_a_non_departure_or_an_uncertain_departure(eps):
     Both are decided from w0 and its bound alone, before the gap is evaluated once: 0 iterations.
     NOT_DEPARTING: phi = -+pi/2 with the sign of eps (sin(phi) = -+1 up to ~1e-33), v = |eps|/2:
     w0 = -|eps|/2 < 0 far beyond its bound, through the public fastpath.flight. UNCERTAIN:
-    v = -eps*sin(phi) with the same float sine makes w0 = 0 exactly (eps*sin is exact: the sum of
-    a float and its negation), while the bound 3u*|eps*sin(phi)| > 0."""
+    v = -fl(eps*sin(phi)) with the same float sine makes w0 = fl(v + fl(eps*sin(phi))) = 0
+    exactly (a float plus its negation), while the bound 3u*|eps*sin(phi)| > 0."""
     for method in ("auto", "seed"):
         result = fastpath.flight(-math.copysign(math.pi / 2, eps), abs(eps) / 2, eps, method)
         assert result.status == NOT_DEPARTING and result.iterations == 0
@@ -162,7 +163,7 @@ def test_no_graze_where_the_gap_is_concave_everywhere(eps):
         assert not may_be_graze(phi, eps, t, 0.25, 0.0)
 
 
-@pytest.mark.parametrize("phi, t", [(0.0, math.pi / 3), (-1.5, 1.5)])
+@pytest.mark.parametrize("phi, t", [(0.0, 5.0 * math.pi / 3.0), (-1.5, 1.5)])
 def test_the_concave_shortcut_needs_a_certainly_negative_curvature(phi, t):
     """Kills may_be_graze's curvature bound with its rounding margin subtracted instead of
     added, with -eps*cos instead of +eps*cos, and with cos(phi - t) for cos(phi + t) (flight.py
@@ -170,16 +171,27 @@ def test_the_concave_shortcut_needs_a_certainly_negative_curvature(phi, t):
 
     "Where it is locally concave, d2 = d''(t) < 0, [...] with slope r < 0 it surely crosses zero
     within 2*d_err/|r| if that is shorter than R = -d2/|eps|"; otherwise the answer is whether
-    r > -2*sqrt(4*b*d_err). eps = 2 (b = 1). At phi + t = 0, d'' = -1 + 2 = 1 > 0. At
-    phi + t = fl(pi/3) (phi = 0: the sum is exact), the exact d'' = -1 + 2*cos(fl(pi/3)) ~ 1.8u
-    > 0 (mpmath), while the float -1 + 2*cos is within the margin 4u|eps| = 8u of zero: only
-    the curvature raised by that margin is an upper bound that does not claim concavity. So the
-    gap is convex at t and the slope test decides: r = -2**-60 > -2*sqrt(4*d_err) = -2**-58 for
-    d_err = 2**-120: True (a dip of depth <= 2*d_err = 2**-119 may follow). Taking the shortcut
-    would say False (2*d_err < |r|*R for any R >= u)."""
-    eps, r, d_err = 2.0, -(2.0**-60), 2.0**-120
+    r > -2*sqrt(4*b*d_err). eps = 2 (b = 1), r = -2**-116, d_err = 2**-171. At phi + t = 0,
+    d'' = 1 > 0. At phi + t = fl(5*pi/3) (phi = 0: the sum is exact) the exact d'' ~ 1.4u > 0
+    and d''' = -2*sin ~ 1.73 > 0 (mpmath), while the float -1 + 2*cos is within the margin
+    4u|eps| = 8u of zero: only the curvature raised by that margin is an upper bound on d''
+    that does not claim concavity. Both points are convex, and a near miss fits the data: the
+    exact gap may be D = 2*d_err at t, and d(t + s) >= D + r*s + d''*s**2/2 + d'''*s**3/6 (less
+    a quartic term < 2**-230 at the s <= 2**-57 where the minimum lies) stays positive: its
+    minimum is above max(D - r**2/(2*d''), D - (2/3)|r|*sqrt(2|r|/d''')) > 0, and beyond it the
+    slope grows. So the answer is the slope test's: r > -2*sqrt(4*d_err) = -2**-83.5: True
+    (UNCERTAIN). Taking the shortcut says False, a certain crossing (2*d_err = 2**-170 < |r|*R
+    for any R >= u/2)."""
+    eps, r, d_err = 2.0, -(2.0**-116), 2.0**-171
     with mp.workdps(DPS):
-        assert -1 + eps * mp.cos(mp.mpf(phi) + mp.mpf(t)) > 0
+        theta = mp.mpf(phi) + mp.mpf(t)
+        d2, d3 = -1 + eps * mp.cos(theta), -eps * mp.sin(theta)
+        assert d2 > 0 and d3 >= 0
+        big_d, slope = 2 * mp.mpf(d_err), abs(mp.mpf(r))
+        lowest = big_d - slope**2 / (2 * d2)
+        if d3 > 0:
+            lowest = max(lowest, big_d - 2 * slope * mp.sqrt(2 * slope / d3) / 3)
+        assert lowest > 0
     assert phi + t == 0.0 or 0.0 <= -1.0 + eps * math.cos(phi + t) < 4.0 * U * abs(eps)
     assert r > -2.0 * math.sqrt(4.0 * (abs(eps) - 1.0) * d_err)
     assert may_be_graze(phi, eps, t, r, d_err)
@@ -234,7 +246,7 @@ def test_reported_iterations_are_the_gap_evaluations(monkeypatch, phi, v, eps):
     "At most ITERATION_LIMIT evaluations for any input (then MAX_ITERATIONS)": the iterations a
     flight reports are the gap evaluations it made (counted here), never more than 60, and a
     flight stopped by the limit has made exactly 60. The first flight is one that the limit
-    stops (its row in test_fastpath_chattering.py)."""
+    stops (its row in test_fastpath_chattering.py); the others end CONVERGED or UNCERTAIN."""
     centred, w0 = _departure(phi, v, eps)
     (tau, iterations, status), times, _ = _traced_flight(monkeypatch, centred, v, eps, w0)
     assert iterations == len(times) <= ITERATION_LIMIT
@@ -243,7 +255,7 @@ def test_reported_iterations_are_the_gap_evaluations(monkeypatch, phi, v, eps):
     if status == MAX_ITERATIONS:
         assert len(times) == ITERATION_LIMIT
     else:
-        assert status in (CONVERGED, UNCERTAIN) and tau >= times[-1] - 1e-9 * times[-1]
+        assert status in (CONVERGED, UNCERTAIN)
 
 
 def test_a_gap_exactly_at_its_error_bound_ends_the_steps():
@@ -298,13 +310,16 @@ def test_the_lower_models_are_below_the_exact_slope_and_curvature(monkeypatch, p
 
     "The models take the worst values within rounding: d, d' and d'' lowered by their bounds":
     at every step the slope r and curvature c given to certified_step are <= the exact d'(t) and
-    d''(t) (mpmath). Why they are, from u: the computed d' = fl(fl(v - t) + fl(eps*sin(fl(phi +
-    t)))) is off by at most u(|v| + t) + |eps|*u(|phi| + t) (the argument) + 2u|eps| (libm's sine,
-    < 1 ulp) + u|eps| (the product) + u(1 + u)(|v| + t + |eps|) (the sum) <= B_r =
-    u(1 + 2u)*(2(|v| + t) + |eps|(|phi| + t + 4)), strictly below rate_error = 4u(|v| + t +
-    |eps|(1 + |phi| + t)) at t > 0: so r - rate_error < d' < r + rate_error at every step.
-    Likewise -1 + eps*cos(fl(phi + t)) is off by at most u|eps|(|phi| + t + 3) + u(1 + |eps|),
-    and subtracting the margin m rounds by u(1 + |eps| + m): in all <= u|eps|(|phi| + t + 7)
+    d''(t) (mpmath). Why they are, from u (each float operation is within u of its exact
+    result, libm's sine and cosine within one ulp, 2u): the computed d' = fl(fl(v - t) +
+    fl(eps*sin(fl(phi + t)))) is off by at most u(|v| + t) (v - t) + |eps|*u(|phi| + t) (the
+    argument) + 2u|eps| (sine) + u|eps| (product) + u(|v| + t + |eps|) (sum), and forming
+    r -+ rate_error rounds by u(|v| + t + |eps| + R) more (R = rate_error = 4u(|v| + t +
+    |eps|(1 + |phi| + t))): in all R - u((|v| + t) + |eps|(3|phi| + 3t - 1)) + O(u*R) < R
+    wherever 3(|phi| + t) > 1, true at every step here (|phi| >= 1, or phi = 0.3 and every
+    t >= 2*w0/a > 5). So r - R < d' < r + R. Likewise -1 + eps*cos(fl(phi + t)) is off by at
+    most u|eps|(|phi| + t + 3) + u(1 + |eps|), and subtracting the margin m rounds by
+    u(1 + |eps| + m): in all <= u|eps|(|phi| + t + 7)
     (|eps| > 1), which m = 4u|eps|(1 + t) exceeds once 3t >= |phi| + 3: there c < d'' is
     certain, and c + m (the margin added) > d''. With (1 - t) the curvature is raised by
     4u|eps|(t - 1), above d'' once 3t > |phi| + 11: each flight here lasts longer than that
@@ -362,13 +377,14 @@ def _rate_points(seed):
 def test_rate_error_covers_the_rounding_of_gap_rate():
     """Kills rate_error with |v| - t, (1 + |phi|) - t or 1 - |phi| (gap.py mutants 11, 12, 13).
 
-    gap_rate computes fl(fl(v - t) + fl(eps*fl(sin(fl(phi + t))))). Each rounding is within u
-    of its result (libm's sine within one ulp, 2u): |computed - exact d'| <= u(|v| + t) (v - t)
+    gap_rate computes fl(fl(v - t) + fl(eps*fl(sin(fl(phi + t))))). Each float operation is
+    within u of its exact result (libm's sine within one ulp, 2u): |computed - exact d'| <=
+    u(|v| + t) (v - t)
     + |eps|u(|phi| + t) (the argument; sin is 1-Lipschitz) + 2u|eps| (sine) + u|eps| (product)
     + u(1 + u)(|v| + t + |eps|) (sum) <= B = u(1 + 2u)*(2(|v| + t) + |eps|(|phi| + t + 4)).
     The test measures the actual error against mpmath, holds it to B (the derivation), and
-    holds rate_error to at least B: a bound on the error must cover its worst case, and at these
-    points each mutant's value is below B (and, at many of them, below the measured error)."""
+    holds rate_error to at least B: a bound on the error must cover its worst case. At these
+    points each mutant's value is below B, at some of them below the measured error itself."""
     worst = 0.0
     with mp.workdps(DPS):
         for phi, v, eps, t in _rate_points(21):
