@@ -126,3 +126,55 @@ def test_the_window_is_open_at_m_h_exactly_half_a():
             break
     assert found is not None
     assert short_window(0.0, cos_phi, found, eps) > 0.0
+
+
+def _count_gap_evaluations(monkeypatch, gap=None, rate=None):
+    """Run ``short_flight`` as plain Python (``py_func``) with its gap (optionally replaced)
+    counted: returns (the solver, the list of evaluation times)."""
+    import fastpath.short_flight as module
+
+    calls = []
+    real_gap = module.relative_gap
+
+    def counted_gap(sin_phi, cos_phi, w, eps, accel, t):
+        calls.append(t)
+        return (gap or real_gap)(sin_phi, cos_phi, w, eps, accel, t)
+
+    monkeypatch.setattr(module, "relative_gap", counted_gap)
+    if rate is not None:
+        monkeypatch.setattr(module, "relative_rate", rate)
+    return module.short_flight.py_func, calls
+
+
+def test_reported_iterations_are_the_gap_evaluations(monkeypatch):
+    """The iterations returned are the number of gap evaluations (kills range(1, ...) ->
+    range(2, ...), which reports one fewer evaluation than it made)."""
+    solve, calls = _count_gap_evaluations(monkeypatch)
+    sin_phi, cos_phi, w, eps = 0.6, -0.8, 1e-5, 1.5
+    upper = short_window(sin_phi, cos_phi, w, eps)
+    tau, rate, iterations = solve(sin_phi, cos_phi, w, eps, upper)
+    assert 0.0 < tau < upper and rate < 0.0
+    assert iterations == len(calls) >= 2
+
+
+def test_at_most_sixty_evaluations_then_the_limit(monkeypatch):
+    """A gap that stays negative while Newton keeps moving down (a stand-in: d = -1, d' = -1e3,
+    every step 1e-3) exhausts the solver: exactly ITERATION_LIMIT = 60 evaluations, reported as
+    60 (kills the loop bound 60 -> 59 and -> 61, and the start 1 -> 2)."""
+    from fastpath.short_flight import ITERATION_LIMIT
+
+    solve, calls = _count_gap_evaluations(
+        monkeypatch, gap=lambda *args: -1.0, rate=lambda *args: -1e3)
+    _, _, iterations = solve(0.0, -1.0, 1.0, 0.5, 10.0)
+    assert ITERATION_LIMIT == 60
+    assert len(calls) == 60 and iterations == 60
+
+
+def test_a_step_below_the_spacing_ends_newton(monkeypatch):
+    """Newton stops when the step no longer decreases t (docstring): a stand-in gap d = -1e-30,
+    d' = -1 at t = 1 gives t - d/d' == t, so the answer is t after one evaluation (kills
+    ``not t_next < t`` -> ``not t_next <= t``, which would repeat the same point 60 times)."""
+    solve, calls = _count_gap_evaluations(
+        monkeypatch, gap=lambda *args: -1e-30, rate=lambda *args: -1.0)
+    tau, rate, iterations = solve(0.0, -1.0, 1.0, 0.5, 1.0)
+    assert (tau, rate, iterations) == (1.0, -1.0, 1) and len(calls) == 1
