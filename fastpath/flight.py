@@ -191,7 +191,9 @@ def may_be_graze(phi, eps, t, r, d_err):
     convex_bound = abs(eps) - 1.0
     if convex_bound <= 0.0:
         return False  # the gap is concave everywhere: no dip
-    curvature = -1.0 + eps * math.cos(phi + t) + 4.0 * UNIT_ROUNDOFF * abs(eps)
+    # raised by its rounding bound, the argument's rounding u*(|phi| + t) included (as in
+    # lower_bound_flight): the shortcut needs d'' < 0 for certain
+    curvature = -1.0 + eps * math.cos(phi + t) + 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
     if curvature < 0.0 and r < 0.0 and 2.0 * d_err < -r * (-curvature / abs(eps)):
         return False
     return r > -2.0 * math.sqrt(4.0 * convex_bound * d_err)

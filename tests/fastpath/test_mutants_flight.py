@@ -395,3 +395,31 @@ def test_rate_error_covers_the_rounding_of_gap_rate():
             assert rate_error(phi, v, eps, t) >= bound, (phi, v, eps, t)
             worst = max(worst, float(err / bound))
     assert worst > 0.1  # the points exercise the rounding (not all exact)
+
+
+def test_the_concave_shortcut_allows_for_the_rounding_of_a_long_angle():
+    """Found by reviewing the may_be_graze mutants (session 6): its curvature margin was 4u|eps|
+    alone, but cos is taken of fl(phi + t), off by up to ulp(phi + t)/2 (16u at t ~ 26), and
+    d'' moves by |eps*sin| times that. Here phi + t is one such sum: the exact d'' is +5u > 0
+    (mpmath, exact sum) while -1 + 2*cos(fl(phi + t)) + 8u is -13u. The shortcut ("locally
+    concave, so it surely crosses within 2*d_err/|r|") does not apply: over [0, 2*d_err/|r|]
+    the gap's Taylor model with its remainder bounds (|d'''| and |eps|*s**4/24) stays positive
+    at 60 digits (checked on a fine grid; the quadratic part alone has its minimum
+    D - r**2/(2*d'') > 0 at s = |r|/d''), so a crossing there is not certain, and the answer
+    is the slope test's: True. The margin now includes the argument's rounding,
+    4u|eps|*(1 + t), as in lower_bound_flight."""
+    phi, t, eps = 0.5000000000000019, 25.67993877991494, 2.0
+    r, d_err = -1e-32, 1e-48  # |r| between 2*d_err/R (old shortcut) and sqrt(4*d_err*d'')
+    assert -1.0 + eps * math.cos(phi + t) + 4.0 * U * abs(eps) < 0.0  # the old margin
+    with mp.workdps(DPS):
+        theta = mp.mpf(phi) + mp.mpf(t)
+        d2, d3 = -1 + eps * mp.cos(theta), -eps * mp.sin(theta)
+        assert 0 < d2 < 8 * U
+        big_d, s_max = 2 * mp.mpf(d_err), 2 * mp.mpf(d_err) / abs(mp.mpf(r))
+        assert big_d - mp.mpf(r) ** 2 / (2 * d2) > 0
+        for k in range(0, 401):
+            s = s_max * mp.mpf(10) ** (-k / 20)
+            low = big_d + r * s + d2 * s**2 / 2 - abs(d3) * s**3 / 6 - abs(eps) * s**4 / 24
+            assert low > 0, s
+    assert r > -2.0 * math.sqrt(4.0 * (abs(eps) - 1.0) * d_err)
+    assert may_be_graze(phi, eps, t, r, d_err)
