@@ -571,3 +571,25 @@ def test_bracket_at_its_ties():
     assert 4.0 * eps / root != root  # the two forms differ here (one rounding more)
     lo, hi = bracket(0.0, w0, 2.0 * U * w0, eps)
     assert hi == root * (1.0 + 4.0 * U)
+
+
+def test_a_newton_step_of_exactly_half_the_previous_is_a_stall(monkeypatch):
+    """Mutant 77 (``step < 0.5*last_step`` -> ``<=``), left open by the first pass, killed with
+    a stand-in gap (session 6). The rule (``_refine`` docstring) counts a Newton step that
+    fails to HALVE the previous one as a stall, so a step of exactly half is one. The stand-in
+    puts every point at the root (|d| <= E = 1, d' = -1 < -R = 0) with Newton steps 2**-10,
+    2**-11, ... (all iterates exact dyadics) and a large |d''| so that the correction is never
+    exact to second order: steps 2, 3, 4 are stalls and the third ends the refinement at the
+    fourth evaluation; without the stalls it would run to ITERATION_LIMIT."""
+    steps = iter([2.0**-k for k in range(10, 80)])
+
+    def stand_in(sin_phi, cos_phi, v, eps, w0_error, t):
+        step = next(steps)
+        return -step, -1.0, -1e6, 0.0, 1.0, 1.0, 0.0  # d, d', d'', s, c, E, R
+
+    monkeypatch.setattr(concave, "tight_gap", stand_in)
+    done = 5
+    tau, _, _, reported, status = _python(concave._refine)(
+        0.0, 0.0, 1.0, 1.0, 0.5, 0.0, 1.0, 0.0, 2.0, done)
+    assert reported == done + 4 and status == CONVERGED
+    assert tau == 1.0 - 2.0**-10 - 2.0**-11 - 2.0**-12 - 2.0**-13
