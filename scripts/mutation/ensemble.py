@@ -100,7 +100,8 @@ GROUPS = {  # name: (targets, tests, deselected, new tests' glob, timeout, envir
     "solver": (SOLVER_TARGETS, SOLVER_TESTS, SOLVER_DESELECT,
                ("tests/fastpath/test_mutants_solver*.py", "tests/fastpath/test_mutants_concave*.py",
                 "tests/fastpath/test_mutants_flight*.py",
-                "tests/fastpath/test_mutants_short_flight*.py"),
+                "tests/fastpath/test_mutants_short_flight*.py",
+                "tests/fastpath/test_mutants_phase*.py"),
                SOLVER_TIMEOUT, {"HYPOTHESIS_PROFILE": "mutation"}),
 }
 _SWAP = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt,
