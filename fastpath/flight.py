@@ -49,7 +49,7 @@ from fastpath._jit import jit
 from fastpath.concave import concave_flight
 from fastpath.gap import UNIT_ROUNDOFF, departure, gap, gap_error, gap_rate, rate_error
 from fastpath.lockstep import lockstep_flight_one
-from fastpath.phase import centre_phase
+from fastpath.phase import CODY_WAITE_LIMIT, PAYNE_HANEK_ERROR, centre_phase
 from fastpath.rotation import sin_cos_of_sum
 from fastpath.sincos import sin_cos, sin_cos_error
 from fastpath.status import FlightStatus
@@ -115,9 +115,12 @@ def certified_step(d, r, c, j, eps, a):
 
 @jit
 def phase_error_of(phi_given, phi_centred):
-    """Bound on the error of the centred phase: 0 if unchanged, else one ulp (``phase``)."""
+    """Bound on the error of the centred phase: 0 if unchanged, else one ulp (``phase``), and
+    for |phi| >= 2**20 (Payne-Hanek) the absolute PAYNE_HANEK_ERROR besides."""
     if phi_centred == phi_given:
         return 0.0
+    if abs(phi_given) >= CODY_WAITE_LIMIT:
+        return 2.0 * UNIT_ROUNDOFF * abs(phi_centred) + PAYNE_HANEK_ERROR
     return 2.0 * UNIT_ROUNDOFF * abs(phi_centred)
 
 
