@@ -95,8 +95,10 @@ SOLVER_DESELECT = [
     "tests/fastpath/test_fastpath_api.py::test_overflow_is_a_value_error_saying_overflow",
 ]
 GROUPS = {  # name: (targets, tests, deselected, new tests' glob, timeout, environment)
-    "ensemble": (TARGETS, TESTS, DESELECT, "tests/**/test_mutants_ensemble*.py", TIMEOUT, {}),
-    # hypothesis derandomized and without its database (``nopython_shims``)
+    # both groups: hypothesis derandomized and without its database (``nopython_shims``), so
+    # that an example stored by one mutant's run is not replayed into the next
+    "ensemble": (TARGETS, TESTS, DESELECT, "tests/**/test_mutants_ensemble*.py", TIMEOUT,
+                 {"HYPOTHESIS_PROFILE": "mutation"}),
     "solver": (SOLVER_TARGETS, SOLVER_TESTS, SOLVER_DESELECT,
                ("tests/fastpath/test_mutants_solver*.py", "tests/fastpath/test_mutants_concave*.py",
                 "tests/fastpath/test_mutants_flight*.py",
