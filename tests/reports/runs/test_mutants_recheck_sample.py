@@ -1,0 +1,176 @@
+"""Tests that kill mutants of ``reports/runs/recheck.py``'s ``_sample`` and ``_outputs``
+(scripts/mutation.sh integrity without integrity.names): step 5 of the audit, the recomputed
+sample, and the output files of steps 3 and 4, on the tiny runs of ``test_mutants_recheck.py``
+(each fault alone, its hash updated where the deeper check is the one under test)."""
+
+import shutil
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scene_texts import TINY
+from test_mutants_recheck import (
+    _edit_sample,
+    _sample_problems,
+    edit_rows,
+    manifest_of,
+    problems_of,
+    rehash,
+)
+
+from reports.cli import main
+from reports.runs import driver
+from reports.runs.recheck import _sample, recheck
+from reports.runs.scenes import parse_scene
+
+
+@pytest.fixture(scope="module")
+def tiny_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("tiny") / "run"
+    driver.run(parse_scene(TINY), out, progress=False)
+    return out
+
+
+@pytest.fixture
+def run(tiny_run, tmp_path):
+    return Path(shutil.copytree(tiny_run, tmp_path / "run"))
+
+
+# ---- the recomputed sample (_sample) --------------------------------------------------------
+
+
+def test_progress_bar_is_labelled_verify_sample(run, capsys):
+    """_sample mutant 29 (the bar's label "XXverify sampleXX"; 20-32 too): ``bouncer verify``
+    without --quiet shows a progress bar on stderr (reports/cli/verify.py: --quiet is "no progress
+    bar"); every refresh of it reads "verify sample: ", counts the sampled collisions of the
+    manifest (n/n) in collisions per second, and nothing else is written to stderr."""
+    n = manifest_of(run)["verification"]["sampled"]
+    assert main(["verify", str(run)]) == 0
+    captured = capsys.readouterr()
+    refreshes = [x.rstrip("\n") for x in captured.err.split("\r") if x]
+    assert refreshes and all(x.startswith("verify sample: ") for x in refreshes)
+    assert refreshes[0].startswith("verify sample:   0%|") and f" 0/{n} " in refreshes[0]
+    assert refreshes[-1].startswith("verify sample: 100%|") and f" {n}/{n} " in refreshes[-1]
+    assert refreshes[-1].endswith("collision/s]") and captured.out.endswith("OK\n")
+
+
+def test_a_sample_with_cr_line_ends_is_still_checked_by_line(run, capsys):
+    """_sample mutant 14 (``io.StringIO(text)`` without ``newline=""``: csv then raises
+    ``_csv.Error`` on a bare CR, a traceback): a sample.csv with CR line ends (its hash updated)
+    is read as csv's own files are, and an edited row is reported by file and line (exit 1),
+    by the comparison with the checkpoint and by verify's recomputation."""
+    _edit_sample(run, {4: {"tau_ref": "1.5"}})
+    text = (run / "sample.csv").read_text()
+    (run / "sample.csv").write_bytes(text.replace("\n", "\r").encode())
+    rehash(run, "sample.csv")
+    assert main(["verify", str(run), "--quiet"]) == 1
+    out = capsys.readouterr().out.splitlines()
+    found = [x for x in out if x.startswith("sample.csv:")]
+    assert found[0].startswith("sample.csv:4: the checkpoint has ")
+    assert found[1].startswith("sample.csv:4: verify gives tau_ref ")
+    assert found[1].endswith("; the file 1.5, " + repr(float(text.splitlines()[3].split(",")[10])))
+    assert len(found) == 2 and out[-1] == "FAILED: 2 discrepancies"
+
+
+def test_rows_after_a_refused_row_are_still_recomputed(run):
+    """_sample mutant 139 (``continue`` -> ``break`` after verify refuses a row): step 5 covers
+    *every* row of sample.csv; a row verify refuses (v = -1, no departure) is reported by line and
+    the rows after it are still recomputed: an edited error two rows on is reported too."""
+    _edit_sample(run, {2: {"v": "-1.0"}, 4: {"error": "0.5"}})
+    found = _sample_problems(run)
+    assert found[0].startswith("sample.csv:2: fastpath.step refuses the row: not a departure")
+    assert found[1].startswith("sample.csv:2: verify refuses the row: no departure")
+    assert found[2].startswith("sample.csv:4: verify gives tau_ref ")
+    assert found[2].endswith(", 0.5") and len(found) == 3
+
+
+def test_sample_returns_the_overstepped_lines(run):
+    """_sample mutant 147 (``overstepped.append(None)``): ``_sample`` returns (rows, worst
+    recomputed error, overstepped *lines*, discrepancies) (its docstring): the line numbers of
+    sample.csv (header = 1) whose tau oversteps, not only how many. (Through ``bouncer verify`` only
+    their count is shown; the line is in the OVERSTEP message.)"""
+    rows = (run / "sample.csv").read_text().splitlines()
+    tau = float(rows[2].split(",")[8])
+    _edit_sample(run, {3: {"tau": repr(tau * (1 + 1e-9))}})
+    scene = parse_scene((run / "scene.toml").read_text())
+    got_rows, worst, overstepped, out = _sample(run, scene, False)
+    assert overstepped == [3] and len(got_rows) == len(rows) - 1
+    assert worst > 16 and out[-1] == ("sample.csv:3: OVERSTEP: tau exceeds verify's first root"
+                                      " by more than 16*kappa*u")
+
+
+@pytest.fixture(scope="module")
+def drag_run(tmp_path_factory):
+    """A transport run with drag and restitution 1: not elastic, and not a carried step."""
+    out = tmp_path_factory.mktemp("drag") / "run"
+    scene = parse_scene(TINY + "[physics]\ndrag = 0.05\n")
+    assert scene.physics() == {"drag": 0.05, "drag_law": "linear", "restitution": 1.0}
+    assert not scene.carries
+    driver.run(scene, out, progress=False)
+    return out
+
+
+def test_a_drag_run_with_restitution_1_is_repeated_with_its_drag(drag_run, tmp_path):
+    """_sample mutant 111 (``fastpath.step(phi, v, eps)`` without the scene's physics when the
+    step carries nothing): step 5 repeats each row with ``fastpath.step(phi, v, eps)`` *of the
+    run's physics*; a drag run with r = 1 passes the audit (the drag-free step would give other
+    results on every row), and an edited phi1 is still named as fastpath.step's."""
+    run_dir = Path(shutil.copytree(drag_run, tmp_path / "run"))
+    ok, lines = recheck(run_dir)
+    assert ok is True, lines
+    phi1 = float((run_dir / "sample.csv").read_text().splitlines()[1].split(",")[6])
+    _edit_sample(run_dir, {2: {"phi1": repr(phi1 + 1e-6)}})
+    found = _sample_problems(run_dir)
+    assert len(found) == 1 and found[0].startswith("sample.csv:2: fastpath.step gives (")
+    assert found[0].endswith("(not reproduced bit for bit)")
+
+
+
+# ---- the output files (_outputs) ------------------------------------------------------------
+
+
+def test_a_curve_with_no_rows_in_counts_is_named_without_a_line(run):
+    """_outputs mutants 108, 111 and 110 (a timeout in the run) (the line of a curve absent from
+    counts.csv given as None or 'XX?XX'): per curve and clock escapes + censored + stuck =
+    particles; a curve and clock with no row left in counts.csv (its rows deleted, the hash
+    updated) is reported as counts.csv:?, the file named and no line to name."""
+    edit_rows(run / "counts.csv", lambda rows: rows.__setitem__(
+        slice(None), [r for r in rows if r[:2] != ["from hole 2", "time"]]))
+    rehash(run, "counts.csv")
+    found = problems_of(recheck(run)[1])
+    assert ("counts.csv:?: curve 'from hole 2', clock time: 0 escaped + 0 censored + 0 stuck = 0,"
+            " but 200 particles were run") in found
+    assert not any(x.startswith(("counts.csv:None", "counts.csv:XX")) for x in found)
+
+
+def test_stuck_counts_are_summed_exactly(run):
+    """_outputs mutants 115 and 119 (``curve_problems(plan, counts, done, None)`` or without its
+    last argument: stuck summed from
+    counts.csv's int64 arrays instead of parse_counts' exact dict): escapes + censored + stuck =
+    particles holds in integers; four forged stuck rows of 2**62 sum to 2**64, which an int64
+    sum wraps to 0, and the invariant still names the curve with its true total."""
+    edit_rows(run / "counts.csv", lambda rows: rows.extend(
+        ["from hole 1", "collisions", "stuck", edge, str(2**62)]
+        for edge in ("1.0", "2.0", "3.0", "5.0")))
+    rehash(run, "counts.csv")
+    with np.errstate(over="ignore"):
+        found = problems_of(recheck(run)[1])
+    assert any(x.startswith("counts.csv:2: curve 'from hole 1', clock collisions: ")
+               and x.endswith(f" + {2**64} stuck = {2**64 + 200}, but 200 particles were run")
+               for x in found)
+
+
+def test_inconsistent_counts_give_no_numpy_warning(run):
+    """_outputs mutant 120 (``np.errstate(invalid=None)``): counts that break the invariant give
+    p > 1 and an invalid band when survival.csv is re-derived; that is reported as a discrepancy
+    by file and line, not as a numpy RuntimeWarning on stderr."""
+    edit_rows(run / "counts.csv", lambda rows: rows[1].__setitem__(4, str(int(rows[1][4]) + 50)))
+    rehash(run, "counts.csv")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ok, lines = recheck(run)
+    assert not ok and [str(w.message) for w in caught] == []
+    assert ("counts.csv:2: curve 'from hole 1', clock collisions: 249 escaped + 1 censored + 0"
+            " stuck = 250, but 200 particles were run") in problems_of(lines)
+
