@@ -133,7 +133,7 @@ def parse_counts(plan, text, name="counts.csv"):
             exp, clock, outcome, edge, count = row
             e, b, c = exps[exp], edges[clock][edge], int(count)
             curves = plan.experiments[e].curves
-            if c <= 0 or clock not in plan.scene.clocks:
+            if not 0 < c < 2**63 or clock not in plan.scene.clocks:  # counts are int64
                 raise ValueError
         except (ValueError, KeyError):
             problems.append(f"{name}:{line}: not a row of this run: {','.join(row)}")

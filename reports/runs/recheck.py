@@ -110,23 +110,33 @@ def _outputs(run_dir, plan, tally):
             return out + ["velocity.csv is missing or not UTF-8 text"]
         if tally is not None:
             out += _compare("velocity.csv", written["velocity.csv"], text, "the checkpoint")
-        out += velocity_file_problems(plan, text)
+        try:
+            out += velocity_file_problems(plan, text)
+        except csv.Error as err:  # a bare CR, a field over csv's size limit
+            out.append(f"velocity.csv: not readable as CSV ({err})")
     else:
         counts_text, survival_text = _text(run_dir / "counts.csv"), _text(run_dir / "survival.csv")
         if counts_text is None or survival_text is None:
             return out + ["counts.csv or survival.csv is missing or not UTF-8 text"]
         if tally is not None:
             out += _compare("counts.csv", written["counts.csv"], counts_text, "the checkpoint")
-        counts, stuck, problems, first = parse_counts(plan, counts_text)
-        out += problems
-        done = [plan.particles] * len(plan.experiments)
-        out += [f"counts.csv:{first.get((e, clock), '?')}: {msg}"
-                for e, clock, msg in curve_problems(plan, counts, done, stuck)]
-        with np.errstate(invalid="ignore"):  # inconsistent counts give p > 1: reported below
-            derived = rundir.csv_text(["curve", "clock", "x", "p", "p_lo", "p_hi"],
-                                      survival_rows(plan, counts))
-        out += _compare("survival.csv", derived, survival_text, "the curve from counts.csv")
-        out += survival_problems(survival_text)
+        try:
+            counts, stuck, problems, first = parse_counts(plan, counts_text)
+        except csv.Error as err:  # a bare CR, a field over csv's size limit
+            out.append(f"counts.csv: not readable as CSV ({err})")
+        else:
+            out += problems
+            done = [plan.particles] * len(plan.experiments)
+            out += [f"counts.csv:{first.get((e, clock), '?')}: {msg}"
+                    for e, clock, msg in curve_problems(plan, counts, done, stuck)]
+            with np.errstate(invalid="ignore"):  # inconsistent counts give p > 1: reported below
+                derived = rundir.csv_text(["curve", "clock", "x", "p", "p_lo", "p_hi"],
+                                          survival_rows(plan, counts))
+            out += _compare("survival.csv", derived, survival_text, "the curve from counts.csv")
+        try:
+            out += survival_problems(survival_text)
+        except csv.Error as err:
+            out.append(f"survival.csv: not readable as CSV ({err})")
     sample_text = _text(run_dir / "sample.csv")
     if sample_text is None:
         out.append("sample.csv is missing or not UTF-8 text")
@@ -172,8 +182,12 @@ def _sample(run_dir, scene, progress):
     """Step 5: (rows, worst recomputed error, overstepped lines, discrepancies)."""
     # a missing or non-UTF-8 sample.csv is reported by _outputs: no rows to recompute
     text = _text(run_dir / "sample.csv")
-    rows = list(csv.DictReader(io.StringIO(text, newline=""))) if text is not None else []
     worst, overstepped, out = 0.0, [], []
+    try:
+        rows = list(csv.DictReader(io.StringIO(text, newline=""))) if text is not None else []
+    except csv.Error as err:  # a field over csv's size limit
+        rows = []
+        out.append(f"sample.csv: not readable as CSV ({err})")
     bar = None
     if progress:
         from tqdm import tqdm
