@@ -160,3 +160,26 @@ def test_centring_next_to_plus_and_minus_pi():
             assert _circle(c, exact) <= 2 * math.ulp(TWO_PI), (x, c)
             if -PI <= x < PI:
                 assert c == x
+
+
+def test_collide_from_counts_the_carried_sine_error():
+    """Kills ``collide_from``'s ``phase_error_of(phi, centred) + sine_error`` -> ``-`` (collision
+    mutant 0, session 6). ``sine_error`` bounds the error of the given sine (CARRIED_SINE_ERROR,
+    8u, by default), and ``flight_from`` says NOT_DEPARTING only where w0 <= 0 is certain: a w0
+    within the carried sine's error of 0 but beyond its other error terms (2u|w0| + 3u|eps sin|,
+    1.5u here) is UNCERTAIN. phi = the float next to pi/6 (already centred: no reduction error),
+    the given sine 0.5 (mpmath: within u of sin(phi)), eps = 1, v = -0.5 + j*u: w0 = j*u exactly,
+    for j = -6 .. 6 (|w0| <= 6u < 8u)."""
+    from fastpath.collision import CARRIED_SINE_ERROR, collide_from
+    from fastpath.flight import UNCERTAIN
+
+    u = 2.0**-53
+    phi = math.pi / 6
+    with mp.workprec(200):
+        assert abs(mp.sin(mp.mpf(phi)) - mp.mpf(0.5)) <= u
+    assert CARRIED_SINE_ERROR >= 8 * u
+    for j in (-6, -4, -2, 2, 4, 6):
+        v = -0.5 + j * u
+        assert v + 0.5 == j * u
+        status = collide_from(phi, 0.5, math.sqrt(3.0) / 2, v, 1.0)[6]
+        assert status == UNCERTAIN, (j, status)
