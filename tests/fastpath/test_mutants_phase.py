@@ -142,7 +142,7 @@ def test_centring_next_to_plus_and_minus_pi():
     few ulps of 2*pi (module docstring; 2 ulps here) on the circle, against mpmath. The ties are
     met at the floats next to +-PI and 3*PI: PI itself (Cody-Waite gives r < -PI), the float
     above PI (r rounds to exactly -PI), the float below -PI (r rounds to exactly PI), and
-    91.106186954104 (29*pi + 1.2e-18*pi, r rounds to -PI with k = 15). ``centre_moderate``, used
+    91.106186954104 (29*pi + 1.2e-18, r rounds to -PI with k = 15). ``centre_moderate``, used
     by the lanes, gives the same bits as ``centre_phase`` (the same arithmetic)."""
     from fastpath.phase import PI, TWO_PI, centre_moderate, centre_phase
 
