@@ -55,3 +55,46 @@ verify_samples = 30
 [physics]
 restitution = [1.0, 0.9]
 """
+
+# an escape scene where most particles stick for good (restitution 0.5)
+STICK = """
+name = "stick"
+kind = "escape"
+eps = 0.6
+particles = 400
+seed = 5
+chunk_size = 200
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[holes]
+centres = [2.0]
+widths = [0.3]
+[horizon]
+collisions = 2000
+time = 1e5
+[record]
+verify_samples = 20
+[physics]
+restitution = 0.5
+"""
+
+# a velocity scene of 100 particles with r = 1 and r = 0.9
+TINY_VELOCITY = """
+name = "tiny-velocity"
+kind = "velocity"
+eps = 2.0
+particles = 100
+seed = 3
+chunk_size = 50
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[horizon]
+collisions = 100
+[record]
+bins_per_decade = 5
+verify_samples = 6
+[physics]
+restitution = [1.0, 0.9]
+"""

@@ -4,34 +4,16 @@ dissipative kernel gets the scene's physics (drag, its law, restitution)."""
 
 import numpy as np
 import pytest
-from scene_texts import PORTRAIT, TINY
+from scene_texts import PORTRAIT, TINY, TINY_VELOCITY
+from scene_texts import STICK as STICK_400
 
 from reports.runs.chunk import kernel
 from reports.runs.counts import Counts
 from reports.runs.plan import chunk_starts, make_plan
 from reports.runs.scenes import parse_scene
 
-STICK = """
-name = "stick"
-kind = "escape"
-eps = 0.6
-particles = 200
-seed = 5
-chunk_size = 200
-[start]
-phi = [3.85, 4.15]
-v = [2.0, 4.0]
-[holes]
-centres = [2.0]
-widths = [0.3]
-[horizon]
-collisions = 2000
-time = 1e5
-[record]
-verify_samples = 20
-[physics]
-restitution = 0.5
-"""
+STICK = STICK_400.replace("particles = 400", "particles = 200")
+VELOCITY = TINY_VELOCITY.replace("verify_samples = 6\n", "")
 
 
 def _pass(plan, out):
@@ -103,23 +85,6 @@ def test_the_dissipative_kernel_gets_the_scenes_physics():
 # ---- Counts.zeros ----------------------------------------------------------------------------
 
 
-VELOCITY = """
-name = "tiny-velocity"
-kind = "velocity"
-eps = 2.0
-particles = 100
-seed = 3
-chunk_size = 50
-[start]
-phi = [3.85, 4.15]
-v = [2.0, 4.0]
-[horizon]
-collisions = 100
-[record]
-bins_per_decade = 5
-[physics]
-restitution = [1.0, 0.9]
-"""
 
 
 def _int_zeros(a, shape):

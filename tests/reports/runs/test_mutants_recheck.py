@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scene_texts import PORTRAIT, TINY
+from scene_texts import PORTRAIT, TINY, TINY_VELOCITY
 
 from reports.runs import driver, executor, rundir
 from reports.runs.counts import Tally
@@ -21,22 +21,10 @@ from reports.runs.scenes import parse_scene
 
 
 @pytest.fixture(scope="module")
-def tiny_run(tmp_path_factory):
-    out = tmp_path_factory.mktemp("tiny") / "run"
-    driver.run(parse_scene(TINY), out, progress=False)
-    return out
-
-
-@pytest.fixture(scope="module")
 def portrait_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("portrait") / "run"
     driver.run(parse_scene(PORTRAIT), out, progress=False)
     return out
-
-
-@pytest.fixture
-def run(tiny_run, tmp_path):
-    return Path(shutil.copytree(tiny_run, tmp_path / "run"))
 
 
 def manifest_of(run_dir):
@@ -408,30 +396,12 @@ def test_edited_sample_row_with_its_hash_updated(run):
     assert found[1].startswith("sample.csv:4: verify gives tau_ref ")
 
 
-VELOCITY = """
-name = "tiny-velocity"
-kind = "velocity"
-eps = 2.0
-particles = 100
-seed = 3
-chunk_size = 50
-[start]
-phi = [3.85, 4.15]
-v = [2.0, 4.0]
-[horizon]
-collisions = 100
-[record]
-bins_per_decade = 5
-verify_samples = 6
-[physics]
-restitution = [1.0, 0.9]
-"""
 
 
 @pytest.fixture(scope="module")
 def velocity_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("velocity") / "run"
-    driver.run(parse_scene(VELOCITY), out, progress=False)
+    driver.run(parse_scene(TINY_VELOCITY), out, progress=False)
     return out
 
 

@@ -24,19 +24,6 @@ from reports.runs import driver
 from reports.runs.recheck import _sample, recheck
 from reports.runs.scenes import parse_scene
 
-
-@pytest.fixture(scope="module")
-def tiny_run(tmp_path_factory):
-    out = tmp_path_factory.mktemp("tiny") / "run"
-    driver.run(parse_scene(TINY), out, progress=False)
-    return out
-
-
-@pytest.fixture
-def run(tiny_run, tmp_path):
-    return Path(shutil.copytree(tiny_run, tmp_path / "run"))
-
-
 # ---- the recomputed sample (_sample) --------------------------------------------------------
 
 

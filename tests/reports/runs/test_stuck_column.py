@@ -4,34 +4,13 @@ on their own (counts.csv, checkpoint, manifest), and escapes + censored + stuck 
 import json
 
 import numpy as np
+from scene_texts import STICK
 
 from reports.runs import driver
 from reports.runs.counts import Tally
 from reports.runs.integrity import curve_problems, parse_counts
 from reports.runs.plan import make_plan
 from reports.runs.scenes import parse_scene
-
-STICK = """
-name = "stick"
-kind = "escape"
-eps = 0.6
-particles = 400
-seed = 5
-chunk_size = 200
-[start]
-phi = [3.85, 4.15]
-v = [2.0, 4.0]
-[holes]
-centres = [2.0]
-widths = [0.3]
-[horizon]
-collisions = 2000
-time = 1e5
-[record]
-verify_samples = 20
-[physics]
-restitution = 0.5
-"""
 
 
 def test_stuck_particles_are_their_own_outcome(tmp_path):
