@@ -119,9 +119,8 @@ def phase_error_of(phi_given, phi_centred):
     for |phi| >= 2**20 (Payne-Hanek) the absolute PAYNE_HANEK_ERROR besides."""
     if phi_centred == phi_given:
         return 0.0
-    if abs(phi_given) >= CODY_WAITE_LIMIT:
-        return 2.0 * UNIT_ROUNDOFF * abs(phi_centred) + PAYNE_HANEK_ERROR
-    return 2.0 * UNIT_ROUNDOFF * abs(phi_centred)
+    error = 2.0 * UNIT_ROUNDOFF * abs(phi_centred)
+    return error + PAYNE_HANEK_ERROR if abs(phi_given) >= CODY_WAITE_LIMIT else error
 
 
 @jit

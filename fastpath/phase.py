@@ -129,12 +129,12 @@ def _payne_hanek(x, centred):
         hi, lo = -hi, -lo
     # hi + lo against the range's ends, decided exactly: lo (< 2**-23) can carry hi past an
     # end, and the differences below are exact wherever they are close (Sterbenz)
-    top = 0.5 if centred else 1.0
+    bottom, top = (-0.5, 0.5) if centred else (0.0, 1.0)
     if lo >= top - hi:
         hi -= 1.0  # exact
-    elif lo < -top - hi if centred else lo < -hi:
+    elif lo < bottom - hi:
         hi += 1.0  # exact
-        if not centred and lo < -hi:  # x < 0 with turns just below -1: once more
+        if lo < bottom - hi:  # x < 0 with turns just below -1 (only [0, 1) can need it)
             hi += 1.0
     p, e = _two_product(hi, TWO_PI)
     r = p + (e + hi * _TWO_PI_LOW + lo * TWO_PI)
