@@ -2,7 +2,6 @@
 ``bouncer verify RUN`` on a tiny transport run and a tiny phase-space run, each fault alone
 (its hash updated where the deeper check is the one under test), with the report's wording."""
 
-import csv
 import json
 import math
 import shutil
@@ -11,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scene_texts import PORTRAIT, TINY, TINY_VELOCITY
+from test_integrity import edit_csv as edit_rows
 
 from reports.runs import driver, executor, rundir
 from reports.runs.counts import Tally
@@ -47,14 +47,6 @@ def problems_of(lines):
     """The discrepancy lines of a report: between the 'checked:' line and the verdict."""
     start = next(i for i, x in enumerate(lines) if x.startswith("checked: "))
     return lines[start + 1:-1]
-
-
-def edit_rows(path, edit):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    edit(rows)
-    with open(path, "w", newline="") as f:
-        csv.writer(f, lineterminator="\n").writerows(rows)
 
 
 # ---- a clean run and the report's form ------------------------------------------------------
