@@ -46,7 +46,7 @@ MAX_SAMPLED_CHUNKS = 2**14  # more chunks than this: only every sample_stride-th
 
 # Assumed throughput for estimates: the paper-scale run of paper-escape (10^8 particles per curve,
 # 6e8 in all, 1558 s on 2 cores, 28.8 collisions per particle on average;
-# reports/report/paper-scale/paper-escape-1e8/manifest.json). Scene-dependent: a longer horizon
+# docs/report/paper-scale/paper-escape-1e8/manifest.json). Scene-dependent: a longer horizon
 # or a smaller hole costs more per particle.
 PARTICLES_PER_S = 6e8 / 1558.12
 

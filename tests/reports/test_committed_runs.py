@@ -1,4 +1,4 @@
-"""Every run committed under reports/report/ passes ``bouncer verify`` with this code.
+"""Every run committed under docs/report/ passes ``bouncer verify`` with this code.
 
 The report's claims and the README's figures are read from these runs; ``bouncer verify``
 re-derives their sampled collisions with ``fastpath.step`` bit for bit. A fastpath change that
@@ -13,7 +13,7 @@ import pytest
 from reports.runs.recheck import recheck
 
 ROOT = Path(__file__).resolve().parents[2]
-RUNS = sorted(p.parent for p in (ROOT / "reports" / "report").glob("**/manifest.json"))
+RUNS = sorted(p.parent for p in (ROOT / "docs" / "report").glob("**/manifest.json"))
 
 
 def test_there_are_committed_runs():
