@@ -88,20 +88,24 @@ def fenced_blocks(markdown: str, page: str) -> list[Block]:
     return blocks
 
 
+def block_param(block: Block):
+    """The test parameter of a block, marked slow or skipped as its marker says."""
+    marks = []
+    if block.marker == "slow":
+        marks.append(pytest.mark.slow)
+    elif block.marker.startswith("skip"):
+        reason = block.marker[len("skip"):].strip(" ()") or "no reason given"
+        marks.append(pytest.mark.skip(reason=f"{block.name}: {reason}"))
+    return pytest.param(block, marks=marks, id=block.name)
+
+
 def _collect() -> list:
     params = []
     for path in PAGES:
         page = str(path.relative_to(ROOT))
         for block in fenced_blocks(path.read_text(encoding="utf-8"), page):
-            if block.language not in RUN_LANGUAGES:
-                continue
-            marks = []
-            if block.marker == "slow":
-                marks.append(pytest.mark.slow)
-            elif block.marker.startswith("skip"):
-                reason = block.marker[len("skip"):].strip(" ()") or "no reason given"
-                marks.append(pytest.mark.skip(reason=f"{block.name}: {reason}"))
-            params.append(pytest.param(block, marks=marks, id=block.name))
+            if block.language in RUN_LANGUAGES:
+                params.append(block_param(block))
     return params
 
 
@@ -179,6 +183,7 @@ def _environment() -> dict[str, str]:
 
 
 def _workdir(tmp_path: Path) -> Path:
+    tmp_path.mkdir(parents=True, exist_ok=True)
     (tmp_path / "examples").symlink_to(ROOT / "examples", target_is_directory=True)
     return tmp_path
 
@@ -260,6 +265,27 @@ def test_console_blocks_split_into_commands_outputs_and_exit_status():
         session_commands("output\n$ bouncer scenes\n")
 
 
+def test_a_session_fails_on_other_output_or_exit_status(tmp_path):
+    def session(text):
+        return Block("page.md", 1, "console", text, "")
+
+    run_session(session("$ bouncer run no-such-scene\nbouncer: error: no scene ...\n"
+                        "[exit status 2]\n"), _workdir(tmp_path / "a"))
+    with pytest.raises(AssertionError, match="exited 2, expected 0"):
+        run_session(session("$ bouncer run no-such-scene\n"), _workdir(tmp_path / "b"))
+    with pytest.raises(AssertionError, match="printed"):
+        run_session(session("$ bouncer run no-such-scene\nbouncer: error: no file\n"
+                            "[exit status 2]\n"), _workdir(tmp_path / "c"))
+    with pytest.raises(AssertionError, match="only bouncer commands"):
+        run_session(session("$ pip install .\n"), _workdir(tmp_path / "d"))
+
+
+def test_a_python_block_fails_on_an_exception(tmp_path):
+    run_python(Block("page.md", 1, "python", "assert 1 + 1 == 2\n", ""), _workdir(tmp_path))
+    with pytest.raises(AssertionError, match="the python block failed"):
+        run_python(Block("page.md", 1, "python", "assert 1 + 1 == 3\n", ""), tmp_path)
+
+
 def test_markers_are_read_from_the_line_before_a_block():
     page = ("text\n<!-- docs-test: slow -->\n```python\nx = 1\n```\n\n"
             "<!-- docs-test: skip (takes an hour) -->\n\n```console\n$ bouncer demo\n```\n"
@@ -268,3 +294,8 @@ def test_markers_are_read_from_the_line_before_a_block():
     assert [(b.line, b.language, b.marker) for b in blocks] == [
         (3, "python", "slow"), (9, "console", "skip (takes an hour)"), (12, "toml", "")]
     assert blocks[0].text == "x = 1\n"
+    slow, skipped, shown = (block_param(b).marks for b in blocks)
+    assert [m.name for m in slow] == ["slow"]
+    assert [(m.name, m.kwargs["reason"]) for m in skipped] == [
+        ("skip", "page.md:9: takes an hour")]
+    assert list(shown) == []
