@@ -1,15 +1,20 @@
 """Independent reference for the bouncer model: mpmath precision plus interval certificates.
 
-Never imports ``fastpath`` (the independence rule of DESIGN.md Section 3).
+Layout: :mod:`verify.numerics` (precision, exact inputs and phase reduction, the first-root
+search), :mod:`verify.elastic` (the paper's flight: gap, certificate, condition number),
+:mod:`verify.dissipative` (physics description, drag laws, chattering and sticking), and the
+public entry points :mod:`verify.flight`, :mod:`verify.collision` (the map), :mod:`verify.jacobian`,
+:mod:`verify.orbit`; :mod:`verify.check` tests a user's integrator. Never imports ``fastpath``:
+the reference is worth something only if it shares no code with the integrator it checks.
 """
 
-from .certify import FlightCertificate, certify_flight, flight_time
 from .check import CheckReport, Failure, assert_integrator, check_integrator, load_callable
 from .collision import step
-from .conditioning import condition_number
+from .elastic.conditioning import condition_number
+from .elastic.gap import gap
+from .elastic.grazing import GrazingContact, grazing_contact, grazing_departure
 from .errors import ChatteringDetected, UndecidableCollision
-from .gap import gap
-from .grazing import GrazingContact, grazing_contact, grazing_departure
+from .flight import FlightCertificate, certify_flight, flight_time
 from .jacobian import jacobian
 from .orbit import Orbit, orbit
 

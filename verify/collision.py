@@ -1,15 +1,17 @@
-"""One step of the exact collision map (the seed's equations (1)-(2))."""
+"""One step of the exact collision map: the paper's equations (1)-(2), and the impact law with
+restitution and drag."""
 
 from __future__ import annotations
 
 import mpmath
 from mpmath import mp
 
-from ._inputs import check_physics, check_state
-from ._precision import hi, lo, working_dps
-from .certify import certify_flight
-from .drag import DragFlight
-from .phase import reduce_phase
+from .dissipative.drag import DragFlight
+from .dissipative.physics import check_physics
+from .flight import certify_flight
+from .numerics.inputs import check_state
+from .numerics.phase import reduce_phase
+from .numerics.precision import hi, lo, working_dps
 
 
 def step(phi, v, eps, dps: int = 50, *, drag=0.0, drag_law: str = "linear",
@@ -20,11 +22,11 @@ def step(phi, v, eps, dps: int = 50, *, drag=0.0, drag_law: str = "linear",
         v_in = v - tau,  u = -eps*sin(phi + tau),  v1 = 2*u - v_in
 
     With dissipation (keyword-only; the defaults run the lines above unchanged):
-    ``v_in = V(tau)`` the velocity of the drag flight (:mod:`verify.drag`) and
+    ``v_in = V(tau)`` the velocity of the drag flight (:mod:`verify.dissipative.drag`) and
     ``v1 = (1 + r)*u - r*v_in`` (``v1 - u = -r*(v_in - u)``, ``r = restitution``).
 
     Computed from the enclosure midpoint at the certificate's working precision, rounded to
-    ``dps`` digits. A huge phase is reduced exactly first (:mod:`verify.phase`).
+    ``dps`` digits. A huge phase is reduced exactly first (:mod:`verify.numerics.phase`).
     """
     phys = check_physics(drag, drag_law, restitution)
     phi, v, eps, _, dps = check_state(phi, v, eps, dps=dps, w0_zero_ok=not phys.is_default)

@@ -1,4 +1,13 @@
-"""Errors raised by the reference integrator."""
+"""The errors of the reference: one "undecided" type.
+
+:class:`UndecidableCollision` is raised wherever verify cannot decide at the largest precision
+it allows (instead of guessing). :class:`ChatteringDetected` is the same refusal for an orbit
+whose impacts pile up without a provable accumulation; it is a subclass, so
+``except UndecidableCollision`` catches both. (Inside verify, an attempt that cannot decide at
+its working precision raises :class:`verify.numerics.precision.NotDecided`, which
+:func:`verify.numerics.precision.escalate` turns into a retry at a higher precision; it never
+reaches a caller.)
+"""
 
 from __future__ import annotations
 
@@ -9,7 +18,8 @@ class UndecidableCollision(ArithmeticError):
     Raised instead of guessing when an interval comparison stays ambiguous at ``max_dps``
     digits: a near-tangency (``d`` has a local minimum indistinguishable from 0: graze or not),
     a departure velocity ``w0`` indistinguishable from 0, or a root that cannot be separated.
-    The message names the state, the precision reached and what stayed undecided.
+    The message names the state, the precision reached and what stayed undecided. Attributes:
+    ``phi``, ``v``, ``eps`` (the state), ``dps_reached``, ``what``.
     """
 
     def __init__(self, phi, v, eps, dps_reached: int, what: str) -> None:
@@ -27,21 +37,24 @@ def _short(x) -> str:
     return s if len(s) <= 40 else s[:40] + "..."
 
 
-class ChatteringDetected(ArithmeticError):
+class ChatteringDetected(UndecidableCollision):
     """Impacts accumulate (restitution < 1) but no tail could be summed.
 
     Raised by :func:`verify.orbit` with drag > 0 after collision ``n`` (at time ``t``, state
     ``phi``, ``v``) when the velocity relative to the plate, ``w = v + eps*sin(phi)``, fell below
-    ``w_min = 10**(-dps//2)*(1 + |v| + |eps|)``, far below where :mod:`verify.drag_sticking`
-    sums the tail (``w ~ 10**(-dps/3)``), while the gap's curvature ``d''(0)`` is negative (the
-    plate pulls the particle back): the accumulation could not be proved at this precision
-    (e.g. a chatter that reaches the detachment phase), so the orbit stops instead of crawling.
+    ``w_min = 10**(-dps//2)*(1 + |v| + |eps|)``, far below where
+    :mod:`verify.dissipative.drag_sticking` sums the tail (``w ~ 10**(-dps/3)``), while the
+    gap's curvature ``d''(0)`` is negative (the plate pulls the particle back): the
+    accumulation could not be proved at this precision (e.g. a chatter that reaches the
+    detachment phase), so the orbit stops instead of crawling. Attributes: those of
+    :class:`UndecidableCollision` and ``n``, ``t``, ``w``, ``w_min``.
     """
 
-    def __init__(self, n: int, t, phi, v, w, w_min) -> None:
-        self.n, self.t, self.phi, self.v, self.w, self.w_min = n, t, phi, v, w, w_min
-        super().__init__(
-            f"chattering: after collision {n} (t={_short(t)}, phi={_short(phi)}, v={_short(v)}) "
-            f"the velocity relative to the plate is w={_short(w)} < {_short(w_min)} and falling: "
-            "impacts accumulate, but no accumulation tail could be proved"
-        )
+    def __init__(self, n: int, t, phi, v, eps, w, w_min, dps: int) -> None:
+        self.n, self.t, self.w, self.w_min = n, t, w, w_min
+        what = (f"chattering: after collision {n} (t={_short(t)}) the velocity relative to the "
+                f"plate is w={_short(w)} < {_short(w_min)} and falling: impacts accumulate, but "
+                "no accumulation tail could be proved")
+        super().__init__(phi, v, eps, dps, what)
+        self.args = (f"{what} (phi={_short(phi)}, v={_short(v)}, eps={_short(eps)}, "
+                     f"{dps} digits)",)

@@ -15,13 +15,13 @@ hold the flight: ``tau``, ``v**2`` or ``tau*v`` overflow, so a float64 integrato
 ``HARD_CASES`` holds the ``"flight"`` entries, ``OVERFLOW_CASES`` the ``"ValueError"`` ones,
 ``ALL_CASES`` both.
 
-Classes added for issue 12: ``eps->1`` (eps = 1 -+ 1e-12, 1 -+ 1e-6 and 1 exactly: concavity
+Further classes: ``eps->1`` (eps = 1 -+ 1e-12, 1 -+ 1e-6 and 1 exactly: concavity
 degenerates at 1), ``near-triple-root`` (``phi = -x, v = x``: for ``|eps| <= 1`` the exact
-flight time is ``2x``, and ``d'(2x) = eps*sin(x) - x ~ -x**3/6`` at eps = 1, DESIGN fact 11),
+flight time is ``2x``, and ``d'(2x) = eps*sin(x) - x ~ -x**3/6`` at eps = 1: a near-triple root),
 ``huge-phase`` (``|phi|`` = 1e12 .. 1e300: reduction modulo 2*pi needs ~|phi|/2**53 more bits
 than the phase holds), ``overflow``.
 
-Classes added for issue 16 (``DISSIPATIVE_CASES``, with ``drag``, ``drag_law`` and the
+The dissipative classes (``DISSIPATIVE_CASES``, with ``drag``, ``drag_law`` and the
 certified ``tau``): ``drag-graze``, ``w0=0 departure`` and ``chattering-graze`` (near-grazes of a
 chattering departure with small w0 just before the phase where the plate's acceleration falls
 through -1; elastic rows have ``drag = 0.0`` and stay out of ``HARD_CASES``, so that the elastic
@@ -30,6 +30,8 @@ table's counted figures do not move; see the table).
 
 import math
 from typing import NamedTuple
+
+from .numerics.float64 import TWO_PI
 
 
 class HardCase(NamedTuple):
@@ -49,7 +51,6 @@ class HardCase(NamedTuple):
 
 
 PI = math.pi
-TWO_PI = 2.0 * math.pi
 
 
 def _w0(w0, phi, eps, tag, kind="small-w0"):
@@ -112,8 +113,8 @@ HARD_CASES = (
               "eps->1" if 0.99 < eps < 1.01 else "eps-range")
         for eps, why in (
             (1e-8, "plate almost still: tau ~ 2v"),
-            (0.2429, "the seed: last spanning invariant curves break (K = 4*eps ~ 0.971)"),
-            (0.6, "the seed's standard eps"),
+            (0.2429, "the paper: last spanning invariant curves break (K = 4*eps ~ 0.971)"),
+            (0.6, "the paper's standard eps"),
             (0.999999, "concave bound 2*w0/(1-eps) almost useless"),
             (1.0, "d'' <= 0 only: the concavity degenerates"),
             (1.000001, "just convex: crawling near tangencies is possible"),
@@ -212,7 +213,7 @@ def _dissipative(case_id, phi, v, eps, law, k, tau, kind, reason):
     return HardCase(case_id, phi, v, eps, reason, kind=kind, drag=k, drag_law=law, tau=tau)
 
 
-# Issue 16: flights with drag (not in HARD_CASES, whose users call the elastic model). ``tau`` is
+# Flights with drag (not in HARD_CASES, whose users call the elastic model). ``tau`` is
 # verify.certify_flight(..., drag=k, drag_law=law).tau at 50 digits rounded to float64.
 # "drag-graze": the elastic near-grazes above (clearance 1e-2, +-1e-6) under drag 1e-8, which
 # moves the clearance by ~1e-8: still a pass above (landing later) or a close root pair.
@@ -228,7 +229,7 @@ _DRAG_GRAZES = (
      6.8232924430174675, 6.823292321128432),
     (-3.8901811231228502, 3.303620503138832, 3.0, "-1e-6", 4.189062665767766, 4.188954674819296),
 )
-# "chattering-graze" (issue 16, item 6): a chattering particle (restitution r < 1) leaves each
+# "chattering-graze": a chattering particle (restitution r < 1) leaves each
 # impact with a small relative speed w = w0. Just before theta* = 2*pi - arccos(1/eps), where the
 # plate's acceleration -eps*cos falls through -1, the relative acceleration d'' = -1 - eta(V) +
 # eps*cos(phi + t) is slightly negative at the departure and turns positive a moment later, so

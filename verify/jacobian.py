@@ -5,10 +5,10 @@ from __future__ import annotations
 import mpmath
 from mpmath import mp
 
-from ._inputs import check_state
-from ._precision import working_dps
-from .certify import certify_flight
-from .phase import reduce_phase
+from .flight import certify_flight
+from .numerics.inputs import check_state
+from .numerics.phase import reduce_phase
+from .numerics.precision import working_dps
 
 
 def jacobian(phi, v, eps, dps: int = 50) -> mpmath.matrix:

@@ -28,7 +28,8 @@ import math
 from hypothesis import strategies as st
 from mpmath import mp
 
-from .grazing import grazing_contact
+from .elastic.grazing import grazing_contact
+from .numerics.float64 import TWO_PI
 
 __all__ = [
     "clearances",
@@ -43,7 +44,6 @@ __all__ = [
     "near_triple_root",
 ]
 
-TWO_PI = 2.0 * math.pi
 _W0_DPS = 50  # exact w0 of float inputs: phases up to ~1e6 and w0 down to ~1e-300 fit easily
 _LINEAR_W0_FLOOR = 1e-3  # below this, w0 is drawn log-uniformly
 
@@ -336,7 +336,7 @@ def _triple(draw, eps_s, x_s):
 
 
 def near_triple_root(eps=(1.0 - 1e-6, 1.0), *, x=(1e-8, 10.0)):
-    """Departures ``(-x, x, eps)``: the family of DESIGN fact 11, the hardest well-posed flights.
+    """Departures ``(-x, x, eps)``: the near-triple roots, the hardest well-posed flights.
 
     ``d(2x) = eps*(cos(x) - cos(x)) + 2x*(x - x) = 0`` holds exactly for the float inputs, so
     for ``|eps| <= 1`` (d concave, one positive root) the exact flight time is ``2*x``. With

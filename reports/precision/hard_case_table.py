@@ -27,7 +27,7 @@ from reports.precision.cases import hard_cases
 from reports.precision.evaluate import REFERENCE_DPS, UNIT_ROUNDOFF
 from reports.precision.methods import default_methods
 from reports.precision.work_precision import Error, evaluate
-from verify.drag import motion
+from verify.dissipative.drag import motion
 from verify.hard_cases import DISSIPATIVE_CASES, HardCase
 
 
@@ -122,7 +122,7 @@ class DissipativeRow:
 
 
 def _drag_point(case: HardCase, t):
-    """(d(t), d'(t)) of the case's gap at REFERENCE_DPS digits (verify.drag.motion)."""
+    """(d(t), d'(t)) of the case's gap at REFERENCE_DPS digits (verify.dissipative.drag.motion)."""
     with mp.workdps(REFERENCE_DPS):
         t = mp.mpf(t)
         y, vel = motion(case.v, t, case.drag, case.drag_law, dps=REFERENCE_DPS)

@@ -292,8 +292,7 @@ def run_chunk(scene, seed, curve, chunk, particles=None, threads=None):
 
 
 # the verify modules behind verify.step and verify.condition_number (what a chunk calls)
-_VERIFY_SOURCES = ("_inputs", "_precision", "certify", "collision", "conditioning", "drag",
-                   "drag_certify", "errors", "gap", "phase")
+_VERIFY_SOURCES = ("collision.py", "errors.py", "flight.py", "numerics", "elastic", "dissipative")
 
 
 def _code_digest():
@@ -303,7 +302,9 @@ def _code_digest():
     root = Path(__file__).resolve().parents[2]
     digest = hashlib.sha256()
     files = [*sorted((root / "fastpath").glob("*.py")),
-             *(root / "verify" / f"{name}.py" for name in _VERIFY_SOURCES),
+             *(path for name in _VERIFY_SOURCES
+               for path in sorted((root / "verify").glob(name if name.endswith(".py")
+                                                         else f"{name}/*.py"))),
              *sorted((root / "reports" / "runs").glob("*.py"))]
     for path in files:
         digest.update(path.name.encode() + b"\0" + path.read_bytes())

@@ -8,9 +8,10 @@ import pytest
 from mpmath import iv, mp
 
 import verify
-from verify import certify
-from verify._precision import lo, working_dps
-from verify.gap import iv_gap, iv_gap_prime, iv_gap_second, mp_gap
+from verify.elastic import certificate
+from verify.elastic.gap import iv_gap, iv_gap_prime, iv_gap_second, mp_gap
+from verify.numerics import first_root
+from verify.numerics.precision import NotDecided, lo, working_dps
 
 WDPS = 40  # digits of the interval evaluations in the box-bound test
 REF_DPS = 60  # digits of the brute-force sampling (WDPS + 20)
@@ -19,12 +20,12 @@ REF_DPS = 60  # digits of the brute-force sampling (WDPS + 20)
 def _box_bound(phi, v, eps, a, h):
     """The proof step's lower bound of d on [a, a+h] and its three inputs (d, d', min d'')."""
     with working_dps(WDPS):
-        ctx = certify._context(mp.mpf(phi), mp.mpf(v), mp.mpf(eps), WDPS - 10, WDPS)
+        ctx = certificate.elastic_gap(mp.mpf(phi), mp.mpf(v), mp.mpf(eps), WDPS - 10, WDPS)
         ia = iv.mpf(a)
         d_a = lo(iv_gap(ctx.iphi, ctx.iv_v, ctx.ieps, ia))
         p_a = lo(iv_gap_prime(ctx.iphi, ctx.iv_v, ctx.ieps, ia))
         q = lo(iv_gap_second(ctx.iphi, ctx.ieps, iv.mpf([a, a + h])))
-        return certify._taylor_lower(d_a, p_a, q, h), d_a, p_a, q
+        return first_root.taylor_lower(d_a, p_a, q, h), d_a, p_a, q
 
 
 def _random_boxes(n, seed=12):
@@ -99,36 +100,36 @@ def _enclosure(r, dps=50):
 
 def test_certify_candidate_accepts_the_first_root_and_refuses_the_second():
     g, r1, r2 = _two_roots()
-    assert certify.certify_candidate(g.phi, g.v, 3.0, *_enclosure(r1))
-    assert not certify.certify_candidate(g.phi, g.v, 3.0, *_enclosure(r2))
+    assert certificate.certify_candidate(g.phi, g.v, 3.0, *_enclosure(r1))
+    assert not certificate.certify_candidate(g.phi, g.v, 3.0, *_enclosure(r2))
     # the dip bottom (d < 0 there): not a root, refused
-    assert not certify.certify_candidate(g.phi, g.v, 3.0, *_enclosure(g.T))
+    assert not certificate.certify_candidate(g.phi, g.v, 3.0, *_enclosure(g.T))
     # a point well before the first root (d > 0 on both sides): refused
-    assert not certify.certify_candidate(g.phi, g.v, 3.0, *_enclosure(r1 / 2))
+    assert not certificate.certify_candidate(g.phi, g.v, 3.0, *_enclosure(r1 / 2))
 
 
 @pytest.mark.parametrize("phi, v, eps", [(-3e-5, 3e-5, 1.0), (4.0, 3.0, 0.6), (-0.5, 0.5, 1.0)])
 def test_certify_candidate_concave(phi, v, eps):
     tau = verify.certify_flight(phi, v, eps).tau
-    assert certify.certify_candidate(phi, v, eps, *_enclosure(tau, 45))
-    assert not certify.certify_candidate(phi, v, eps, *_enclosure(tau * 1.001))
-    assert not certify.certify_candidate(phi, v, eps, *_enclosure(tau * 0.999))
+    assert certificate.certify_candidate(phi, v, eps, *_enclosure(tau, 45))
+    assert not certificate.certify_candidate(phi, v, eps, *_enclosure(tau * 1.001))
+    assert not certificate.certify_candidate(phi, v, eps, *_enclosure(tau * 0.999))
 
 
 def test_general_certifier_refuses_a_candidate_at_the_second_root(monkeypatch):
     g, r1, r2 = _two_roots()
     assert abs(verify.certify_flight(g.phi, g.v, 3.0).tau - r1) < mp.mpf(10) ** -45 * r1
-    monkeypatch.setattr(certify, "_candidate", lambda ctx, curv, t: r2)
+    monkeypatch.setattr(certificate, "global_candidate", lambda ctx, curv, t: r2)
     with pytest.raises(verify.UndecidableCollision):
         verify.certify_flight(g.phi, g.v, 3.0, dps=30, max_dps=60)
 
 
 def test_general_certifier_refuses_a_candidate_that_is_no_root(monkeypatch):
     g, r1, _ = _two_roots()
-    monkeypatch.setattr(certify, "_candidate", lambda ctx, curv, t: g.T)  # d(T) = -1e-3
+    monkeypatch.setattr(certificate, "global_candidate", lambda ctx, curv, t: g.T)  # d(T) = -1e-3
     with pytest.raises(verify.UndecidableCollision):
         verify.certify_flight(g.phi, g.v, 3.0, dps=30, max_dps=60)
-    monkeypatch.setattr(certify, "_candidate", lambda ctx, curv, t: r1 / 2)  # d > 0 there
+    monkeypatch.setattr(certificate, "global_candidate", lambda ctx, curv, t: r1 / 2)  # d > 0 there
     with pytest.raises(verify.UndecidableCollision):
         verify.certify_flight(g.phi, g.v, 3.0, dps=30, max_dps=60)
 
@@ -136,7 +137,7 @@ def test_general_certifier_refuses_a_candidate_that_is_no_root(monkeypatch):
 def test_general_certifier_survives_one_wrong_candidate(monkeypatch):
     """A candidate before the root that is not one (d > 0): the proof covers it and goes on."""
     g, r1, _ = _two_roots()
-    real = certify._candidate
+    real = certificate.global_candidate
     offered = []
 
     def first_wrong(ctx, curv, t):
@@ -145,7 +146,7 @@ def test_general_certifier_survives_one_wrong_candidate(monkeypatch):
             return r1 / 2
         return real(ctx, curv, t)
 
-    monkeypatch.setattr(certify, "_candidate", first_wrong)
+    monkeypatch.setattr(certificate, "global_candidate", first_wrong)
     assert abs(verify.certify_flight(g.phi, g.v, 3.0).tau - r1) < mp.mpf(10) ** -45 * r1
 
 
@@ -154,8 +155,8 @@ def test_concave_certifier_corrects_a_wrong_candidate(monkeypatch, wrong):
     """|eps| <= 1: the bracket is proved, so a wrong Newton candidate costs bisection steps
     and the result is still the exact flight time 2x of phi = -x, v = x."""
     x = 3e-5
-    real = certify._newton_from_right
-    monkeypatch.setattr(certify, "_newton_from_right", lambda ctx, t: wrong(real(ctx, t)))
+    real = certificate._newton_from_right
+    monkeypatch.setattr(certificate, "_newton_from_right", lambda ctx, t: wrong(real(ctx, t)))
     cert = verify.certify_flight(-x, x, 1.0)
     lo_, hi_ = cert.enclosure
     assert lo_ < 2 * mp.mpf(x) < hi_
@@ -165,16 +166,16 @@ def test_concave_certifier_corrects_a_wrong_candidate(monkeypatch, wrong):
 def test_prove_positive_refuses_a_stretch_containing_a_root():
     g, r1, _ = _two_roots()
     with working_dps(60):
-        ctx = certify._context(g.phi, g.v, mp.mpf(3), 50, 60)
+        ctx = certificate.elastic_gap(g.phi, g.v, mp.mpf(3), 50, 60)
         free = r1 / 4
-        certify._prove_positive(ctx, free, r1 * (1 - mp.mpf(10) ** -40))
-        with pytest.raises(certify._Undecided):
-            certify._prove_positive(ctx, free, r1 * (1 + mp.mpf(10) ** -40))
+        first_root.prove_positive(ctx, free, r1 * (1 - mp.mpf(10) ** -40))
+        with pytest.raises(NotDecided):
+            first_root.prove_positive(ctx, free, r1 * (1 + mp.mpf(10) ** -40))
 
 
 def test_search_budget_ends_in_a_value_error(monkeypatch):
     """phi = 0, v = 1e154, eps = 1e300: the gap stays positive for ~1e153 plate periods with a
     near-tangency in each; the search stops with a ValueError instead of running for hours."""
-    monkeypatch.setattr(certify, "_MAX_BOXES", 300)
+    monkeypatch.setattr(first_root, "MAX_BOXES", 300)
     with pytest.raises(ValueError, match="search budget"):
         verify.certify_flight(0.0, 1e154, 1e300)

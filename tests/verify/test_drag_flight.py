@@ -1,6 +1,6 @@
-"""Issue 16, verify side: drag flights in closed form and their certificates.
+"""Drag flights in closed form and their certificates.
 
-References here are independent of verify/drag.py: the spec's closed forms written directly
+References here are independent of verify/dissipative/drag.py: the closed forms written directly
 (tan/atan, tanh/atanh, exp) at 200 digits, where the cancellation they suffer costs far fewer
 than the 150 spare digits, and the equations of motion checked by numerical differentiation.
 """
@@ -13,10 +13,10 @@ import pytest
 from mpmath import mp
 
 import verify
-from verify import certify
-from verify._precision import hi, lo, working_dps
-from verify.drag import DragFlight, motion
+from verify.dissipative import drag_gap
+from verify.dissipative.drag import DragFlight, motion
 from verify.hard_cases import DISSIPATIVE_CASES
+from verify.numerics.precision import hi, lo, working_dps
 
 DPS = 40
 REF_DPS = 200
@@ -145,7 +145,7 @@ def test_root_pair_is_real():
 
 def test_certificate_refuses_the_second_root(monkeypatch):
     case, _, r2 = _root_pair()
-    monkeypatch.setattr(certify, "_local_candidate", lambda ctx, curv, t: +r2)
+    monkeypatch.setattr(drag_gap, "local_candidate", lambda ctx, curv, t: +r2)
     with pytest.raises(verify.UndecidableCollision):
         verify.certify_flight(case.phi, case.v, case.eps, dps=30, max_dps=60, drag=case.drag)
 
@@ -154,7 +154,7 @@ def test_concave_shortcut_refuses_a_wrong_candidate(monkeypatch):
     """eps < 1 with light drag: the concave check passes, a wrong candidate fails the sign
     checks and the box-by-box proof must refuse it too."""
     tau = verify.flight_time(4.0, 3.0, 0.6, drag=0.01)
-    monkeypatch.setattr(certify, "_local_candidate", lambda ctx, curv, t: tau * 1.01)
+    monkeypatch.setattr(drag_gap, "local_candidate", lambda ctx, curv, t: tau * 1.01)
     with pytest.raises(verify.UndecidableCollision):
         verify.certify_flight(4.0, 3.0, 0.6, dps=30, max_dps=60, drag=0.01)
 
@@ -214,6 +214,6 @@ def test_certificate_refuses_the_landing_after_a_root_pair(monkeypatch):
         r3 = mp.findroot(lambda t: naive_gap(case.phi, case.v, case.eps, case.drag, "linear", t),
                          mp.mpf("4.23"))
     assert r3 > 4
-    monkeypatch.setattr(certify, "_local_candidate", lambda ctx, curv, t: +r3)
+    monkeypatch.setattr(drag_gap, "local_candidate", lambda ctx, curv, t: +r3)
     with pytest.raises(verify.UndecidableCollision):
         verify.certify_flight(case.phi, case.v, case.eps, dps=30, max_dps=60, drag=case.drag)

@@ -1,5 +1,5 @@
-"""Issue 16, verify side: impacts with restitution and drag, orbits, and the default physics
-running today's elastic code unchanged."""
+"""Impacts with restitution and drag, orbits, and the default physics running the elastic
+code unchanged."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from mpmath import mp
 import verify
 from tests.verify._cases import STATES
 from tests.verify.test_drag_flight import naive_motion
-from verify import certify
+from verify import flight
 
 TOL = mp.mpf(10) ** -45
 
@@ -39,7 +39,7 @@ def test_default_physics_never_reaches_the_drag_code(monkeypatch, phi, v, eps):
     def forbidden(*args):
         raise AssertionError("drag certificate entered for the default physics")
 
-    monkeypatch.setattr(certify, "_drag_attempt", forbidden)
+    monkeypatch.setattr(flight, "drag_attempt", forbidden)
     for law in ("linear", "quadratic"):
         kw = {"drag": 0.0, "drag_law": law, "restitution": 1.0}
         assert verify.certify_flight(phi, v, eps, **kw) == before[0]
@@ -76,7 +76,8 @@ def test_default_orbit_has_the_default_new_fields():
 
 def test_chattering_with_drag_accumulates_and_sticks_not_a_hang():
     """eps = 0.5, r = 0.5 with drag: impacts accumulate, the tail with drag is summed
-    (verify.drag_sticking) and the particle is stuck for good (0.5*sqrt(1 + 0.01**2) < 1)."""
+    (verify.dissipative.drag_sticking) and the particle is stuck for good
+    (0.5*sqrt(1 + 0.01**2) < 1)."""
     orb = verify.orbit(1.0, 1.0, 0.5, 400, dps=30, drag=0.01, restitution=0.5)
     assert orb.stopped == "stuck" and len(orb.t) < 60  # ratio ~0.5 per impact
     assert len(orb.sticking) == 1 and orb.sticking[0][1] == mp.inf

@@ -1,5 +1,5 @@
 """verify.orbit through chattering, accumulation, sticking and detachment WITH drag (r < 1;
-verify/drag_sticking.py), against closed forms, fastpath.orbit and itself at 70 digits.
+verify/dissipative/drag_sticking.py), against closed forms, fastpath.orbit and itself at 70 digits.
 
 Tolerances (u = 2**-53, D = 10**-dps the digits of verify's states):
 
@@ -43,7 +43,7 @@ from fastpath.drag_short_flight import drag_short_window
 from fastpath.drag_sticking import drag_detachment_phase
 from fastpath.gap import departure
 from fastpath.phase import centre_phase
-from verify.drag_sticking import can_detach, drag_accumulation, riding
+from verify.dissipative.drag_sticking import drag_accumulation, leaves_plate_with_drag, riding
 
 U = 2.0**-53
 LAW = {"linear": LINEAR, "quadratic": QUADRATIC}
@@ -131,10 +131,10 @@ def test_never_detaches_is_decided_exactly_at_the_threshold():
     k_star = math.sqrt(1.0 / (eps * eps) - 1.0)
     for k in (math.nextafter(k_star, 0), k_star, math.nextafter(k_star, 2)):
         exact = Fraction(eps) ** 2 * (1 + Fraction(k) ** 2) > 1
-        assert can_detach(mp.mpf(eps), mp.mpf(k), "linear") == exact
+        assert leaves_plate_with_drag(mp.mpf(eps), mp.mpf(k), "linear") == exact
     assert riding(mp.mpf(0.5), mp.mpf(0.5), "linear", 50) is None
-    assert not can_detach(mp.mpf(1.0), mp.mpf(0.25), "quadratic")
-    assert can_detach(mp.mpf(1.0), mp.mpf(1.0), "quadratic")
+    assert not leaves_plate_with_drag(mp.mpf(1.0), mp.mpf(0.25), "quadratic")
+    assert leaves_plate_with_drag(mp.mpf(1.0), mp.mpf(1.0), "quadratic")
     with pytest.raises(verify.UndecidableCollision, match="detachment"):
         riding(mp.mpf(1.0), mp.mpf(1.0), "quadratic", 20, max_dps=80)
 
@@ -288,7 +288,7 @@ def test_fastpath_accumulation_bound_next_to_theta_star():
 
 @pytest.mark.parametrize("law, k", [("linear", 0.5), ("quadratic", 1.0)])
 def test_eps_half_r_half_with_drag_stops_stuck(law, k):
-    """Issue 16's done-when with drag: from (4, 3) the particle sticks for good (linear:
+    """With drag: from (4, 3) the particle sticks for good (linear:
     0.5*sqrt(1.25) < 1; quadratic: 2ke = 1, max a-deficit e - 1 < 0); fastpath agrees."""
     orb = verify.orbit(4.0, 3.0, 0.5, 10_000, drag=k, drag_law=law, restitution=0.5)
     assert orb.stopped == "stuck" and len(orb.sticking) == 1 and orb.sticking[0][1] == mp.inf
@@ -347,7 +347,8 @@ def test_dps_50_against_70_and_the_proved_tail_enclosure(law, k):
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 def test_vanishing_drag_reproduces_the_no_drag_orbit(law):
     """drag = 2**-100: the accumulation and detachment times and the impacts in between agree
-    with the no-drag verify.orbit (verify.sticking) within the module docstring's O(k) bound."""
+    with the no-drag verify.orbit (verify.dissipative.sticking) within the module docstring's
+    O(k) bound."""
     eps, r, phi0, w0 = 1.5, 0.5, math.pi, 1e-3
     v0 = w0 - eps * math.sin(phi0)
     k = 2.0**-100

@@ -1,4 +1,4 @@
-"""verify.orbit through chattering and sticking (r < 1, no drag; verify/sticking.py).
+"""verify.orbit through chattering and sticking (r < 1, no drag; verify/dissipative/sticking.py).
 
 Tolerances (D = 10**-dps, the digits of the orbit's states):
 
@@ -18,7 +18,7 @@ import pytest
 from mpmath import mp
 
 import verify
-from verify.sticking import accumulation, detachment_phase, detachment_step
+from verify.dissipative.sticking import accumulation, detachment_phase, detachment_step
 
 D50 = mp.mpf(10) ** -50
 
@@ -108,7 +108,7 @@ def test_flight_from_detachment_is_the_first_root_of_the_closed_form(eps):
 
 
 def test_eps_half_r_half_stops_stuck():
-    """Issue 16's done-when: eps = 0.5, r = 0.5 from (4, 3) sticks for good."""
+    """eps = 0.5, r = 0.5 from (4, 3) sticks for good."""
     orb = verify.orbit(4.0, 3.0, 0.5, 10_000, restitution=0.5)
     assert orb.stopped == "stuck"
     assert len(orb.sticking) == 1 and orb.sticking[0][1] == mp.inf
@@ -128,7 +128,7 @@ def test_flat_plate_accumulates_after_2v_over_1_minus_r():
 
 
 def test_eps_1_5_r_0_8_from_4_3_sticks_and_detaches():
-    """Issue 16's done-when in verify: the first episodes (about 2.5 s of certified impacts per
+    """The first episodes (about 2.5 s of certified impacts per
     hundred); every episode ends at theta*, (the orbit between episodes is chaotic: see the
     cross-check in tests/test_sticking_cross_check.py)."""
     phi0, eps = 4.0, 1.5

@@ -1,10 +1,10 @@
-"""Issue 16, item 6: the "chattering-graze" rows of ``verify.hard_cases`` (``CHATTERING_GRAZES``).
+"""The "chattering-graze" rows of ``verify.hard_cases`` (``CHATTERING_GRAZES``).
 
 Each row claims a dip of the gap at ``contact`` (t_m) with minimum ``clearance``, for a departure
 just before theta* = 2*pi - arccos(1/eps) with a small w0. The claims are recomputed here at 80
-digits from the textbook forms of the motion (independent of verify.drag and of the script that
-built the rows), and verify must certify every row: the first root before the dip when the
-clearance is negative, past the dip (proved free of roots) when it is positive.
+digits from the textbook forms of the motion (independent of verify.dissipative.drag and of the
+script that built the rows), and verify must certify every row: the first root before the dip
+when the clearance is negative, past the dip (proved free of roots) when it is positive.
 """
 
 from __future__ import annotations

@@ -9,10 +9,10 @@ import math
 
 from mpmath import mp
 
-from ..certify import certify_flight
-from ..conditioning import condition_number
+from ..elastic.conditioning import condition_number
+from ..elastic.gap import mp_gap, mp_gap_prime
 from ..errors import UndecidableCollision
-from ..gap import mp_gap, mp_gap_prime
+from ..flight import certify_flight
 from .calling import Bad, call_flight, call_step
 from .report import Failure
 from .tolerance import (

@@ -8,9 +8,10 @@ import math
 
 from mpmath import mp
 
-U = 2.0**-53  # unit roundoff of float64
+from ..numerics.float64 import TWO_PI
+from ..numerics.float64 import UNIT_ROUNDOFF as U
+
 WORK_DPS = 60  # digits of the checker's own arithmetic on exact float inputs
-TWO_PI = 2.0 * math.pi
 
 
 def mpf(x):

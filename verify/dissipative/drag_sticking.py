@@ -1,7 +1,7 @@
 """Chattering, accumulation, sticking and detachment with drag and restitution r < 1.
 
-The verify counterpart of the dissipation spec with drag (issue 16; the no-drag case is
-:mod:`verify.sticking`, whose structure this module follows). Independent of ``fastpath``.
+The no-drag case is :mod:`verify.dissipative.sticking`, whose structure this module follows.
+Independent of ``fastpath``.
 
 Relative motion. Let x = y - eps*cos(theta) be the gap (particle minus plate), theta the phase
 (time), u(theta) = -eps*sin(theta) the plate's velocity and V = u + x' the particle's. In flight
@@ -89,10 +89,10 @@ x' > 0 on (0, theta_2 - theta*): where x' <= 0, x'' = -a - [eta(u + x') - eta(u)
 so x' cannot reach or stay at a value <= 0 after starting at 0 (if x'(t1) <= 0, on the last
 stretch [s, t1] with x' <= 0 and x'(s) = 0, x' increases strictly: x'(t1) > 0, a contradiction).
 Hence the gap d = x > 0 on (0, free], free = lo(Theta_2) - hi(Theta*) (rounded down), for every
-nondecreasing eta. The certificate :func:`verify.certify._search` (Taylor boxes, candidate
-search) runs from there on the drag gap of :mod:`verify.drag_certify` evaluated for the phase
-interval Theta* and the velocity interval u(Theta*) (:class:`_DetachedContext`): every
-enclosure is valid for all departures in the box, the exact one included.
+nondecreasing eta. The certificate :func:`verify.numerics.first_root.search_first_root` (Taylor
+boxes, candidate search) runs from there on the drag gap of :mod:`verify.dissipative.drag_gap`
+evaluated for the phase interval Theta* and the velocity interval u(Theta*): every enclosure is
+valid for all departures in the box, the exact one included.
 """
 
 from __future__ import annotations
@@ -102,47 +102,41 @@ from typing import NamedTuple
 
 from mpmath import iv, mp
 
-from ._precision import hi, lo, mid, working_dps
-from .certify import _local_candidate, _search, _Undecided
-from .drag import DragFlight, NotDecided
-from .drag_certify import DragContext
-from .errors import UndecidableCollision
-from .phase import reduce_phase
-from .sticking import Accumulation, geometric_enclosure
+from ..errors import ChatteringDetected, UndecidableCollision
+from ..numerics.first_root import local_candidate, search_first_root
+from ..numerics.phase import reduce_phase
+from ..numerics.precision import (
+    GUARD_DPS,
+    NotDecided,
+    default_max_dps,
+    escalate,
+    hi,
+    lo,
+    mid,
+    working_dps,
+)
+from .drag import LAWS, DragFlight
+from .drag_gap import DragGap
+from .sticking import WINDOW, Accumulation, geometric_enclosure
 
-_GUARD_DPS = 10
-_WINDOW = 2  # the window H of the rigorous enclosure, in units of T0
 _MAX_DEPTH = 60  # halvings of a box in the sign proofs of the riding force
-_MAX_BOXES = 20_000  # boxes per sign proof of an arc: beyond it, NotDecided
+_MAX_ARC_BOXES = 20_000  # boxes per sign proof of an arc: beyond it, NotDecided
 
 
 # --- the riding force a(theta) in interval arithmetic ------------------------------------------
-def _eta(k, law, vel):
-    """``eta`` over the interval ``vel`` (nondecreasing: from the ends)."""
-    if law == "linear":
-        return k * vel
-    ends = [k * iv.mpf(x) * abs(x) for x in (lo(vel), hi(vel))]
-    return iv.mpf([min(lo(e) for e in ends), max(hi(e) for e in ends)])
-
-
-def _eta_slope(k, law, vel):
-    """``eta'`` over ``vel``: ``k`` or ``2*k*|V|``."""
-    return k if law == "linear" else 2 * k * abs(vel)
-
-
 def _force(ieps, ik, law, ith, rel=None):
     """``1 + eta(u + rel) - eps*cos(theta)`` over the phase interval ``ith`` (``u = -eps*sin``),
     ``rel`` an interval of relative velocities (default 0: the riding force ``a``)."""
     vel = -ieps * iv.sin(ith)
     if rel is not None:
         vel = vel + rel
-    return 1 + _eta(ik, law, vel) - ieps * iv.cos(ith)
+    return 1 + LAWS[law].eta(ik, vel) - ieps * iv.cos(ith)
 
 
 def _force_slope(ieps, ik, law, ith):
     """``a'(theta) = eta'(u)*u' + eps*sin(theta)``, ``u' = -eps*cos(theta)``."""
     u = -ieps * iv.sin(ith)
-    return _eta_slope(ik, law, u) * (-ieps * iv.cos(ith)) + ieps * iv.sin(ith)
+    return LAWS[law].eta_prime(ik, u) * (-ieps * iv.cos(ith)) + ieps * iv.sin(ith)
 
 
 # --- 1. accumulation -----------------------------------------------------------------------------
@@ -153,7 +147,7 @@ def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
     Computed at ``dps + 10`` digits; ``tail`` (the model T), ``enclosure`` ``(T_lo, T_hi)``
     (proved) and ``phase`` (theta + T) are returned at that precision.
     """
-    with working_dps(dps + _GUARD_DPS) as prec:
+    with working_dps(dps + GUARD_DPS) as prec:
         iphi = reduce_phase(phi, prec).enclosure
         ieps, ik, ir = iv.mpf(eps), iv.mpf(k), iv.mpf(r)
         iw = iv.mpf(v) + ieps * iv.sin(iphi)
@@ -162,15 +156,13 @@ def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
             return None
         w, a = mid(iw), mid(ia)
         u = -eps * mp.sin(mid(iphi))
-        c = k if law == "linear" else 2 * k * abs(u)
+        c, a2, p2 = LAWS[law].tail_terms(eps, k, u)
         jerk = c * eps * mp.cos(mid(iphi)) - eps * mp.sin(mid(iphi))
-        a2, p2 = (abs(eps) * (1 + k), 0) if law == "linear" else (abs(eps) + 2 * k * eps**2,
-                                                                   2 * k)
         t0 = 2 * w / (a * (1 - r))
         q = t0**2 * (jerk**2 / a**2 + abs(jerk) * c / a + c**2 + a2 / a + p2 * a)
         if not q * t0 <= mp.mpf(10) ** (-dps):
             return None
-        enclosure = _enclosure(iphi, iw, ieps, ik, law, ir, _WINDOW * t0)
+        enclosure = _enclosure(iphi, iw, ieps, ik, law, ir, WINDOW * t0)
         if enclosure is None:
             return None
         tail = t0 + jerk * t0**2 / (3 * a) - c * t0**2 / 6
@@ -200,15 +192,11 @@ def _fraction(x) -> Fraction:
     return -value if sign else value
 
 
-def can_detach(eps, k, law) -> bool:
+def leaves_plate_with_drag(eps, k, law) -> bool:
     """A particle riding the plate ever leaves it (module docstring, 2.): decided exactly on the
-    binary values of ``eps`` and ``k``."""
-    e, kk = abs(_fraction(eps)), _fraction(k)
-    if law == "linear":
-        return e * e * (1 + kk * kk) > 1
-    if 2 * kk * e > 1:
-        return 4 * kk * kk * e * e - 4 * kk + 1 > 0
-    return e > 1
+    binary values of ``eps`` and ``k`` by the law (:meth:`verify.dissipative.drag.LinearDrag.
+    leaves_plate`)."""
+    return LAWS[law].leaves_plate(abs(_fraction(eps)), _fraction(k))
 
 
 class Riding(NamedTuple):
@@ -222,42 +210,6 @@ class Riding(NamedTuple):
     theta_2: object
     free: object
     wdps: int
-
-
-def _candidates(eps, k, law):
-    """Non-rigorous (theta*, theta_2) at the current precision, theta* < theta_2 < theta* + 2pi."""
-    e = abs(eps)
-    shift = mp.zero if eps > 0 else mp.pi
-    if law == "linear":
-        big_e2 = e * e * (1 + k * k)
-        alpha = mp.atan(mp.sqrt(big_e2 - 1))
-        beta = mp.atan(k) + shift
-        return beta - alpha, beta + alpha
-
-    def f(x):
-        s = mp.sin(x)
-        return e * mp.cos(x) + k * e * e * s * abs(s)
-
-    if 2 * k * e > 1:
-        c = 1 / (2 * k * e)
-        t_min, t_max = -mp.acos(-c), mp.acos(c)
-    else:
-        t_min, t_max = -mp.pi, mp.zero
-    star = _bisect(f, t_min, t_max, rising=True)
-    two = _bisect(f, t_max, t_min + 2 * mp.pi, rising=False)
-    return star + shift, two + shift
-
-
-def _bisect(f, a, b, rising):
-    for _ in range(mp.prec + 20):
-        m = (a + b) / 2
-        if not a < m < b:
-            break
-        if (f(m) - 1 < 0) == rising:
-            a = m
-        else:
-            b = m
-    return (a + b) / 2
 
 
 def _isolate(ieps, ik, law, c, falling):
@@ -297,7 +249,7 @@ def _prove_arc(ieps, ik, law, left, right, sign):
         boxes += 1
         if (lo(val) > 0) if sign > 0 else (hi(val) < 0):
             continue
-        if depth >= _MAX_DEPTH or boxes >= _MAX_BOXES:
+        if depth >= _MAX_DEPTH or boxes >= _MAX_ARC_BOXES:
             raise NotDecided(f"sign of the riding force not proved on [{mp.nstr(a, 15)}, "
                              f"{mp.nstr(b, 15)}]")
         m = (a + b) / 2
@@ -325,7 +277,7 @@ def _riding_at(eps, k, law) -> Riding:
     """:class:`Riding` proved at the current precision (module docstring, 2.), or
     :class:`NotDecided`."""
     ieps, ik = iv.mpf(eps), iv.mpf(k)
-    c_star, c_two = _candidates(eps, k, law)
+    c_star, c_two = LAWS[law].riding_candidates(eps, k)
     star = _isolate(ieps, ik, law, c_star, falling=True)
     two = _isolate(ieps, ik, law, c_two, falling=False)
     _prove_arc(ieps, ik, law, star, two, -1)
@@ -338,36 +290,26 @@ def riding(eps, k, law, dps: int, max_dps: int | None = None) -> Riding | None:
     never leaves the plate (decided exactly), else a :class:`Riding` proved at the first
     precision from ``dps + 10`` digits that decides it (doubled up to ``max_dps``, default
     ``max(4*dps, 400)``); :class:`UndecidableCollision` beyond. Cached per inputs."""
-    if not can_detach(eps, k, law):
+    if not leaves_plate_with_drag(eps, k, law):
         return None
     key = (eps, k, law, dps)
     if key not in _RIDING_CACHE:
-        _RIDING_CACHE[key] = _with_precision(lambda: _riding_at(eps, k, law), eps, k, law, dps,
-                                             max_dps, "detachment")
+        _RIDING_CACHE[key] = _escalate(lambda wdps: _riding_at(eps, k, law), eps, k, law, dps,
+                                       max_dps, "detachment")
     return _RIDING_CACHE[key]
 
 
-def _with_precision(attempt, eps, k, law, dps, max_dps, what):
-    """Run ``attempt`` from ``dps + 10`` digits, doubling on :class:`NotDecided` (or the
-    certificate's undecided) up to ``max_dps``; then :class:`UndecidableCollision`."""
-    max_dps = max(4 * dps, 400) if max_dps is None else max_dps
-    wdps = dps + _GUARD_DPS
-    while True:
-        try:
-            with working_dps(wdps):
-                return attempt()
-        except (_Undecided, NotDecided) as und:
-            if wdps >= max_dps:
-                with working_dps(wdps):
-                    raise UndecidableCollision(mp.nan, mp.nan, eps, wdps,
-                                               f"{what} with drag={k} ({law}): {und}") from None
-            wdps = min(max_dps, 2 * wdps)
+def _escalate(attempt, eps, k, law, dps, max_dps, what):
+    """:func:`verify.numerics.precision.escalate` from ``dps + 10`` digits up to ``max_dps``
+    (default ``max(4*dps, 400)``); then :class:`UndecidableCollision`."""
+    max_dps = default_max_dps(dps) if max_dps is None else max_dps
 
+    def undecidable(wdps, why):
+        with working_dps(wdps):
+            return UndecidableCollision(mp.nan, mp.nan, eps, wdps,
+                                        f"{what} with drag={k} ({law}): {why}")
 
-def detachment_phase(ride: Riding):
-    """theta* in [0, 2*pi) (midpoint of the proved box), at the current precision."""
-    theta = mid(ride.theta_star)
-    return theta % (2 * mp.pi)
+    return escalate(attempt, dps, max_dps, undecidable)
 
 
 def riding_time(phase, ride: Riding):
@@ -380,54 +322,22 @@ def riding_time(phase, ride: Riding):
 
 
 # --- 3. the flight from detachment ---------------------------------------------------------------
-class _BoxFlight(DragFlight):
-    """:class:`verify.drag.DragFlight` from an interval of departure velocities (every
-    enclosure holds for each velocity in it); the velocity's sign must be decided."""
-
-    def __init__(self, iv_v, k, law):
-        if not (lo(iv_v) > 0 or hi(iv_v) < 0):
-            raise NotDecided("the velocity at detachment is within rounding of 0")
-        self.v, self.k, self.law = mid(iv_v), k, law
-        self.iv_v, self.iv_k = iv_v, iv.mpf(k)
-        self.s = iv.sqrt(self.iv_k)
-        self.t_top = None
-        if law == "quadratic":
-            if hi(iv_v) < 0 and not hi(self.iv_k * iv_v * iv_v) < 1:
-                raise NotDecided("detachment at or below the terminal velocity")
-            if lo(iv_v) > 0:
-                self.t_top = iv.atan2(self.s * self.iv_v, 1) / self.s
-
-
-class _DetachedContext(DragContext):
-    """The drag gap from the detachment box (module docstring, 3.)."""
-
-    def __init__(self, ride: Riding, eps, k, law, dps, wdps):
-        ith = ride.theta_star
-        self.phi_exact, self.iphi, self.eps = mid(ith), ith, eps
-        self.dps, self.wdps = dps, wdps
-        self.ieps = iv.mpf(eps)
-        self.flight = _BoxFlight(-self.ieps * iv.sin(ith), k, law)
-        self.v = self.flight.v
-
-    def curvature_bound(self):
-        """``max(1 + eta(v), 0) + |eps| >= -d''`` (V monotone, :mod:`verify.drag_certify`)."""
-        top = hi(1 + self.flight.eta(self.flight.iv_v))
-        return max(top, mp.zero) + abs(self.eps)
-
-
 def drag_detachment_flight(eps, k, law, dps: int, max_dps: int | None = None):
     """``(ride, lo, hi, wdps)``: the proved enclosure ``(lo, hi)`` of the first root of the gap
     from detachment (module docstring, 3.) and the :class:`Riding` it started from, both at the
     working digits ``wdps`` (raised as :func:`verify.certify_flight` does);
-    :class:`UndecidableCollision` at ``max_dps``."""
-    def attempt():
+    :class:`UndecidableCollision` at ``max_dps``. The gap is :class:`verify.dissipative.
+    drag_gap.DragGap` from the phase box theta* and the velocity box ``u(theta*)``."""
+    def attempt(wdps):
         ride = _riding_at(eps, k, law)
-        ctx = _DetachedContext(ride, eps, k, law, dps, mp.dps)
-        left, right, _, _ = _search(ctx, ctx.curvature_bound(), ride.free, None,
-                                    candidate=_local_candidate)
-        return ride, left, right, mp.dps
+        ith = ride.theta_star
+        ieps = iv.mpf(eps)
+        ctx = DragGap(mid(ith), ith, -ieps * iv.sin(ith), eps, k, law, dps, wdps)
+        left, right, _, _ = search_first_root(ctx, ctx.curvature_bound(), ride.free, None,
+                                              candidate=local_candidate)
+        return ride, left, right, wdps
 
-    return _with_precision(attempt, eps, k, law, dps, max_dps, "flight from detachment")
+    return _escalate(attempt, eps, k, law, dps, max_dps, "flight from detachment")
 
 
 _STEP_CACHE: dict = {}
@@ -443,7 +353,7 @@ def drag_detachment_step(eps, k, law, r, dps: int):
     if key in _STEP_CACHE:
         return _STEP_CACHE[key]
     ride, left, right, wdps = drag_detachment_flight(eps, k, law, dps)
-    with working_dps(wdps + _GUARD_DPS):
+    with working_dps(wdps + GUARD_DPS):
         tau = (left + right) / 2
         theta_star = mid(ride.theta_star)
         theta = theta_star + tau
@@ -460,3 +370,42 @@ def drag_detachment_step(eps, k, law, r, dps: int):
             phi1 = mp.zero
     _STEP_CACHE[key] = (phi1, v1, tau)
     return phi1, v1, tau
+
+
+class DragSticking:
+    """The sticking model with drag and restitution ``r < 1``, for the orbit loop
+    (:class:`verify.dissipative.sticking_model.StickingModel`): :func:`drag_accumulation`, the
+    exact decision to leave the plate and the proved :class:`Riding`, and
+    :func:`drag_detachment_step`; :meth:`check_chattering` stops a chattering run that crawls
+    below any tail that could be summed (:class:`verify.ChatteringDetected`)."""
+
+    def __init__(self, eps, k, law, r, dps: int) -> None:
+        self.eps, self.k, self.law, self.r, self.dps = eps, k, law, r, dps
+
+    def accumulation(self, phi, v) -> Accumulation | None:
+        return drag_accumulation(phi, v, self.eps, self.k, self.law, self.r, self.dps)
+
+    def leaves_plate(self) -> bool:
+        return riding(self.eps, self.k, self.law, self.dps) is not None
+
+    def riding_time(self, phase):
+        return riding_time(phase, riding(self.eps, self.k, self.law, self.dps))
+
+    def detachment_step(self):
+        return drag_detachment_step(self.eps, self.k, self.law, self.r, self.dps)
+
+    def check_chattering(self, n: int, t, phi, v) -> None:
+        """:class:`verify.ChatteringDetected` after collision ``n`` when the relative velocity
+        ``w = v + eps*sin(phi)`` fell below ``w_min = 10**(-dps//2)*(1 + |v| + |eps|)`` (far
+        below where :func:`drag_accumulation` sums a tail, ``w ~ 10**(-dps/3)``) while
+        ``d''(0) < 0`` is proved (the plate pulls the particle back)."""
+        eps, dps = self.eps, self.dps
+        with working_dps(dps + GUARD_DPS):
+            w_min = mp.mpf(10) ** (-(dps // 2)) * (1 + abs(v) + abs(eps))
+            w = iv.mpf(v) + iv.mpf(eps) * iv.sin(iv.mpf(phi))
+            if hi(w) >= w_min:
+                return
+            flight = DragFlight(v, self.k, self.law)
+            curvature = -1 - flight.eta(iv.mpf(v)) + iv.mpf(eps) * iv.cos(iv.mpf(phi))
+            if hi(curvature) < 0:
+                raise ChatteringDetected(n, t, phi, v, eps, mp.mpf(hi(w)), w_min, dps)

@@ -19,7 +19,7 @@ from typing import NamedTuple
 import mpmath
 from mpmath import iv, mp
 
-from ._precision import hi, lo
+from .precision import hi, lo
 
 _GUARD_BITS = 20
 _NO_REDUCTION_BELOW = 8

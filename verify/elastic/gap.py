@@ -16,9 +16,9 @@ from __future__ import annotations
 import mpmath
 from mpmath import iv, mp
 
-from ._inputs import check_state
-from ._precision import working_dps
-from .phase import reduce_phase
+from ..numerics.inputs import check_state
+from ..numerics.phase import reduce_phase
+from ..numerics.precision import working_dps
 
 
 def mp_gap(phi, v, eps, t):
@@ -50,7 +50,7 @@ def iv_gap_second(phi, eps, t):
 
 def gap(phi, v, eps, tau, dps: int = 50) -> mpmath.mpf:
     """The gap ``d(tau)`` at ``dps`` digits (inputs taken as exact binary values, validated by
-    :func:`verify._inputs.check_state`: a departure ``w0 > 0`` and ``tau > 0``)."""
+    :func:`verify.numerics.inputs.check_state`: a departure ``w0 > 0`` and ``tau > 0``)."""
     phi, v, eps, tau, dps = check_state(phi, v, eps, tau=tau, dps=dps)
     with working_dps(dps + 10) as prec:
         val = mp_gap(reduce_phase(phi, prec).value, v, eps, tau)

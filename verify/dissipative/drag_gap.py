@@ -1,24 +1,25 @@
-"""The gap of a drag flight in interval arithmetic, and the proofs the certificate needs of it.
+"""The gap of a drag flight in interval arithmetic, the proofs its certificate needs, the attempt.
 
-With the closed forms of :mod:`verify.drag` (``Y``, ``V`` from the departure velocity ``v``)::
+With the closed forms of :mod:`verify.dissipative.drag` (``Y``, ``V`` from the departure
+velocity ``v``)::
 
     d(t)   = Y(t) + eps*(cos(phi) - cos(phi+t)) = Y(t) + 2*eps*sin(phi + t/2)*sin(t/2)
     d'(t)  = V(t) + eps*sin(phi+t)
     d''(t) = -1 - eta(V(t)) + eps*cos(phi+t)
     d'''(t) = -eta'(V)*V' - eps*sin(phi+t),  V' = -1 - eta(V)
 
-:class:`DragContext` offers the interface the certificate of :mod:`verify.certify` runs on
-(``d``, ``d_and_slope``, ``curvature``, ``point``). Facts used (the seed's Section 2):
+:class:`DragGap` offers the interface the search of :mod:`verify.numerics.first_root` runs on
+(``d``, ``d_and_slope``, ``curvature``, ``point``). Facts used (the paper's Section 2):
 
 * ``V`` is monotone during a flight and ``eta`` increasing, so ``eta(V(t))`` lies between
   ``eta(v)`` and ``eta(V(T))`` on ``[0, T]``. Hence ``-d'' <= a = max(1 + eta(v), 0) + |eps|``
-  (:meth:`DragContext.curvature_bound`): if ``V`` decreases, ``eta(V) <= eta(v)``; if it
+  (:meth:`DragGap.curvature_bound`): if ``V`` decreases, ``eta(V) <= eta(v)``; if it
   increases (linear drag below the terminal velocity), ``1 + eta(V) <= 0``. With ``w0 > 0``,
-  ``d(t) >= w0*t - a*t**2/2 > 0`` on ``(0, 2*w0/a)``: the analytic start. The seed's
+  ``d(t) >= w0*t - a*t**2/2 > 0`` on ``(0, 2*w0/a)``: the analytic start. The paper's
   lower-bound step uses this ``a``.
-* Concavity on ``[0, T]`` (:meth:`DragContext.concave_on`): ``d'' <= -1 - min(eta(v), eta(V(T)))
+* Concavity on ``[0, T]`` (:meth:`DragGap.concave_on`): ``d'' <= -1 - min(eta(v), eta(V(T)))
   + |eps| <= 0`` proved in ``iv``, or the ``iv`` enclosure of ``d''`` over the box ``[0, T]``
-  (:meth:`DragContext.curvature`) ``<= 0``. Then ``d(lo) > 0 > d(hi)`` with ``hi <= T``
+  (:meth:`DragGap.curvature`) ``<= 0``. Then ``d(lo) > 0 > d(hi)`` with ``hi <= T``
   certify the first root as in the elastic ``|eps| <= 1`` case (chord argument).
 * A departure at rest relative to the plate, ``w0 = 0`` exactly (:func:`departure_start`):
   ``d(0) = d'(0) = 0`` and ``d(t) = integral_0^t (t-s)*d''(s) ds``, so ``d'' > 0`` on ``(0, h]``
@@ -31,20 +32,27 @@ from __future__ import annotations
 
 from mpmath import iv, mp
 
-from ._precision import hi, lo
-from .drag import DragFlight, NotDecided
+from ..numerics.first_root import local_candidate, search_first_root
+from ..numerics.phase import reduce_phase
+from ..numerics.precision import NotDecided, hi, lo
+from .drag import DragFlight
 
 _HALVINGS = 200  # tries for the opening box of a departure at rest
 
 
-class DragContext:
-    """One attempt's drag gap at the current precision: exact inputs, reduced phase ``iphi``."""
+class DragGap:
+    """One attempt's drag gap at the current precision (the interface of
+    :class:`verify.numerics.first_root.Gap`): the phase ``phi`` (for messages) and an ``iv``
+    enclosure ``iphi`` of it reduced, the departure velocity ``v`` (an exact ``mpf``, or an
+    ``iv`` interval of velocities: every enclosure then holds for each departure in the box),
+    ``eps``, the drag ``k`` and its law."""
 
     def __init__(self, phi, iphi, v, eps, k, law, dps, wdps):
-        self.phi_exact, self.iphi, self.v, self.eps = phi, iphi, v, eps
+        self.phi_exact, self.iphi, self.eps = phi, iphi, eps
         self.dps, self.wdps = dps, wdps
         self.ieps = iv.mpf(eps)
         self.flight = DragFlight(v, k, law)
+        self.v = self.flight.v
 
     def d(self, t):
         """Enclosure of ``d`` at the exact point ``t``."""
@@ -80,11 +88,11 @@ class DragContext:
 
     def w0(self):
         """Enclosure of ``w0 = d'(0) = v + eps*sin(phi)``."""
-        return iv.mpf(self.v) + self.ieps * iv.sin(self.iphi)
+        return self.flight.iv_v + self.ieps * iv.sin(self.iphi)
 
     def curvature_bound(self):
         """``a = max(1 + eta(v), 0) + |eps| >= -d''`` during the flight (module docstring)."""
-        top = hi(1 + self.flight.eta(iv.mpf(self.v)))
+        top = hi(1 + self.flight.eta(self.flight.iv_v))
         return max(top, mp.zero) + abs(self.eps)
 
     def concave_on(self, end) -> bool:
@@ -95,7 +103,7 @@ class DragContext:
             eta_end = self.flight.eta(self.flight.velocity(end))
         except NotDecided:
             return False
-        eta_min = min(lo(eta_end), lo(self.flight.eta(iv.mpf(self.v))))
+        eta_min = min(lo(eta_end), lo(self.flight.eta(self.flight.iv_v)))
         if hi(-1 - iv.mpf(eta_min) + abs(self.ieps)) <= 0:
             return True
         try:
@@ -107,7 +115,7 @@ class DragContext:
         return 0  # no conditioning estimate with drag: the precision is doubled
 
 
-def departure_start(ctx: DragContext):
+def departure_start(ctx: DragGap):
     """For ``w0 = 0`` exactly: ``h > 0`` with ``d > 0`` proved on ``(0, h]`` (module docstring).
 
     ``ValueError`` when the gap is proved not to open (no departure); :class:`NotDecided` when
@@ -140,3 +148,30 @@ def departure_start(ctx: DragContext):
             pass
         h /= 2
     raise NotDecided("no opening box found for the departure at rest")
+
+
+def drag_attempt(phi, v, eps, phys, dps, wdps):
+    """One attempt for a drag flight at the current precision; ``(lo, hi, free_until, boxes)``.
+
+    The analytic start ``d > 0`` on ``(0, w0/a]`` with ``a`` the curvature bound (or, for
+    ``w0 = 0`` exactly, :func:`departure_start`), then the search of
+    :mod:`verify.numerics.first_root` with the concavity shortcut where ``w0 > 0``.
+    """
+    ctx = DragGap(phi, reduce_phase(phi, mp.prec).enclosure, v, eps, phys.drag,
+                  phys.drag_law, dps, wdps)
+    w0 = ctx.w0()
+    if hi(w0) < 0:
+        raise ValueError(
+            f"no departure: w0 = v + eps*sin(phi) = {mp.nstr(hi(w0), 8)} < 0 "
+            f"(phi={phi}, v={v}, eps={eps})"
+        )
+    curv = ctx.curvature_bound()
+    if lo(w0) == 0 == hi(w0):
+        return search_first_root(ctx, curv, departure_start(ctx), None,
+                                 candidate=local_candidate)
+    if lo(w0) <= 0:
+        raise NotDecided(
+            f"w0 = v + eps*sin(phi) is within {mp.nstr(hi(w0) - lo(w0), 3)} of 0: departure or not"
+        )
+    return search_first_root(ctx, curv, lo(w0) / curv, None, concave_from=ctx.concave_on,
+                             candidate=local_candidate)

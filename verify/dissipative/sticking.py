@@ -48,8 +48,9 @@ sqrt(eps**2 - 1) and w0 = 0 exactly. With eps*cos(theta*) = 1 the gap is, for ei
 
 d(0) = d'(0) = d''(0) = 0 and d'' = -1 + eps*cos(theta* + t) > 0 on (0, t_c),
 t_c = 2*arccos(1/|eps|) (eps*cos returns to 1 there), so d(t) = integral_0^t (t - x)*d''(x) dx > 0
-on (0, t_c]. The certificate (:func:`verify.certify._search`, the proof boxes and candidate search
-of every other flight) starts from the proved part (0, lo(t_c)] and encloses the first root. The
+on (0, t_c]. The certificate (:func:`verify.numerics.first_root.search_first_root`, the proof
+boxes and candidate search of every other flight) starts from the proved part (0, lo(t_c)] and
+encloses the first root. The
 exact closed form is used, so no rounded (phase, velocity) pair with a w0 that is only nearly 0
 enters the proof.
 """
@@ -61,14 +62,21 @@ from typing import NamedTuple
 import mpmath
 from mpmath import iv, mp
 
-from ._precision import hi, lo, mid, working_dps
-from .certify import _local_candidate, _search, _Undecided
-from .drag import NotDecided
-from .errors import UndecidableCollision
-from .phase import reduce_phase
+from ..errors import UndecidableCollision
+from ..numerics.first_root import local_candidate, search_first_root
+from ..numerics.phase import reduce_phase
+from ..numerics.precision import (
+    GUARD_DPS,
+    NotDecided,
+    default_max_dps,
+    escalate,
+    hi,
+    lo,
+    mid,
+    working_dps,
+)
 
-_GUARD_DPS = 10
-_WINDOW = 2  # the window H of the rigorous enclosure, in units of T0
+WINDOW = 2  # the window H of the rigorous enclosure of an accumulation, in units of T0
 
 
 class Accumulation(NamedTuple):
@@ -86,7 +94,7 @@ def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
 
     Computed at ``dps + 10`` digits; ``tail`` and ``phase`` are returned at that precision.
     """
-    with working_dps(dps + _GUARD_DPS) as prec:
+    with working_dps(dps + GUARD_DPS) as prec:
         iphi = reduce_phase(phi, prec).enclosure
         ieps, ir = iv.mpf(eps), iv.mpf(r)
         iw = iv.mpf(v) + ieps * iv.sin(iphi)
@@ -98,7 +106,7 @@ def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
         q = t0**2 * (jerk**2 / a**2 + abs(eps) / a)
         if not q * t0 <= mp.mpf(10) ** (-dps):
             return None
-        enclosure = _enclosure(iphi, iw, ieps, ir, _WINDOW * t0)
+        enclosure = _enclosure(iphi, iw, ieps, ir, WINDOW * t0)
         if enclosure is None:
             return None
         tail = t0 + jerk * t0**2 / (3 * a)
@@ -119,7 +127,8 @@ def _enclosure(iphi, iw, ieps, ir, window):
 def geometric_enclosure(a_lo, a_hi, iw, ir, window):
     """``(T_lo, T_hi)``: the geometric sums of the module docstring for flights from ``iw`` on
     which ``a_lo <= -x'' <= a_hi`` (intervals), restitution ``ir``; None unless ``a_lo > 0``,
-    ``r*(2*rho - 1) < 1`` and ``T_hi <= window`` are proved (``verify.drag_sticking`` too)."""
+    ``r*(2*rho - 1) < 1`` and ``T_hi <= window`` are proved (used by
+    :mod:`verify.dissipative.drag_sticking` too)."""
     if not lo(a_lo) > 0:
         return None
     rho = a_hi / a_lo
@@ -134,7 +143,7 @@ def geometric_enclosure(a_lo, a_hi, iw, ir, window):
     return t_lo, t_hi
 
 
-def can_detach(eps) -> bool:
+def leaves_plate(eps) -> bool:
     """A particle riding the plate ever leaves it: ``|eps| > 1`` (module docstring)."""
     return abs(eps) > 1
 
@@ -142,7 +151,7 @@ def can_detach(eps) -> bool:
 def detachment_phase(eps):
     """theta* in [0, 2*pi): ``2*pi - arccos(1/eps)`` (eps > 1), ``pi - arccos(1/|eps|)``
     (eps < -1), at the current precision; ``ValueError`` for ``|eps| <= 1`` (never leaves)."""
-    if not can_detach(eps):
+    if not leaves_plate(eps):
         raise ValueError(f"no detachment for |eps| <= 1, got eps={eps}")
     alpha = mp.acos(1 / abs(eps))
     return 2 * mp.pi - alpha if eps > 0 else mp.pi - alpha
@@ -153,10 +162,9 @@ def detachment_velocity(eps):
     return mp.sqrt(eps * eps - 1)
 
 
-class _DetachedGap:
-    """The gap of the flight from detachment in closed form (module docstring): the interface
-    that :func:`verify.certify._search` runs on (``d``, ``d_and_slope``, ``curvature``,
-    ``point``, ``needed``), with ``phi_exact``, ``v``, ``eps`` for its messages."""
+class DetachedGap:
+    """The gap of the flight from detachment in closed form (module docstring): a
+    :class:`verify.numerics.first_root.Gap`."""
 
     def __init__(self, eps, dps, wdps):
         self.eps, self.dps, self.wdps = eps, dps, wdps
@@ -195,23 +203,21 @@ def detachment_flight(eps, dps: int, max_dps: int | None = None):
     raising the precision as :func:`verify.certify_flight` does; :class:`UndecidableCollision`
     when it stays undecided at ``max_dps`` (default ``max(4*dps, 400)``: ``|eps|`` within
     ~10**(-dps/2) of 1, where d(t_c) ~ (8/3)*(|eps| - 1)**2 is below the working precision)."""
-    max_dps = max(4 * dps, 400) if max_dps is None else max_dps
-    wdps = dps + _GUARD_DPS
-    while True:
-        try:
-            with working_dps(wdps):
-                ctx = _DetachedGap(eps, dps, wdps)
-                free = lo(2 * iv.atan2(ctx.s, 1))  # lo(t_c): d > 0 on (0, free]
-                left, right, _, _ = _search(ctx, 1 + abs(eps), free, None,
-                                            candidate=_local_candidate)
-                return left, right
-        except (_Undecided, NotDecided) as und:
-            if wdps >= max_dps:
-                with working_dps(wdps):
-                    raise UndecidableCollision(detachment_phase(eps), detachment_velocity(eps),
-                                               eps, wdps, f"flight from detachment: {und}"
-                                               ) from None
-            wdps = min(max_dps, 2 * wdps)
+    max_dps = default_max_dps(dps) if max_dps is None else max_dps
+
+    def attempt(wdps):
+        ctx = DetachedGap(eps, dps, wdps)
+        free = lo(2 * iv.atan2(ctx.s, 1))  # lo(t_c): d > 0 on (0, free]
+        left, right, _, _ = search_first_root(ctx, 1 + abs(eps), free, None,
+                                              candidate=local_candidate)
+        return left, right
+
+    def undecidable(wdps, why):
+        with working_dps(wdps):
+            return UndecidableCollision(detachment_phase(eps), detachment_velocity(eps), eps,
+                                        wdps, f"flight from detachment: {why}")
+
+    return escalate(attempt, dps, max_dps, undecidable)
 
 
 def detachment_step(eps, r, dps: int):
@@ -222,7 +228,7 @@ def detachment_step(eps, r, dps: int):
     ``v1 = (1 + r)*u - r*v_in``; all at ``dps + 10`` digits, rounded to ``dps``.
     """
     left, right = detachment_flight(eps, dps)
-    with working_dps(dps + 2 * _GUARD_DPS):
+    with working_dps(dps + 2 * GUARD_DPS):
         tau = (left + right) / 2
         theta = detachment_phase(eps) + tau
         u = -eps * mp.sin(theta)
@@ -236,10 +242,36 @@ def detachment_step(eps, r, dps: int):
     return phi1, v1, tau
 
 
-def stay(phase, eps):
+def time_to_detachment(phase, eps):
     """Time riding the plate from the accumulation phase to theta*: ``(theta* - phase) mod
     2*pi`` in ``(0, 2*pi]`` at the current precision."""
     two_pi = 2 * mp.pi
     d = detachment_phase(eps) - phase
     d -= two_pi * mp.floor(d / two_pi)
     return d if d > 0 else two_pi
+
+
+class RestitutionSticking:
+    """The sticking model of restitution ``r < 1`` without drag, for the orbit loop
+    (:class:`verify.dissipative.sticking_model.StickingModel`): the summed tail
+    (:func:`accumulation`), ``|eps| > 1`` to leave the plate, the ride to theta* and the flight
+    from it (:func:`detachment_step`). It never reports chattering: without drag every
+    chattering run either sums its tail or leaves with an ordinary flight (module docstring)."""
+
+    def __init__(self, eps, r, dps: int) -> None:
+        self.eps, self.r, self.dps = eps, r, dps
+
+    def accumulation(self, phi, v) -> Accumulation | None:
+        return accumulation(phi, v, self.eps, self.r, self.dps)
+
+    def leaves_plate(self) -> bool:
+        return leaves_plate(self.eps)
+
+    def riding_time(self, phase):
+        return time_to_detachment(phase, self.eps)
+
+    def detachment_step(self):
+        return detachment_step(self.eps, self.r, self.dps)
+
+    def check_chattering(self, n: int, t, phi, v) -> None:
+        return None

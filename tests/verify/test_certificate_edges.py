@@ -1,10 +1,10 @@
-"""Tests that kill mutants of ``verify/certify.py`` (scripts/mutation.sh certify).
+"""The flight certificate at its edges (verify/elastic/certificate.py and
+verify/numerics/first_root.py).
 
-Each test states a property of the certifier that some surviving mutant broke without any test
-noticing: the precision hint, the ``boxes`` count, the ``|eps| > 1`` side of the concave test,
-the positive window of fast particles, the box-size proposal ``_first_zero``, the proof step
-``certify_candidate`` at exact zeros, the give-up paths of the box loop and what the error
-messages state.
+Each test states a documented property of the certifier: the precision hint, the ``boxes``
+count, the ``|eps| > 1`` side of the concave test, the positive window of fast particles, the
+box-size proposal ``_first_zero``, the proof step ``certify_candidate`` at exact zeros, the
+give-up paths of the box loop and what the error messages state.
 """
 
 from __future__ import annotations
@@ -17,10 +17,11 @@ import pytest
 from mpmath import iv, mp
 
 import verify
-from verify import certify
-from verify._precision import hi, lo, working_dps
-from verify.gap import iv_gap, iv_gap_prime, mp_gap
-from verify.phase import reduce_phase
+from verify.elastic import certificate
+from verify.elastic.gap import iv_gap, iv_gap_prime, mp_gap
+from verify.numerics import first_root
+from verify.numerics.phase import reduce_phase
+from verify.numerics.precision import NotDecided, hi, lo, working_dps
 
 NUMBER = r"(-?[0-9.]+(?:e[-+][0-9]+)?)"
 
@@ -85,16 +86,16 @@ def test_concave_undecided_message_states_the_candidate_and_delta():
 
 def _count_interval_evaluations(monkeypatch):
     """Count the calls of iv_gap (a point: d, with d' in the box loop) and iv_gap_second
-    (a box) made through certify's module globals."""
+    (a box) made through certificate's module globals."""
     calls = {"n": 0}
     for name in ("iv_gap", "iv_gap_second"):
-        real = getattr(certify, name)
+        real = getattr(certificate, name)
 
         def counted(*args, _real=real):
             calls["n"] += 1
             return _real(*args)
 
-        monkeypatch.setattr(certify, name, counted)
+        monkeypatch.setattr(certificate, name, counted)
     return calls
 
 
@@ -164,7 +165,7 @@ def test_fast_particle_over_a_strong_plate_lands_before_the_window():
 ])
 def test_first_zero_is_the_first_positive_zero_of_the_quadratic(d0, p, q, expected):
     with working_dps(30):
-        got = certify._first_zero(mp.mpf(d0), mp.mpf(p), mp.mpf(q))
+        got = first_root._first_zero(mp.mpf(d0), mp.mpf(p), mp.mpf(q))
         if expected is None:
             assert got is None
         else:
@@ -177,7 +178,7 @@ def test_first_zero_against_numpy_roots():
         for _ in range(300):
             d0, p, q = rng.uniform(0.01, 2), rng.uniform(-3, 3), rng.uniform(-3, 3)
             roots = [r.real for r in np.roots([q / 2, p, d0]) if abs(r.imag) < 1e-12 and r.real > 0]
-            got = certify._first_zero(mp.mpf(d0), mp.mpf(p), mp.mpf(q))
+            got = first_root._first_zero(mp.mpf(d0), mp.mpf(p), mp.mpf(q))
             if not roots:
                 assert got is None, (d0, p, q)
             else:
@@ -190,9 +191,9 @@ def test_certify_candidate_at_an_exact_zero_of_d():
     """eps = 0, v = 1: d(t) = t*(1 - t/2) is evaluated exactly, d(2) = [0, 0]. The enclosure
     must hold the root strictly inside: (2, 2.5) and (1.5, 2) are refused."""
     assert verify.gap(0.0, 1.0, 0.0, 2.0) == 0
-    assert certify.certify_candidate(0.0, 1.0, 0.0, 1.5, 2.5)
-    assert not certify.certify_candidate(0.0, 1.0, 0.0, 2.0, 2.5)
-    assert not certify.certify_candidate(0.0, 1.0, 0.0, 1.5, 2.0)
+    assert certificate.certify_candidate(0.0, 1.0, 0.0, 1.5, 2.5)
+    assert not certificate.certify_candidate(0.0, 1.0, 0.0, 2.0, 2.5)
+    assert not certificate.certify_candidate(0.0, 1.0, 0.0, 1.5, 2.0)
 
 
 def test_certify_candidate_uses_w0_with_the_plate_velocity_sign():
@@ -200,7 +201,7 @@ def test_certify_candidate_uses_w0_with_the_plate_velocity_sign():
     tau = verify.certify_flight(1.0, 0.1, 0.6).tau
     with mp.workdps(60):
         lo_, hi_ = tau * (1 - mp.mpf(10) ** -40), tau * (1 + mp.mpf(10) ** -40)
-    assert certify.certify_candidate(1.0, 0.1, 0.6, lo_, hi_)
+    assert certificate.certify_candidate(1.0, 0.1, 0.6, lo_, hi_)
 
 
 def test_certify_candidate_refuses_an_undecided_departure():
@@ -208,7 +209,7 @@ def test_certify_candidate_refuses_an_undecided_departure():
     with mp.workdps(1100):
         phi = mp.mpf(0.3)
         v = -2 * mp.sin(phi) + mp.mpf(10) ** -1000
-    assert not certify.certify_candidate(phi, v, 2.0, 1e-300, 1e-299)
+    assert not certificate.certify_candidate(phi, v, 2.0, 1e-300, 1e-299)
 
 
 def _enclosure_of_r1(g):
@@ -235,8 +236,8 @@ def test_certify_candidate_refuses_the_third_root_for_eps_in_one_to_two():
     with mp.workdps(60):
         delta = r3 * mp.mpf(10) ** -45
         lo_, hi_ = r3 - delta, r3 + delta
-    assert certify.certify_candidate(g.phi, g.v, 1.5, *_enclosure_of_r1(g))
-    assert not certify.certify_candidate(g.phi, g.v, 1.5, lo_, hi_)
+    assert certificate.certify_candidate(g.phi, g.v, 1.5, *_enclosure_of_r1(g))
+    assert not certificate.certify_candidate(g.phi, g.v, 1.5, lo_, hi_)
 
 
 def test_certify_candidate_default_is_50_digits():
@@ -246,9 +247,9 @@ def test_certify_candidate_default_is_50_digits():
     with mp.workdps(110):
         delta = tau * mp.mpf(10) ** mp.mpf(-60.8)
         lo_, hi_ = tau - delta, tau + delta
-    assert certify.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_, dps=51)
-    assert not certify.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_, dps=50)
-    assert not certify.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_)
+    assert certificate.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_, dps=51)
+    assert not certificate.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_, dps=50)
+    assert not certificate.certify_candidate(0.3, 1 / 3, 0.5, lo_, hi_)
 
 
 @pytest.mark.parametrize(("lo_", "hi_", "needle"), [
@@ -258,7 +259,7 @@ def test_certify_candidate_default_is_50_digits():
 ])
 def test_certify_candidate_rejects_bad_enclosures(lo_, hi_, needle):
     with pytest.raises(ValueError, match=needle):
-        certify.certify_candidate(0.3, 1.0, 0.6, lo_, hi_)
+        certificate.certify_candidate(0.3, 1.0, 0.6, lo_, hi_)
 
 
 # --- certify_flight's precision arguments and messages --------------------------------------
@@ -318,8 +319,8 @@ def test_general_graze_message_and_hint():
     """Exact tangency at 40 digits (one attempt, |eps| > 1): the candidate's d(c + delta)
     straddles 0; the message states its size and the candidate, the hint exceeds dps + 10."""
     g = verify.grazing_contact(3.0, 0.2, 4.0, 0, dps=500)
-    with working_dps(40), pytest.raises(certify._Undecided) as info:
-        certify._attempt(g.phi, g.v, mp.mpf(3), 30, 40)
+    with working_dps(40), pytest.raises(NotDecided) as info:
+        certificate.elastic_attempt(g.phi, g.v, mp.mpf(3), 30, 40)
     what = info.value.what
     m = re.fullmatch(rf"d has a minimum within {NUMBER} of 0 near tau={NUMBER}"
                      rf"(?: \(\|d'\| <= {NUMBER} there\))?: graze or not", what)
@@ -334,7 +335,7 @@ def test_general_graze_message_and_hint():
 
 def _box_loop_context():
     g = verify.grazing_contact(3.0, 0.2, 4.0, 1e-3)
-    return g, certify._context(g.phi, g.v, mp.mpf(3), 30, 40)
+    return g, certificate.elastic_gap(g.phi, g.v, mp.mpf(3), 30, 40)
 
 
 @pytest.mark.parametrize("force", ["no box proved", "no progress"])
@@ -343,28 +344,28 @@ def test_box_loop_gives_up_undecided_with_message_and_hint(monkeypatch, force):
     progress (the proposed box rounds to nothing) must end in ``_Undecided`` naming the stuck
     point, with the precision hint, never in a silent success or a budget error."""
     if force == "no box proved":
-        monkeypatch.setattr(certify, "_taylor_lower", lambda d0, p, q, h: mp.mpf(0))
+        monkeypatch.setattr(first_root, "taylor_lower", lambda d0, p, q, h: mp.mpf(0))
     else:
-        monkeypatch.setattr(certify, "_first_zero", lambda d0, p, q: mp.mpf(0))
+        monkeypatch.setattr(first_root, "_first_zero", lambda d0, p, q: mp.mpf(0))
     with working_dps(40):
         g, ctx = _box_loop_context()
         a = g.T / 2
-        with pytest.raises(certify._Undecided) as info:
-            certify._prove_positive(ctx, a, g.T)
+        with pytest.raises(NotDecided) as info:
+            first_root.prove_positive(ctx, a, g.T)
         ia = iv.mpf(a)
-        expected = certify._unresolved(a, iv_gap(ctx.iphi, ctx.iv_v, ctx.ieps, ia),
+        expected = first_root._unresolved(a, iv_gap(ctx.iphi, ctx.iv_v, ctx.ieps, ia),
                                        iv_gap_prime(ctx.iphi, ctx.iv_v, ctx.ieps, ia))
     assert info.value.what == expected
-    assert info.value.needed == certify._needed_dps(g.phi, g.v, mp.mpf(3), a, 30) > 40
+    assert info.value.needed == certificate._needed_dps(g.phi, g.v, mp.mpf(3), a, 30) > 40
 
 
 def test_box_loop_refusal_at_a_root_states_where():
     """d(a) <= 0 at a point of the stretch: the message names that point and |d|, |d'| there."""
     g = verify.grazing_contact(3.0, 0.2, 4.0, 0, dps=500)
     with working_dps(40):
-        ctx = certify._context(g.phi, g.v, mp.mpf(3), 30, 40)
-        with pytest.raises(certify._Undecided) as info:
-            certify._prove_positive(ctx, g.T / 2, g.T * (1 + mp.mpf(10) ** -5))
+        ctx = certificate.elastic_gap(g.phi, g.v, mp.mpf(3), 30, 40)
+        with pytest.raises(NotDecided) as info:
+            first_root.prove_positive(ctx, g.T / 2, g.T * (1 + mp.mpf(10) ** -5))
     m = re.fullmatch(rf"d has a minimum within {NUMBER} of 0 near tau={NUMBER} "
                      rf"\(\|d'\| <= {NUMBER} there\): graze or not", info.value.what)
     assert m, info.value.what
@@ -391,7 +392,7 @@ def _budget_message(message, phi, v, eps):
 def test_box_budget_message(monkeypatch):
     """phi = -1e-300/3, v = 1e154/3, eps = 1e300/3: the particle leaves from the top of the
     plate and stays ahead for ~1e153 plate periods, with a near-tangency in each."""
-    monkeypatch.setattr(certify, "_MAX_BOXES", 300)
+    monkeypatch.setattr(first_root, "MAX_BOXES", 300)
     phi, v, eps = -1e-300 / 3, 1e154 / 3, 1e300 / 3
     with pytest.raises(ValueError) as info:
         verify.certify_flight(phi, v, eps)
@@ -400,7 +401,7 @@ def test_box_budget_message(monkeypatch):
 
 
 def test_candidate_step_budget_message(monkeypatch):
-    monkeypatch.setattr(certify, "_MAX_STEPS", 3)
+    monkeypatch.setattr(first_root, "MAX_STEPS", 3)
     phi, v, eps = -1e-300 / 3, 1e154 / 3, 1e300 / 3
     with pytest.raises(ValueError) as info:
         verify.certify_flight(phi, v, eps)
@@ -416,7 +417,7 @@ def test_candidate_behind_the_proved_part_is_refused(monkeypatch):
         offered.append(t / 2)
         return t / 2
 
-    monkeypatch.setattr(certify, "_candidate", behind)
+    monkeypatch.setattr(certificate, "global_candidate", behind)
     with pytest.raises(verify.UndecidableCollision) as info:
         verify.certify_flight(g.phi, g.v, 3.0, dps=30, max_dps=40)
     with working_dps(40):
@@ -425,8 +426,8 @@ def test_candidate_behind_the_proved_part_is_refused(monkeypatch):
 
 
 def test_concave_bracket_budget_message(monkeypatch):
-    monkeypatch.setattr(certify, "_MAX_BISECTIONS", 3)
-    monkeypatch.setattr(certify, "_newton_from_right", lambda ctx, t: mp.mpf(0))
+    monkeypatch.setattr(certificate, "_MAX_BISECTIONS", 3)
+    monkeypatch.setattr(certificate, "_newton_from_right", lambda ctx, t: mp.mpf(0))
     with pytest.raises(verify.UndecidableCollision) as info:
         verify.certify_flight(4.0, 3.0, 0.6, dps=30, max_dps=40)
     assert info.value.what == "no enclosure of the root in 3 bracket steps"
@@ -440,7 +441,7 @@ def test_concave_candidate_just_off_the_root(monkeypatch, side):
     root proves one bracket end next to it; Newton's next candidate then has that end within
     delta, so the end's known sign is used (no evaluation): still one attempt at 60 digits."""
     x = 3e-5
-    real, calls = certify._newton_from_right, []
+    real, calls = certificate._newton_from_right, []
 
     def first_off(ctx, t):
         calls.append(t)
@@ -448,7 +449,7 @@ def test_concave_candidate_just_off_the_root(monkeypatch, side):
             return 2 * mp.mpf(x) * (1 + side * mp.mpf(1.5) * mp.mpf(10) ** -50)
         return real(ctx, t)
 
-    monkeypatch.setattr(certify, "_newton_from_right", first_off)
+    monkeypatch.setattr(certificate, "_newton_from_right", first_off)
     cert = verify.certify_flight(-x, x, 1.0)
     lo_, hi_ = cert.enclosure
     assert lo_ < 2 * mp.mpf(x) < hi_ and cert.dps_used == 60 and len(calls) == 2
@@ -477,14 +478,14 @@ def test_concave_check_point_exactly_on_the_root(monkeypatch, side):
     """eps = 0, v = 1: d(t) = t*(1 - t/2) is evaluated exactly and d(2) = [0, 0]. A candidate
     whose check point is exactly 2 decides no sign there (the attempt is undecided); the next
     attempt encloses 2 strictly."""
-    real, calls = certify._newton_from_right, []
+    real, calls = certificate._newton_from_right, []
     on_root = _candidate_with_an_end_on(mp.mpf(2), side)
 
     def first_on_root(ctx, t):
         calls.append(t)
         return on_root(ctx, t) if len(calls) == 1 else real(ctx, t)
 
-    monkeypatch.setattr(certify, "_newton_from_right", first_on_root)
+    monkeypatch.setattr(certificate, "_newton_from_right", first_on_root)
     cert = verify.certify_flight(0.0, 1.0, 0.0, dps=30)
     lo_, hi_ = cert.enclosure
     assert lo_ < 2 < hi_ and cert.dps_used == 80
@@ -504,13 +505,13 @@ def _early_candidate():
 
 def _offer_first(monkeypatch, early):
     """Make ``early`` the first candidate of the search; the later ones are the real ones."""
-    real, calls = certify._candidate, []
+    real, calls = certificate.global_candidate, []
 
     def first_early(ctx, curv, t):
         calls.append(t)
         return early if len(calls) == 1 else real(ctx, curv, t)
 
-    monkeypatch.setattr(certify, "_candidate", first_early)
+    monkeypatch.setattr(certificate, "global_candidate", first_early)
     return calls
 
 
@@ -534,13 +535,13 @@ def test_box_budget_counts_every_box_of_the_flight(monkeypatch):
     right = c + c*10**-50; a limit of B passes it (and stops later, in a longer stretch)."""
     g, r1, early = _early_candidate()
     proofs = []
-    real_prove = certify._prove_positive
+    real_prove = first_root.prove_positive
 
     def recording(ctx, a, end):
         proofs.append(real_prove(ctx, a, end))
         return proofs[-1]
 
-    monkeypatch.setattr(certify, "_prove_positive", recording)
+    monkeypatch.setattr(first_root, "prove_positive", recording)
     _offer_first(monkeypatch, early)
     verify.certify_flight(g.phi, g.v, 3.0)
     budget = proofs[0] + 1 + proofs[1]  # boxes at the check: proof to left, d(right), across
@@ -550,7 +551,7 @@ def test_box_budget_counts_every_box_of_the_flight(monkeypatch):
     reached = {}
     for limit in (budget - 1, budget):  # the check at the near-tangency fails, then passes
         _offer_first(monkeypatch, early)
-        monkeypatch.setattr(certify, "_MAX_BOXES", limit)
+        monkeypatch.setattr(first_root, "MAX_BOXES", limit)
         with pytest.raises(ValueError) as info:
             verify.certify_flight(g.phi, g.v, 3.0)
         what, tau = _budget_message(str(info.value), g.phi, g.v, 3.0)
@@ -565,7 +566,7 @@ def test_near_tangency_step_budget(monkeypatch):
     does not touch ends the search (the budget error names the point reached)."""
     g, r1, early = _early_candidate()
     _offer_first(monkeypatch, early)
-    monkeypatch.setattr(certify, "_MAX_STEPS", 1)
+    monkeypatch.setattr(first_root, "MAX_STEPS", 1)
     with pytest.raises(ValueError) as info:
         verify.certify_flight(g.phi, g.v, 3.0)
     what, _ = _budget_message(str(info.value), g.phi, g.v, 3.0)
@@ -576,18 +577,18 @@ def test_box_loop_budget_is_per_stretch(monkeypatch):
     """A stretch proved with exactly _MAX_BOXES evaluations passes (the limit is > not >=)."""
     g = verify.grazing_contact(3.0, 0.2, 4.0, -1e-3)
     proofs = []
-    real_prove = certify._prove_positive
+    real_prove = first_root.prove_positive
 
     def recording(ctx, a, end):
         proofs.append(real_prove(ctx, a, end))
         return proofs[-1]
 
-    monkeypatch.setattr(certify, "_prove_positive", recording)
+    monkeypatch.setattr(first_root, "prove_positive", recording)
     verify.certify_flight(g.phi, g.v, 3.0)
     assert len(proofs) == 1 and proofs[0] > 2
-    monkeypatch.setattr(certify, "_MAX_BOXES", proofs[0])
+    monkeypatch.setattr(first_root, "MAX_BOXES", proofs[0])
     with working_dps(60):
-        ctx = certify._context(g.phi, g.v, mp.mpf(3), 50, 60)
+        ctx = certificate.elastic_gap(g.phi, g.v, mp.mpf(3), 50, 60)
         free = lo(ctx.iv_v + ctx.ieps * iv.sin(ctx.iphi)) / 4
         tau = verify.certify_flight(g.phi, g.v, 3.0).tau
         left = tau * (1 - mp.mpf(10) ** -50)
@@ -600,9 +601,9 @@ def test_general_graze_message_when_the_stretch_is_proved(monkeypatch, psi, t_gu
     candidate then meets an undecided d(c + delta); the message states |d| there (3 digits)
     and the candidate (20 digits), with the precision hint."""
     g = verify.grazing_contact(3.0, psi, t_guess, 0, dps=500)
-    monkeypatch.setattr(certify, "_prove_positive", lambda ctx, a, end: 1)
-    with working_dps(40), pytest.raises(certify._Undecided) as info:
-        certify._attempt(g.phi, g.v, mp.mpf(3), 30, 40)
+    monkeypatch.setattr(first_root, "prove_positive", lambda ctx, a, end: 1)
+    with working_dps(40), pytest.raises(NotDecided) as info:
+        certificate.elastic_attempt(g.phi, g.v, mp.mpf(3), 30, 40)
     m = re.fullmatch(rf"d has a minimum within {NUMBER} of 0 near tau={NUMBER}: graze or not",
                      info.value.what)
     assert m, info.value.what
@@ -611,7 +612,7 @@ def test_general_graze_message_when_the_stretch_is_proved(monkeypatch, psi, t_gu
     assert info.value.needed > 40
 
 
-# --- interval ends exactly 0.0 (issue 12: the last survivors) --------------------------------
+# --- interval ends exactly 0.0 ----------------------------------------------------------------
 #
 # An end of an interval enclosure is exactly 0 only by construction: v is chosen (an exact mpf
 # with the working precision's bits) so that it cancels one end of the rounded enclosure of
@@ -651,7 +652,7 @@ def test_w0_with_lower_end_exactly_zero_is_not_a_proved_departure():
 
 
 def test_certify_candidate_at_eps_one_uses_the_concave_criterion():
-    """``|eps| = 1`` is the concave case (issue 12), so the proof is ``d(lo) > 0`` in ``iv``. A
+    """``|eps| = 1`` is the concave case, so the proof is ``d(lo) > 0`` in ``iv``. A
     lower end inside the analytic free stretch ``(0, w0/2]`` whose gap ``d(lo) ~ 1e-52`` is
     below the resolution of 25 digits: the concave criterion cannot prove it (False), the box
     criterion of ``|eps| > 1`` would accept it without evaluating ``d(lo)``. At 40 digits the
@@ -662,12 +663,12 @@ def test_certify_candidate_at_eps_one_uses_the_concave_criterion():
         v = -lo(sine) + (hi(sine) - lo(sine))  # w0 ~ 1e-26: one ulp of the sine above 0
         w0 = iv.mpf(v) + iv.sin(reduce_phase(phi, prec).enclosure)
         lo_ = lo(w0) / 2
-        assert lo(w0) > 0 and lo(certify._context(phi, v, eps, dps, dps + 10).d(lo_)) <= 0
+        assert lo(w0) > 0 and lo(certificate.elastic_gap(phi, v, eps, dps, dps + 10).d(lo_)) <= 0
     hi_ = mp.mpf(2) ** -60
     tau = verify.certify_flight(phi, v, eps, dps=40).tau
     assert lo_ < tau < hi_
-    assert not certify.certify_candidate(phi, v, eps, lo_, hi_, dps=dps)
-    assert certify.certify_candidate(phi, v, eps, lo_, hi_, dps=30)
+    assert not certificate.certify_candidate(phi, v, eps, lo_, hi_, dps=dps)
+    assert certificate.certify_candidate(phi, v, eps, lo_, hi_, dps=30)
 
 
 def _search_at_four(end, eps0):
@@ -686,7 +687,7 @@ def _search_at_four(end, eps0):
                 v = 2 - end(plate) / 4
             if mp.mpf(v) == v:  # exact at 60 digits: the cancellation is exact
                 break
-        ctx = certify._context(mp.zero, v, eps, dps, wdps)
+        ctx = certificate.elastic_gap(mp.zero, v, eps, dps, wdps)
         scale = mp.mpf(10) ** -dps
         c = next(c for c in (four / (1 + scale) + j * mp.eps * 4 for j in range(-5, 6))
                  if c + c * scale == four)
@@ -705,8 +706,8 @@ def test_search_needs_a_strict_sign_at_the_candidate(end, eps0, concave):
     end exactly 0 decides neither, and the attempt reports the minimum of d at the candidate
     (its enclosure's size there), not elsewhere."""
     ctx, c, d4 = _search_at_four(end, eps0)
-    with working_dps(ctx.wdps), pytest.raises(certify._Undecided) as err:
-        certify._search(ctx, 1 + abs(ctx.eps), lo(ctx.iv_v) / (1 + abs(ctx.eps)), None,
+    with working_dps(ctx.wdps), pytest.raises(NotDecided) as err:
+        first_root.search_first_root(ctx, 1 + abs(ctx.eps), lo(ctx.iv_v) / (1 + abs(ctx.eps)), None,
                         concave_from=(lambda right: True) if concave else None,
                         candidate=lambda ctx, curv, t: c)
     size = max(abs(lo(d4)), abs(hi(d4)))
@@ -719,4 +720,4 @@ def test_precision_hint_at_an_exact_zero_of_the_slope():
     of the parabola); the precision hint is then the guard precision, not an overflow."""
     assert verify.condition_number(0.0, 1.0, 0.0, 1.0) == mp.inf
     with working_dps(60):
-        assert certify._needed_dps(mp.zero, mp.one, mp.zero, mp.one, 50) == 60
+        assert certificate._needed_dps(mp.zero, mp.one, mp.zero, mp.one, 50) == 60

@@ -5,8 +5,8 @@ from __future__ import annotations
 import mpmath
 from mpmath import mp
 
-from ._inputs import check_state
-from .phase import reduce_phase
+from ..numerics.inputs import check_state
+from ..numerics.phase import reduce_phase
 
 
 def condition_number(phi, v, eps, tau) -> mpmath.mpf:
@@ -21,7 +21,7 @@ def condition_number(phi, v, eps, tau) -> mpmath.mpf:
     ``tau ~ 2*w0/(1 - eps*cos(phi))``, ``|d'(tau)| ~ w0``) it reduces to
     ``~ (|v| + |eps|*(1 + |phi|)) / w0``. Infinite at a graze (``d'(tau) = 0``).
 
-    Inputs are validated by :func:`verify._inputs.check_state` (a departure, ``tau > 0``).
+    Inputs are validated by :func:`verify.numerics.inputs.check_state` (a departure, ``tau > 0``).
     """
     phi, v, eps, tau, _ = check_state(phi, v, eps, tau=tau)
     with mp.workprec(max(mp.prec, 64)):

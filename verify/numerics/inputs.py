@@ -5,13 +5,14 @@ rounding). The rules, each failure a ``ValueError`` that names the bad value:
 
 * ``phi``, ``v``, ``eps`` (and ``tau``, ``clearance``, ...): finite real numbers; ``bool`` and
   ``str`` are rejected, not converted;
-* a departure needs ``w0 = d'(0) = v + eps*sin(phi) > 0`` (DESIGN fact 1), rejected when
-  ``w0 <= 0`` is proved in interval arithmetic; a ``w0`` too close to 0 to decide here passes
-  and is decided (or reported undecidable) by the certificate;
+* a departure needs ``w0 = d'(0) = v + eps*sin(phi) > 0`` (the particle leaves the plate),
+  rejected when ``w0 <= 0`` is proved in interval arithmetic; a ``w0`` too close to 0 to decide
+  here passes and is decided (or reported undecidable) by the certificate;
 * a time ``tau`` passed with a state must be ``> 0``;
-* ``dps`` (digits) is an int ``>= 15`` (a bool is not an int here);
-* the dissipation keywords (:func:`check_physics`): ``drag`` finite and ``>= 0``, ``drag_law``
-  ``"linear"`` or ``"quadratic"``, ``restitution`` finite in ``(0, 1]``.
+* ``dps`` (digits) is an int ``>= 15`` (a bool is not an int here).
+
+The physics keywords (drag, drag law, restitution) are validated with the physics description,
+:func:`verify.dissipative.physics.check_physics`.
 """
 
 from __future__ import annotations
@@ -23,41 +24,11 @@ import mpmath
 from mpmath import iv, mp
 from mpmath.ctx_mp_python import _mpf as _mpf_base
 
-from ._precision import hi, lo, working_dps
 from .phase import reduce_phase
+from .precision import hi, lo, working_dps
 
 MIN_DPS = 15
-DRAG_LAWS = ("linear", "quadratic")
 _W0_CHECK_DPS = 30  # w0 is checked at this many digits (after an exact phase reduction)
-
-
-class Physics(NamedTuple):
-    """Validated dissipation keywords: ``drag`` k as an exact ``mpf``, the law, restitution r."""
-
-    drag: mpmath.mpf
-    drag_law: str
-    restitution: mpmath.mpf
-
-    @property
-    def is_default(self) -> bool:
-        """The elastic, friction-free model (today's code is called unchanged)."""
-        return self.drag == 0 and self.restitution == 1
-
-
-def check_physics(drag=0.0, drag_law="linear", restitution=1.0) -> Physics:
-    """Validate the keyword-only physics of the dissipation spec; ``ValueError`` naming the value.
-
-    ``drag`` finite ``>= 0``; ``drag_law`` in :data:`DRAG_LAWS`; ``restitution`` in ``(0, 1]``.
-    """
-    k = exact_real("drag", drag)
-    if k < 0:
-        raise ValueError(f"drag must be finite and >= 0, got drag={drag!r}")
-    if not isinstance(drag_law, str) or drag_law not in DRAG_LAWS:
-        raise ValueError(f"drag_law must be 'linear' or 'quadratic', got drag_law={drag_law!r}")
-    r = exact_real("restitution", restitution)
-    if not 0 < r <= 1:
-        raise ValueError(f"restitution must be in (0, 1], got restitution={restitution!r}")
-    return Physics(k, drag_law, r)
 
 
 class State(NamedTuple):
@@ -110,7 +81,7 @@ def check_state(phi, v, eps, *, tau=_NO_TAU, dps=None, names=("phi", "v", "eps")
     :func:`verify.orbit`). See the module docstring for the rules. ``w0_zero_ok``: a ``w0``
     proved to be exactly 0 passes (a departure at rest relative to the plate, which
     :func:`verify.certify_flight` accepts only when the gap is proved to open, see
-    :mod:`verify.drag_certify`).
+    :mod:`verify.dissipative.drag_gap`).
     """
     phi_, v_, eps_ = (exact_real(n, x) for n, x in zip(names, (phi, v, eps), strict=True))
     dps_ = None if dps is None else check_dps(dps)

@@ -27,8 +27,8 @@ from dataclasses import dataclass
 import mpmath
 from mpmath import mp
 
-from ._inputs import check_dps, exact_real
-from ._precision import working_dps
+from ..numerics.inputs import check_dps, exact_real
+from ..numerics.precision import working_dps
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,7 @@
-"""Tests that kill mutants of ``verify/_inputs.py`` and ``verify/phase.py`` (scripts/mutation.sh).
+"""Input validation (verify/numerics/inputs.py) and exact phase reduction
+(verify/numerics/phase.py).
 
-Each test pins a documented behaviour that the rest of the suite did not observe: the value a
+Each test pins a documented behaviour: the value a
 validation message names, the boundary of an inclusive rule, the exactness of a conversion, and
 the documented fields of a ``ReducedPhase``.
 """
@@ -13,8 +14,8 @@ import pytest
 from mpmath import mp
 
 import verify
-from verify._inputs import MIN_DPS, check_state, exact_real
-from verify.phase import _GUARD_BITS, reduce_phase, reduction_bits
+from verify.numerics.inputs import MIN_DPS, check_state, exact_real
+from verify.numerics.phase import _GUARD_BITS, reduce_phase, reduction_bits
 
 
 @pytest.mark.parametrize("bad", [0, 1, 2])
