@@ -7,6 +7,7 @@ from .certify import FlightCertificate, certify_flight, flight_time
 from .check import CheckReport, Failure, assert_integrator, check_integrator, load_callable
 from .collision import step
 from .conditioning import condition_number
+from .dynamics import NotCertified, periodic_orbit
 from .errors import ChatteringDetected, UndecidableCollision
 from .gap import gap
 from .grazing import GrazingContact, grazing_contact, grazing_departure
@@ -15,6 +16,7 @@ from .orbit import Orbit, orbit
 
 __all__ = [
     "ChatteringDetected",
+    "NotCertified",
     "FlightCertificate",
     "GrazingContact",
     "Orbit",
@@ -27,6 +29,7 @@ __all__ = [
     "grazing_departure",
     "jacobian",
     "orbit",
+    "periodic_orbit",
     "step",
     "CheckReport",
     "Failure",
