@@ -12,8 +12,9 @@ orbit through the line phi = 0 (the plate's top, where the fixed points (0, pi*m
 for 0 < eps < 1): a one-dimensional root in v, followed by continuation in eps from eps = 0
 (where v = pi*m/q exactly). Its residue is positive below the break-up.
 
-Rotation numbers: band j with fractional part gamma = (sqrt(5) - 1)/2 ("golden", v ~ pi*(j +
-0.618)) or gamma**2 ("golden2", v ~ pi*(j + 0.382)); the approximants are Fibonacci ratios.
+Rotation numbers: band j plus a noble fraction [0; prefix..., 1, 1, ...] (``noble``): the golden
+mean gamma = 0.618... (prefix ()), gamma**2 = 0.381... (prefix (2,)), ...; velocity near
+pi*omega. The approximants are the convergents of its continued fraction.
 
 Everything here is float64 (``verify.periodic_orbit`` certifies individual orbits).
 """
@@ -29,7 +30,6 @@ from fastpath.dynamics.kernels import symmetric_newton
 from fastpath.dynamics.periodic_orbit import OrbitNotFound, build_orbit
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
-FRACTIONS = {"golden": GOLDEN, "golden2": GOLDEN**2}
 TARGET = 0.25
 STANDARD_MAP_K_C = 0.971635406  # Greene (1979), MacKay (1983): golden curve of the standard map
 MAX_NEWTON = 60
@@ -57,25 +57,41 @@ class Approximant:
         return self.winding / self.period
 
 
-def approximants(band, fraction="golden", levels=12, smallest=3):
-    """The Fibonacci approximants (q, m) of omega = band + fraction with q >= smallest.
+def noble(prefix=()):
+    """The noble number [0; prefix..., 1, 1, 1, ...] in (0, 1): () is the golden mean
+    (sqrt(5) - 1)/2 = 0.618..., (2,) its square 0.381..., (3,) = 1/(3 + 0.618...)."""
+    x = GOLDEN
+    for a in reversed(_prefix(prefix)):
+        x = 1.0 / (a + x)
+    return x
 
-    golden: m/q = band + F(k-1)/F(k); golden2: band + F(k-2)/F(k); F = 1, 2, 3, 5, 8, ...
+
+def _prefix(prefix):
+    prefix = tuple(prefix)
+    if not all(isinstance(a, int) and not isinstance(a, bool) and a >= 1 for a in prefix):
+        raise ValueError(f"prefix must hold integers >= 1, got prefix={prefix!r}")
+    return prefix
+
+
+def approximants(band, prefix=(), levels=12, smallest=3):
+    """The convergents (q, m) of omega = band + [0; prefix..., 1, 1, ...] with q >= smallest.
+
+    With convergents p/q of the fractional part, m = band*q + p (total time 2*pi*m).
     """
     band = integer("band", band, minimum=0)
-    if fraction not in FRACTIONS:
-        raise ValueError(f"fraction must be one of {sorted(FRACTIONS)}, got {fraction!r}")
-    fib = [1, 1]
-    while len(fib) < levels + 40:
-        fib.append(fib[-1] + fib[-2])
+    quotients = _prefix(prefix)
+    levels = integer("levels", levels, minimum=1)
+    p_prev, p = 1, 0  # convergents of [0; a1, a2, ...]: p_(-1) = 1, p_0 = 0
+    q_prev, q = 0, 1
     out = []
-    for k in range(2, len(fib)):
-        q = fib[k]
-        p = fib[k - 1] if fraction == "golden" else fib[k - 2]
-        if q >= smallest:
+    k = 0
+    while len(out) < levels:
+        a = quotients[k] if k < len(quotients) else 1
+        p_prev, p = p, a * p + p_prev
+        q_prev, q = q, a * q + q_prev
+        k += 1
+        if q >= smallest and (not out or out[-1].period != q):
             out.append(Approximant(q, band * q + p))
-        if len(out) == levels:
-            break
     return out
 
 
@@ -195,7 +211,7 @@ class CriticalAmplitude:
     the rounding ``eps_error`` of the last crossing; and the Aitken extrapolation."""
 
     band: int
-    fraction: str
+    prefix: tuple
     model: str
     crossings: list
     eps_c: float
@@ -204,12 +220,12 @@ class CriticalAmplitude:
     aitken: float
 
 
-def critical_amplitude(band, fraction="golden", *, model="exact", levels=10, smallest=3,
+def critical_amplitude(band, prefix=(), *, model="exact", levels=10, smallest=3,
                        target=TARGET):
-    """Greene's estimate of the break-up amplitude of the curve omega = band + fraction."""
+    """Greene's estimate of the break-up amplitude of the curve omega = band + noble(prefix)."""
     model_code(model)
     crossings = [residue_crossing(a, model=model, target=target)
-                 for a in approximants(band, fraction, levels, smallest)]
+                 for a in approximants(band, prefix, levels, smallest)]
     eps = np.array([c.eps for c in crossings])
     if len(eps) < 3:
         raise ValueError(f"levels must be >= 3 for an uncertainty, got {levels}")
@@ -220,5 +236,5 @@ def critical_amplitude(band, fraction="golden", *, model="exact", levels=10, sma
     uncertainty = max(tail, abs(d1) * r) if math.isfinite(tail) else math.inf
     uncertainty += crossings[-1].eps_error
     aitken = eps[-1] - d1 * d1 / (d1 - d2) if d1 != d2 else eps[-1]
-    return CriticalAmplitude(band, fraction, model, crossings, float(eps[-1]),
+    return CriticalAmplitude(band, tuple(prefix), model, crossings, float(eps[-1]),
                              float(uncertainty), float(ratio), float(aitken))

@@ -139,15 +139,17 @@ def newton_block(phi0, v0, eps, period, winding, shift, model, max_iterations):
 
     F^p's phase is unreduced (the sum of the flight times), so G's first component is the total
     time minus 2*pi*winding. The Jacobian of G is M - I with M the exact monodromy. A step that
-    does not lower |G| is halved (up to 40 times) unless it is already below sqrt(u) of the
-    state; stops when ``_converged`` or after ``max_iterations``.
+    does not lower |G| is halved (up to 40 times; then -1) unless the full step is already
+    below sqrt(u) of the state (the end game, where |G| is rounding noise); stops when
+    ``_converged`` or after ``max_iterations``.
 
+    The phase is kept reduced to [0, 2*pi) (G does not depend on its lift).
     Returns (phi, v, g1, g2, step, iterations, status): status CONVERGED, NOT_DEPARTING or
     UNCERTAIN for a flight that failed, or -1 when Newton did not converge.
     """
     phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
     jac = np.empty((period, 4))
-    phi, v = phi0, v0
+    phi, v = reduce_phase(phi0), v0
     target_t, target_v = 2.0 * PI * winding, PI * shift
     time, v_end, _, m11, m12, m21, m22, status, _ = orbit_monodromy(
         phi, v, eps, period, model, phi_k, v_k, tau_k, jac)
@@ -163,27 +165,32 @@ def newton_block(phi0, v0, eps, period, winding, shift, model, max_iterations):
         d_phi = -(a22 * g1 - a12 * g2) / det
         d_v = -(-a21 * g1 + a11 * g2) / det
         size = abs(g1) + abs(g2)
-        near = _NEAR * max(1.0, abs(phi), abs(v))
+        near = _NEAR * max(2.0 * PI, abs(v))
+        end_game = max(abs(d_phi), abs(d_v)) < near  # full steps at rounding noise: no test
         scale = 1.0
         t_phi, t_v, h1, h2 = phi, v, g1, g2
         n11, n12, n21, n22 = m11, m12, m21, m22
+        accepted = False
         for _ in range(40):
             t_phi, t_v = phi + scale * d_phi, v + scale * d_v
             time, v_end, _, n11, n12, n21, n22, status, _ = orbit_monodromy(
                 t_phi, t_v, eps, period, model, phi_k, v_k, tau_k, jac)
             if status == CONVERGED:
                 h1, h2 = time - target_t, v_end - t_v - target_v
-                if abs(h1) + abs(h2) < size or scale * max(abs(d_phi), abs(d_v)) < near:
+                if end_game or abs(h1) + abs(h2) < size:
+                    accepted = True
                     break
             scale *= 0.5
         if status != CONVERGED:
             return phi, v, g1, g2, math.inf, it, status
-        step = scale * max(abs(d_phi), abs(d_v))
-        phi, v, g1, g2 = t_phi, t_v, h1, h2
+        if not accepted:
+            return phi, v, g1, g2, math.inf, it, -1
+        step = max(abs(d_phi), abs(d_v))  # the full Newton step measures convergence
+        phi, v, g1, g2 = reduce_phase(t_phi), t_v, h1, h2  # G does not depend on phi's lift
         m11, m12, m21, m22 = n11, n12, n21, n22
-        if _converged(step, last, max(1.0, abs(phi), abs(v))):
+        if scale == 1.0 and _converged(step, last, max(2.0 * PI, abs(v))):
             return phi, v, g1, g2, step, it, CONVERGED
-        last = step
+        last = step if scale == 1.0 else math.inf
     return phi, v, g1, g2, last, max_iterations, -1
 
 
@@ -232,24 +239,28 @@ def symmetric_newton(v0, eps, phase0, period, winding, model, max_iterations):
         if dg == 0.0 or not math.isfinite(dg):
             return v, g, math.inf, it, -1
         delta = -g / dg
-        near = _NEAR * max(1.0, abs(v))
+        end_game = abs(delta) < _NEAR * max(1.0, abs(v))
         scale = 1.0
         trial, h, dh = v, g, dg
+        accepted = False
         for _ in range(40):
             trial = v + scale * delta
             time, vn, dt, dvn, status = half_orbit(trial, eps, phase0, n, model)
             if status == CONVERGED:
                 h, dh = (time + vn - target, dt + dvn) if odd else (time - target, dt)
-                if abs(h) < abs(g) or scale * abs(delta) < near:
+                if end_game or abs(h) < abs(g):
+                    accepted = True
                     break
             scale *= 0.5
         if status != CONVERGED:
             return v, g, math.inf, it, status
-        step = scale * abs(delta)
+        if not accepted:
+            return v, g, math.inf, it, -1
+        step = abs(delta)  # the full Newton step measures convergence
         v, g, dg = trial, h, dh
-        if _converged(step, last, max(1.0, abs(v))):
+        if scale == 1.0 and _converged(step, last, max(1.0, abs(v))):
             return v, g, step, it, CONVERGED
-        last = step
+        last = step if scale == 1.0 else math.inf
     return v, g, last, max_iterations, -1
 
 
@@ -308,14 +319,14 @@ def separation_exponent(phi0, v0, eps, model, n, d0):
     of ``tangent_orbit``. Returns (exponent per collision, collisions done, status).
     """
     phi_a = reduce_phase(phi0)
+    sa, ca = math.sin(phi_a), math.cos(phi_a)  # carried as in tangent_orbit: the same orbit
     va = v0
     phi_b = reduce_phase(phi_a + d0 * math.sqrt(0.5))
     vb = v0 + d0 * math.sqrt(0.5)
     total = 0.0
     for k in range(n):
-        sa, ca = math.sin(phi_a), math.cos(phi_a)
         sb, cb = math.sin(phi_b), math.cos(phi_b)
-        phi_a, _, _, va1, _, _, _, _, _, status = step_tangent(phi_a, sa, ca, va, eps, model)
+        phi_a, sa, ca, va1, _, _, _, _, _, status = step_tangent(phi_a, sa, ca, va, eps, model)
         if status != CONVERGED:
             return total / max(k, 1), k, status
         phi_b, _, _, vb1, _, _, _, _, _, status = step_tangent(phi_b, sb, cb, vb, eps, model)
@@ -366,3 +377,24 @@ def first_passage(phi0, v0, eps, model, v_top, n, passage, status):
             if v >= v_top:
                 passage[i] = k
                 break
+
+
+@parallel_jit
+def block_search(phi0, v0, eps, period, model, max_iterations, out):
+    """Newton's method on F^p - id - (2*pi*m, pi*l) from each start, with m and l the nearest
+    integers to the start's own p collisions. Rows of ``out``: phi, v, m, l, residual, status
+    (status CONVERGED, a failed flight's, or -1)."""
+    for i in prange(len(phi0)):
+        phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
+        jac = np.empty((period, 4))
+        time, v_end, _, _, _, _, _, status, _ = orbit_monodromy(
+            phi0[i], v0[i], eps, period, model, phi_k, v_k, tau_k, jac)
+        out[i, 0], out[i, 1], out[i, 5] = phi0[i], v0[i], status
+        if status != CONVERGED:
+            continue
+        winding = round(time / (2.0 * PI))
+        shift = round((v_end - v0[i]) / PI)
+        phi, v, g1, g2, _, _, status = newton_block(phi0[i], v0[i], eps, period, winding, shift,
+                                                    model, max_iterations)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = phi, v, winding, shift
+        out[i, 4], out[i, 5] = max(abs(g1), abs(g2)), status

@@ -47,9 +47,10 @@ class PeriodicOrbit:
 
     ``phi``, ``v``, ``tau``: the p states (phases in [0, 2*pi)) and the flight times from them;
     ``monodromy``: DF^p at the first state; ``trace``, ``determinant``, ``residue``
-    (= (2 - trace)/4); ``residue_error``: a first-order rounding bound of the residue for the
-    float orbit as given, 32*u*S/4 with S of ``kernels.product_rounding_scale`` (an estimate, not
-    a proof: the orbit's own position error is not included);
+    (= (2 - trace)/4); ``residue_error``: a first-order rounding estimate of the residue: the
+    product's rounding, 32*u*S/4 with S of ``kernels.product_rounding_scale``, plus the change
+    of the residue when the start moves by its own error (G's rounding through (M - I)^-1):
+    an estimate, not a proof;
     ``stability``: "elliptic", "hyperbolic" or "undecided" (within residue_error of 0 or 1);
     ``residual``: |G| at the returned state; ``iterations``: Newton steps taken.
     """
@@ -111,10 +112,39 @@ def build_orbit(phi, v, eps, period, winding, shift, model, iterations=0):
     trace, det = m11 + m22, m11 * m22 - m12 * m21
     residue = (2.0 - trace) / 4.0
     error = TRACE_ROUNDING * UNIT_ROUNDOFF * product_rounding_scale(jac) / 4.0
+    error += _position_error(phi, v, eps, period, code, monodromy, time, v_k, residue)
     decided = residue if shift == 0 else stability_residue(trace, det)
     residual = max(abs(time - 2.0 * math.pi * winding), abs(v_end - v - math.pi * shift))
     return PeriodicOrbit(phi_k, v_k, tau_k, eps, period, winding, shift, model, monodromy, trace,
                          det, residue, error, classify(decided, error), residual, iterations)
+
+
+def _residue_at(phi, v, eps, period, code):
+    phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
+    jac = np.empty((period, 4))
+    *_, m11, m12, m21, m22, status, _ = orbit_monodromy(phi, v, eps, period, code, phi_k, v_k,
+                                                       tau_k, jac)
+    return (2.0 - m11 - m22) / 4.0 if status == CONVERGED else math.nan
+
+
+def _position_error(phi, v, eps, period, code, monodromy, time, speeds, residue):
+    """Effect on the residue of the float orbit's own position error. Newton stops where G is
+    at its rounding, |dG| <= g ~ u times the summed times and speeds, so the start is off by
+    dx = (M - I)^-1 dG; the residue is recomputed at the four starts x + (M - I)^-1 (+-g, +-g)
+    (no linearisation: along a long orbit R is far from linear) and the largest change kept."""
+    a = monodromy - np.eye(2)
+    det = a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0]
+    if det == 0.0:
+        return math.inf
+    inverse = np.array([[a[1, 1], -a[0, 1]], [-a[1, 0], a[0, 0]]]) / det
+    g_error = TRACE_ROUNDING * UNIT_ROUNDOFF * (time + np.sum(np.abs(speeds)) + abs(v))
+    worst = 0.0
+    for signs in ((1.0, 1.0), (1.0, -1.0)):
+        dx = inverse @ (g_error * np.array(signs))
+        for sign in (1.0, -1.0):
+            moved = _residue_at(phi + sign * dx[0], v + sign * dx[1], eps, period, code)
+            worst = max(worst, abs(moved - residue))
+    return worst if math.isfinite(worst) else math.inf
 
 
 def periodic_orbit(phi, v, eps, period, *, winding=None, velocity_shift=0, model="exact",
