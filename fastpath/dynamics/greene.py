@@ -26,8 +26,8 @@ import numpy as np
 
 from fastpath.dynamics._checks import integer, model_code, real
 from fastpath.dynamics._internals import CONVERGED
-from fastpath.dynamics.kernels import symmetric_newton
-from fastpath.dynamics.periodic_orbit import OrbitNotFound, build_orbit
+from fastpath.dynamics.kernels import UNIT_ROUNDOFF, half_orbit, symmetric_newton
+from fastpath.dynamics.periodic_orbit import TRACE_ROUNDING, OrbitNotFound, build_orbit
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
 TARGET = 0.25
@@ -109,7 +109,19 @@ def symmetric_orbit(v, eps, period, winding, *, phase=0.0, model="exact"):
     if status != CONVERGED:
         raise OrbitNotFound(f"no symmetric orbit of period {period}, winding {winding} found from "
                             f"v={v!r} at eps={eps!r} (status {status}, residual {g:.3g})")
-    return build_orbit(phase, v1, eps, period, winding, 0, model, its)
+    return build_orbit(phase, v1, eps, period, winding, 0, model, its,
+                       start_error=_start_error(v1, eps, phase, period, code))
+
+
+def _start_error(v, eps, phase, period, code):
+    """(0, dv): the start lies exactly on its symmetry line; v is off by the rounding of the
+    half-orbit condition g (~u times the half orbit's time and speeds) over |g'|."""
+    time, vn, dt, dvn, status = half_orbit(v, eps, phase, period // 2, code)
+    slope = dt + dvn if period % 2 == 1 else dt
+    if status != CONVERGED or slope == 0.0:
+        return (0.0, math.inf)
+    g_error = TRACE_ROUNDING * UNIT_ROUNDOFF * (time + abs(vn) + abs(v) * period)
+    return (0.0, g_error / abs(slope))
 
 
 @dataclass(frozen=True)
@@ -194,7 +206,8 @@ def residue_crossing(approximant, *, phase=0.0, model="exact", target=TARGET, ep
     eps = 0.5 * (lo + hi)
     h = _SLOPE_STEP * max(eps, 1.0)
     below, above = solve(eps - h, v_lo), solve(eps + h, v_lo)
-    orbit = build_orbit(phase, v_lo, lo, q, m, 0, model)
+    orbit = build_orbit(phase, v_lo, lo, q, m, 0, model,
+                        start_error=_start_error(v_lo, lo, phase, q, code))
     if below is None or above is None:
         raise OrbitNotFound(f"lost the symmetric orbit {approximant} near eps={eps!r}")
     slope = (above[1] - below[1]) / (2.0 * h)

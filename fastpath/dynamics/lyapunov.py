@@ -66,8 +66,9 @@ def lyapunov(phi, v, eps, n, *, model="exact", checkpoints=64):
 
     phi, v: a start, or 1-D arrays of starts (run in parallel); eps: the amplitude; n >= 1.
     model: "exact" or "holmes" (standard-map form). checkpoints: about how many running values to
-    keep. Returns a :class:`Lyapunov`. Raises ValueError for bad input or a start that does not
-    depart; for one start, ``fastpath.UncertainCollision`` at a flight float64 cannot decide
+    keep (log-spaced), or the ascending collision counts themselves (ending at n). Returns a
+    :class:`Lyapunov`. Raises ValueError for bad input or a start that does not depart; for one
+    start, ``fastpath.UncertainCollision`` at a flight float64 cannot decide
     (an ensemble reports it in ``status`` instead).
     """
     scalar = np.ndim(phi) == 0 and np.ndim(v) == 0
@@ -75,10 +76,16 @@ def lyapunov(phi, v, eps, n, *, model="exact", checkpoints=64):
     eps = real("eps", eps)
     n = integer("n", n, minimum=1)
     code = model_code(model)
-    count = integer("checkpoints", checkpoints, minimum=1)
     for p, w in zip(phi_a, v_a, strict=True):
         departing(p, w, eps)
-    points = checkpoint_counts(n, count)
+    if np.ndim(checkpoints) == 0:
+        points = checkpoint_counts(n, integer("checkpoints", checkpoints, minimum=1))
+    else:
+        points = np.asarray(checkpoints, dtype=np.int64)
+        if (points.ndim != 1 or len(points) == 0 or points[0] < 1 or points[-1] != n
+                or np.any(np.diff(points) <= 0)):
+            raise ValueError("checkpoints must be a count, or ascending collision counts >= 1 "
+                             f"ending at n={n}")
     rows, k = len(phi_a), len(points)
     growth, times, vel = np.full((rows, k), np.nan), np.full((rows, k), np.nan), np.full(
         (rows, k), np.nan)

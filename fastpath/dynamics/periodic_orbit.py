@@ -98,9 +98,11 @@ def _raise_for_status(status, phi, v, eps, where):
                              f"eps={eps!r}; settle it with verify")
 
 
-def build_orbit(phi, v, eps, period, winding, shift, model, iterations=0):
+def build_orbit(phi, v, eps, period, winding, shift, model, iterations=0, start_error=None):
     """The PeriodicOrbit through (phi, v) as given (no Newton step): its states, monodromy,
-    residue and stability, and the residual |G|."""
+    residue and stability, and the residual |G|. ``start_error``: the displacements
+    (dphi, dv) of the start's own error where the caller knows them (a symmetric orbit found on
+    its symmetry line); by default they come from G's rounding through (M - I)^-1."""
     code = model_code(model)
     phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
     jac = np.empty((period, 4))
@@ -112,7 +114,10 @@ def build_orbit(phi, v, eps, period, winding, shift, model, iterations=0):
     trace, det = m11 + m22, m11 * m22 - m12 * m21
     residue = (2.0 - trace) / 4.0
     error = TRACE_ROUNDING * UNIT_ROUNDOFF * product_rounding_scale(jac) / 4.0
-    error += _position_error(phi, v, eps, period, code, monodromy, time, v_k, residue)
+    if start_error is None:
+        error += _position_error(phi, v, eps, period, code, monodromy, time, v_k, residue)
+    else:
+        error += _residue_change(phi, v, eps, period, code, residue, [start_error])
     decided = residue if shift == 0 else stability_residue(trace, det)
     residual = max(abs(time - 2.0 * math.pi * winding), abs(v_end - v - math.pi * shift))
     return PeriodicOrbit(phi_k, v_k, tau_k, eps, period, winding, shift, model, monodromy, trace,
@@ -138,9 +143,14 @@ def _position_error(phi, v, eps, period, code, monodromy, time, speeds, residue)
         return math.inf
     inverse = np.array([[a[1, 1], -a[0, 1]], [-a[1, 0], a[0, 0]]]) / det
     g_error = TRACE_ROUNDING * UNIT_ROUNDOFF * (time + np.sum(np.abs(speeds)) + abs(v))
+    moves = [inverse @ (g_error * np.array(signs)) for signs in ((1.0, 1.0), (1.0, -1.0))]
+    return _residue_change(phi, v, eps, period, code, residue, moves)
+
+
+def _residue_change(phi, v, eps, period, code, residue, moves):
+    """The largest |R(x +- dx) - R(x)| over the displacements dx (inf if one fails)."""
     worst = 0.0
-    for signs in ((1.0, 1.0), (1.0, -1.0)):
-        dx = inverse @ (g_error * np.array(signs))
+    for dx in moves:
         for sign in (1.0, -1.0):
             moved = _residue_at(phi + sign * dx[0], v + sign * dx[1], eps, period, code)
             worst = max(worst, abs(moved - residue))

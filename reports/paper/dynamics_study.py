@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import mpmath
 import numpy as np
+from mpmath.libmp import from_float, from_int, mpf_mul, mpf_sub
 from scipy.optimize import brentq
 
 import fastpath
@@ -123,6 +124,12 @@ def _certify(phi, v, eps, period, **kw):
 
 # --- fixed points ------------------------------------------------------------------------------
 
+def exact_fixed_point_trace(eps):
+    """2 - 4*eps exactly (mpf arithmetic at precision 0 is exact; no global precision used)."""
+    raw = mpf_sub(from_int(2), mpf_mul(from_int(4), from_float(float(eps)), 0), 0)
+    return mpmath.mp.make_mpf(raw)
+
+
 def fixed_points(sizes: Sizes) -> dict:
     """The fixed points (0, pi*m), certified: trace enclosure, stability, 2 - 4*eps inside."""
     start = time.perf_counter()
@@ -132,7 +139,7 @@ def fixed_points(sizes: Sizes) -> dict:
             orbit, seconds = _certify(0.0, math.pi * m, eps, 1)
             row = _certified(orbit, seconds)
             row.update(m=m, eps=eps, expected_trace=2 - 4 * eps,
-                       trace_contains=bool((2 - 4 * mpmath.mpf(eps)) in orbit.trace),
+                       trace_contains=bool(exact_fixed_point_trace(eps) in orbit.trace),
                        expected=("elliptic" if 0 < eps < 1 else "hyperbolic"))
             rows.append(row)
     return {"rows": rows, "seconds": time.perf_counter() - start, "orbits": len(rows)}
@@ -193,7 +200,9 @@ def period_two(sizes: Sizes) -> dict:
     and certified samples on both sides of their first loss of stability."""
     start = time.perf_counter()
     branches = []
-    grid = 1.0 + np.geomspace(1e-4, 0.8, sizes.two_points)
+    near = sizes.two_points // 3  # resolve the birth at eps = 1, then the branch evenly
+    grid = np.concatenate([1.0 + np.geomspace(1e-4, 0.04, near),
+                           np.linspace(1.05, 1.8, sizes.two_points - near)])
     for m, model in [(m, "exact") for m in sizes.two_m] + [(sizes.two_m[-1], "holmes")]:
         curve = [_two_residue(e, m, model) for e in grid]
         changes = _stability_changes(grid, curve, m, model)
@@ -364,9 +373,11 @@ def lyapunov_study(sizes: Sizes) -> dict:
     late = (n >= n[-1] / 100) & np.all(per_t > 0, axis=0)
     decades = np.log10(n[-1] / n[late][0]) if late.any() else 0.0
     fits = {}
+    with np.errstate(invalid="ignore", divide="ignore"):  # early lambda_t may be <= 0
+        log_t, log_per_t = np.log(times), np.log(per_t)
     for name, sel in (("late", late), ("last_decade", late & (n >= n[-1] / 10))):
         if sel.sum() >= 3:
-            fits[name] = _bootstrap_slope(np.log(times), np.log(per_t), sel, rng)
+            fits[name] = _bootstrap_slope(log_t, log_per_t, sel, rng)
     alpha, alpha_se = fits.get("late", (math.nan, math.nan))
     systematic = abs(fits["late"][0] - fits["last_decade"][0]) if len(fits) == 2 else math.nan
     # cross-check 1: the tangent map against verify.jacobian at states along one orbit

@@ -187,3 +187,22 @@ def test_period_one_accelerator_blocks_exist_exactly_from_half_pi():
     expected = math.sqrt((4 * 1.6) ** 2 - (2 * math.pi) ** 2) / 4  # |R| = K cos(theta*)/4
     assert np.allclose(residues, [-expected, expected], atol=1e-9)
     assert accelerator_search(1.55, 1, grid=16) == []
+
+
+def test_continuation_follows_one_branch_through_the_steep_rise_of_the_residue():
+    # omega = 0.7236 (prefix (1, 2)) reaches period 843 at 13 levels, where the residue rises
+    # by orders of magnitude within 1e-3 in eps and neighbouring orbits lie 1e-5 apart in v
+    c = critical_amplitude(0, (1, 2), levels=13)
+    eps = [x.eps for x in c.crossings]
+    assert c.crossings[-1].approximant.period == 843
+    assert abs(eps[-1] - eps[-2]) < 1e-5
+    assert all(x.slope > 0 for x in c.crossings)  # the residue rises through 1/4
+
+
+def test_no_accelerator_block_where_the_kicks_cannot_add_up():
+    # p kicks of at most 2*eps each must add up to pi*|l|: none for eps < pi/(2p)
+    assert accelerator_search(0.6, 2, grid=16) == []
+    assert accelerator_search(0.3, 4, grid=12) == []
+    for block in accelerator_search(1.6, 3, grid=12):
+        assert block.residual < 1e-9
+        assert block.velocity_shift != 0

@@ -50,9 +50,9 @@ def test_fixed_point_trace_is_two_minus_four_eps_and_stability_follows(eps, m):
     if abs(eps) < 1e-3:
         return  # eps = 0: not isolated (refused, tested below)
     orbit = verify.periodic_orbit(0.0, math.pi * m, eps, 1, dps=30)
-    with mpmath.workprec(200):
-        exact = 2 - 4 * mpmath.mpf(eps)  # exact: eps has 53 bits
-    assert exact in orbit.trace
+    exact = mpmath.mpf(eps).__rmul__(4)  # 4*eps is exact (a power of two times a double)
+    exact = mpmath.mp.make_mpf(mpmath.libmp.mpf_sub(mpmath.libmp.from_int(2), exact._mpf_, 0))
+    assert exact in orbit.trace  # precision 0: the exact difference 2 - 4*eps
     assert orbit.trace.width < 1e-20
     if abs(eps - 1) > 1e-15:
         assert orbit.stability == ("elliptic" if 0 < eps < 1 else "hyperbolic")
@@ -180,3 +180,53 @@ def test_global_precision_is_never_touched():
         t.join()
     assert not errors
     assert (mpmath.mp.prec, mpmath.iv.prec) == before
+
+
+MULTI_ROOT = (3.752457891787808, 2.35, 1.5)  # d has roots near 2.635, 3.260 and 4.095
+
+
+def _roots_of_gap(phi, v, eps):
+    from scipy.optimize import brentq
+
+    def d(t):
+        return eps * (math.cos(phi) - math.cos(phi + t)) + t * (v - t / 2)
+
+    return [brentq(d, a, b, xtol=1e-14) for a, b in ((2.5, 2.9), (3.1, 3.5), (3.9, 4.3))]
+
+
+def test_box_flight_certifies_the_first_root_and_refuses_the_others():
+    from verify.dynamics.box_flight import Undecided, box_flight
+    from verify.dynamics.numbers import contexts
+
+    ctx = contexts(30)
+    phi, v, eps = MULTI_ROOT
+    box = (ctx.iv.mpf(phi), ctx.iv.mpf(v))
+    first, second, third = _roots_of_gap(phi, v, eps)
+    bracket, links = box_flight(ctx, *box, eps, first - 1e-6, first + 1e-6)
+    assert links >= 1
+    for t_lo, t_hi in ((third - 1e-6, third + 1e-6),   # a later root: d < 0 before it
+                       (second - 1e-6, second + 1e-6),  # the gap reopening: d' > 0 there
+                       (2.0, 2.1)):                     # before the collision: d(t_hi) > 0
+        with pytest.raises(Undecided):
+            box_flight(ctx, *box, eps, t_lo, t_hi)
+
+
+def test_krawczyk_image_leaves_a_box_without_the_zero():
+    from verify.dynamics.numbers import contexts
+    from verify.dynamics.periodic_orbit import _inside, _krawczyk
+
+    ctx = contexts(30)
+    iv = ctx.iv
+    # G(x) = A (x - z), so J = A + I and, with C = A^-1, K(X) = {z} exactly
+    a = (2.0, 1.0, 0.5, 3.0)
+    det = a[0] * a[3] - a[1] * a[2]
+    c = tuple(iv.mpf(e) for e in (a[3] / det, -a[1] / det, -a[2] / det, a[0] / det))
+    jac = (iv.mpf(a[0] + 1), iv.mpf(a[1]), iv.mpf(a[2]), iv.mpf(a[3] + 1))
+    z = (0.25, -0.5)
+    for centre, inside in (((0.25 + 1e-3, -0.5), True), ((0.25 + 1e-1, -0.5), False)):
+        box = (iv.mpf([centre[0] - 1e-2, centre[0] + 1e-2]),
+               iv.mpf([centre[1] - 1e-2, centre[1] + 1e-2]))
+        g = (iv.mpf(a[0] * (centre[0] - z[0]) + a[1] * (centre[1] - z[1])),
+             iv.mpf(a[2] * (centre[0] - z[0]) + a[3] * (centre[1] - z[1])))
+        k = _krawczyk(iv, centre, box, c, g, jac)
+        assert all(_inside(ctx, k[i], box[i]) for i in range(2)) is inside
