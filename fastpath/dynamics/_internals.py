@@ -7,6 +7,7 @@ iteration on F^p or a tangent-map loop over 10^6 collisions needs the scalar ker
 from fastpath._jit import jit, parallel_jit
 from fastpath.collision import collide_from
 from fastpath.flight import CONVERGED, GENERAL, NOT_DEPARTING, UNCERTAIN
+from fastpath.gap import UNIT_ROUNDOFF
 from fastpath.phase import reduce_phase
 from fastpath.status import FlightStatus, UncertainCollision
 
@@ -16,6 +17,7 @@ __all__ = [
     "GENERAL",
     "NOT_DEPARTING",
     "UNCERTAIN",
+    "UNIT_ROUNDOFF",
     "UncertainCollision",
     "collide_from",
     "jit",

@@ -34,6 +34,7 @@ from fastpath.dynamics._internals import (
     CONVERGED,
     GENERAL,
     NOT_DEPARTING,
+    UNIT_ROUNDOFF,
     collide_from,
     jit,
     parallel_jit,
@@ -43,7 +44,6 @@ from fastpath.dynamics._internals import (
 EXACT, HOLMES = 0, 1
 MODELS = {"exact": EXACT, "holmes": HOLMES}
 PI = math.pi
-UNIT_ROUNDOFF = 2.0**-53
 _NEAR = math.sqrt(UNIT_ROUNDOFF)  # relative step below which Newton is in its quadratic end game
 
 

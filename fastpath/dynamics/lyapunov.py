@@ -10,7 +10,6 @@ t_n the time of the n-th collision. Running values are stored at ``checkpoints``
 the Jacobian (Benettin's renormalised separation), an independent check of the tangent map.
 """
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -129,11 +128,3 @@ def separation(phi, v, eps, n, *, model="exact", distance=1e-9):
         _raise(status, done, phi, v, eps)
     return float(exponent)
 
-
-def mean_and_error(values):
-    """Mean and standard error of the finite values (NaN for fewer than two)."""
-    values = np.asarray(values, dtype=float)
-    values = values[np.isfinite(values)]
-    if len(values) < 2:
-        return math.nan, math.nan
-    return float(values.mean()), float(values.std(ddof=1) / math.sqrt(len(values)))

@@ -21,7 +21,7 @@ import numpy as np
 import verify
 from fastpath import dynamics as fd
 from reports.paper import dynamics_figures as figures
-from reports.paper.dynamics_study import FULL, K_C_QUARTER, QUICK, SEED, run
+from reports.paper.dynamics_study import FULL, K_C_QUARTER, PAPER_BOX, QUICK, period_two_start, run
 
 STUDY = Path(__file__).resolve().parents[2] / "docs" / "report" / "dynamics" / "study.json"
 RUN = "docs/report/dynamics/study.json"
@@ -90,7 +90,6 @@ def recheck(study, quick):
     out["fixed_points"] = (ok, f"fixed point m={row['m']}, eps={row['eps']} re-certified")
     branch = study["period_two"]["branches"][0]
     cert = branch["certified"][0]
-    from reports.paper.dynamics_study import period_two_start
     s = period_two_start(cert["eps"])
     orbit = verify.periodic_orbit(s, math.pi * branch["m"] - s, cert["eps"], 2)
     ok = _overlaps(orbit.residue, cert["residue"]) and orbit.stability == cert["stability"]
@@ -104,7 +103,6 @@ def recheck(study, quick):
                            f"recomputed, largest difference {max(diffs):.1e}")
     lyap = study["lyapunov"]
     rng = np.random.default_rng(lyap["seed"])
-    from reports.paper.dynamics_study import PAPER_BOX
     (p0, p1), (v0, v1) = PAPER_BOX
     early = np.array(lyap["first_orbits_early"])
     phi, v = rng.uniform(p0, p1, lyap["orbits"] + lyap["stopped"]), None
@@ -537,4 +535,4 @@ def dynamics_section(out_dir, quick=False, echo=print):
     return markdown(study, claims, checks, images, source), claims
 
 
-__all__ = ["dynamics_section", "SEED"]
+__all__ = ["dynamics_section"]

@@ -61,7 +61,8 @@ class CertifiedOrbit:
     (a phase within its width of 0 keeps an enclosure around 0); ``trace``, ``determinant``:
     enclosures for DF^p over ``box``; ``residue``: (2 - trace)/4; ``stability``: "elliptic",
     "hyperbolic" or "undecided" (see the module docstring); ``dps_used``: working digits;
-    ``radius``: the half-width r of the Krawczyk box; ``flights``: flights certified.
+    ``radius``: the half-width r of the Krawczyk box; ``flights``: box flights certified
+    (every collision of every enclosure computed, attempts included).
     """
 
     box: tuple
@@ -156,6 +157,15 @@ class _Problem:
     def __init__(self, eps, period, winding, shift, guess, tolerance):
         self.eps, self.period, self.winding, self.shift = eps, period, winding, shift
         self.guess, self.tolerance = guess, tolerance
+        self.flights = 0  # box flights certified (every enclosure of every attempt)
+
+    def _enclose_point(self, ctx, x, flights):
+        self.flights += self.period
+        return enclose_point(ctx, x[0], x[1], self.eps, flights)
+
+    def _enclose(self, ctx, box, x, flights, points):
+        self.flights += self.period
+        return enclose(ctx, box, x, self.eps, flights, points)
 
     def _orbit(self, ctx, x):
         try:
@@ -247,7 +257,7 @@ class _Problem:
         try:
             flights = self._orbit(ctx, x)
             c = self._inverse_g_prime(ctx, flights)
-            points = enclose_point(ctx, x[0], x[1], self.eps, flights)
+            points = self._enclose_point(ctx, x, flights)
         except (Undecided, NotCertified):
             return None
         g = (points[-1][0] - iv.mpf(x[0]) - 2 * iv.pi * self.winding,
@@ -266,7 +276,7 @@ class _Problem:
                 continue
             box = (iv.mpf([x[0] - r, x[0] + r]), iv.mpf([x[1] - r, x[1] + r]))
             try:
-                image = enclose(ctx, box, x, self.eps, flights, points)
+                image = self._enclose(ctx, box, x, flights, points)
             except Undecided:
                 continue
             kraw = _krawczyk(iv, x, box, c_iv, g, image.jacobian)
@@ -280,8 +290,8 @@ class _Problem:
         centre = (mp.make_mpf(box[0].mid._mpi_[0]), mp.make_mpf(box[1].mid._mpi_[0]))
         try:
             flights = self._orbit(ctx, centre)
-            points = enclose_point(ctx, centre[0], centre[1], self.eps, flights)
-            image = enclose(ctx, box, centre, self.eps, flights, points)
+            points = self._enclose_point(ctx, centre, flights)
+            image = self._enclose(ctx, box, centre, flights, points)
         except (Undecided, NotCertified) as err:
             raise NotCertified(f"the proved box could not be propagated again: {err}") from None
         j = image.jacobian
@@ -309,7 +319,7 @@ class _Problem:
             velocity_shift=self.shift,
             dps_used=ctx.dps,
             radius=float(r),
-            flights=4 * self.period,
+            flights=self.flights,
         )
 
 
