@@ -2,7 +2,8 @@
 
 Public API (DESIGN section 4): ``flight_time``, ``step``, ``holmes_step``, ``orbit``, plus
 ``flight`` (times with iteration counts and status codes) and ``carried_step`` (one step of a
-chattering orbit from its carried state, as the kernels made it). Kernels live in the submodules.
+chattering orbit from its carried state, as the kernels made it), and the dynamics
+``periodic_orbit`` and ``lyapunov`` (``fastpath.dynamics``). Kernels live in the submodules.
 """
 
 from fastpath.api import (
@@ -15,6 +16,7 @@ from fastpath.api import (
     orbit,
     step,
 )
+from fastpath.dynamics import lyapunov, periodic_orbit
 from fastpath.status import FlightStatus, UncertainCollision
 
 __all__ = [
@@ -26,6 +28,8 @@ __all__ = [
     "flight",
     "flight_time",
     "holmes_step",
+    "lyapunov",
     "orbit",
+    "periodic_orbit",
     "step",
 ]

@@ -10,6 +10,7 @@ the reference is worth something only if it shares no code with the integrator i
 
 from .check import CheckReport, Failure, assert_integrator, check_integrator, load_callable
 from .collision import step
+from .dynamics import NotCertified, periodic_orbit
 from .elastic.conditioning import condition_number
 from .elastic.gap import gap
 from .elastic.grazing import GrazingContact, grazing_contact, grazing_departure
@@ -20,6 +21,7 @@ from .orbit import Orbit, orbit
 
 __all__ = [
     "ChatteringDetected",
+    "NotCertified",
     "FlightCertificate",
     "GrazingContact",
     "Orbit",
@@ -32,6 +34,7 @@ __all__ = [
     "grazing_departure",
     "jacobian",
     "orbit",
+    "periodic_orbit",
     "step",
     "CheckReport",
     "Failure",

@@ -15,15 +15,17 @@
     bouncer bench [--collisions N] [--repeats R] [--particles N]
     bouncer report [--particles N] [--out DIR] [--quick] [--compare MODULE:FUNCTION]
                    [--include-run RUN_DIR]
+    bouncer orbits PHI V --eps E [--period P] [--winding M] [--shift L] [--model M]
+                   [--certify] [--dps D] [--json]
 """
 
 import argparse
 import sys
 
-from reports.cli import bench, check, demo, fit, plot, report, run, scenes, sweep, verify
+from reports.cli import bench, check, demo, fit, orbits, plot, report, run, scenes, sweep, verify
 from reports.runs.rundir import RunFailed, RunInterrupted, os_error_text
 
-SUBCOMMANDS = (demo, scenes, run, sweep, plot, fit, verify, report, check, bench)
+SUBCOMMANDS = (demo, scenes, run, sweep, plot, fit, verify, report, check, bench, orbits)
 
 
 def build_parser():

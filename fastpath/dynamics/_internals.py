@@ -1,0 +1,26 @@
+"""The fastpath internals the dynamics kernels call inside their compiled loops, in one place.
+
+The public ``fastpath.step`` validates its input and runs one flight per Python call; a Newton
+iteration on F^p or a tangent-map loop over 10^6 collisions needs the scalar kernel itself.
+"""
+
+from fastpath._jit import jit, parallel_jit
+from fastpath.collision import collide_from
+from fastpath.flight import CONVERGED, GENERAL, NOT_DEPARTING, UNCERTAIN
+from fastpath.gap import UNIT_ROUNDOFF
+from fastpath.phase import reduce_phase
+from fastpath.status import FlightStatus, UncertainCollision
+
+__all__ = [
+    "CONVERGED",
+    "FlightStatus",
+    "GENERAL",
+    "NOT_DEPARTING",
+    "UNCERTAIN",
+    "UNIT_ROUNDOFF",
+    "UncertainCollision",
+    "collide_from",
+    "jit",
+    "parallel_jit",
+    "reduce_phase",
+]
