@@ -5,6 +5,7 @@ import shlex
 
 from reports.cli.threads import threads_option
 from reports.runs.driver import run
+from reports.runs.manifest import load_provenance
 from reports.runs.scenes import load_scene
 
 
@@ -16,16 +17,19 @@ def _run(args):
     manifest = run(scene, out, particles=args.particles, seed=args.seed, resume=args.resume,
                    force=args.force, progress=not args.quiet, threads=threads,
                    scheduler=args.scheduler)
+    record = load_provenance(out)
     ver = manifest["verification"]
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    compiled = "" if record["compile_s"] is None else \
+        f", kernels compiled in {record['compile_s']:.1f} s"
     print(f"{manifest['status']}: {out}  {manifest['particles_total']} particles, "
-          f"{manifest['collisions']} collisions in {manifest['wall_time_s']:.1f} s "
-          f"({manifest['collisions_per_s'] or 0:.3g}/s), peak memory {peak:.0f} MiB")
+          f"{manifest['collisions']} collisions in {record['compute_s'] or 0:.1f} s "
+          f"({record['collisions_per_s'] or 0:.3g}/s{compiled}), peak memory {peak:.0f} MiB")
     print(f"verification: {ver['sampled']} sampled collisions, worst error "
           f"{ver['worst_error']:.3g} kappa*u, {ver['overstepped']} overstepped, "
           f"{ver['uncertain_settled']} uncertain settled by verify")
-    session = manifest.get("session") or {}
-    if session.get("scheduler"):
+    session = record["session"]
+    if session["scheduler"]:
         print(f"cluster: {session['scheduler']}, {session['workers']} workers, "
               f"{session['chunks_computed']} chunks computed there")
     return 0
