@@ -4,6 +4,7 @@ import resource
 import shlex
 
 from reports.cli.threads import threads_option
+from reports.runs import rundir
 from reports.runs.driver import run
 from reports.runs.manifest import load_provenance
 from reports.runs.scenes import load_scene
@@ -13,7 +14,7 @@ def _run(args):
     args.resume_command = _resume_command(args)
     scene = load_scene(args.scene)
     threads = threads_option(args)
-    out = args.out or f"runs/{scene.name}"
+    out = args.out or rundir.default_out("runs", scene.name)
     manifest = run(scene, out, particles=args.particles, seed=args.seed, resume=args.resume,
                    force=args.force, progress=not args.quiet, threads=threads,
                    scheduler=args.scheduler)
@@ -63,11 +64,13 @@ def _resume_command(args):
 def add_parser(subparsers):
     run = subparsers.add_parser(
         "run", help="a trusted ensemble run of a scene (built-in name or TOML)")
-    run.add_argument("scene", metavar="SCENE_OR_FILE")
+    run.add_argument("scene", metavar="SCENE_OR_FILE",
+                     help="a built-in scene (bouncer scenes lists them) or a scene TOML file")
     run.add_argument("--particles", type=count,
                      help="starts per curve, e.g. 1000000 or 1e6 (default: the scene's)")
     run.add_argument("--seed", type=int, help="seed (default: the scene's)")
-    run.add_argument("--out", help="run directory (default: runs/SCENE_NAME)")
+    run.add_argument("--out", help="run directory (default: runs/SCENE_NAME, which must stay"
+                     " inside runs/)")
     run.add_argument("--threads", type=int, help="numba threads (results do not depend on it)")
     run.add_argument("--resume", action="store_true", help="continue a killed run in --out")
     run.add_argument("--force", action="store_true", help="overwrite an existing run directory")

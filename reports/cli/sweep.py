@@ -1,6 +1,7 @@
 """``bouncer sweep``: an escape-rate map over eps, hole centre and/or width."""
 
 from reports.cli.threads import threads_option
+from reports.runs import rundir
 from reports.runs.scenes import load_scene
 from reports.runs.sweep import grid_values, sweep
 
@@ -10,7 +11,7 @@ def _sweep(args):
     threads = threads_option(args)
     grid = {name: grid_values(*getattr(args, name), name)
             for name in ("eps", "centre", "width") if getattr(args, name) is not None}
-    out = args.out or f"sweeps/{scene.name}"
+    out = args.out or rundir.default_out("sweeps", scene.name)
     manifest = sweep(scene, out, grid=grid, n_star=args.n_star, particles=args.particles,
                      seed=args.seed, verify_samples=args.verify_samples,
                      scheduler=args.scheduler, threads=threads, force=args.force,

@@ -14,6 +14,6 @@ def _verify(args):
 def add_parser(subparsers):
     recheck = subparsers.add_parser(
         "verify", help="audit a run and recompute its verification sample")
-    recheck.add_argument("run_dir", metavar="RUN_DIR")
+    recheck.add_argument("run_dir", metavar="RUN_DIR", help="the run directory to audit")
     recheck.add_argument("--quiet", action="store_true", help="no progress bar")
     recheck.set_defaults(func=_verify)

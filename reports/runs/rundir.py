@@ -232,3 +232,15 @@ def remove_new_folders(out, new):
         except OSError:
             return  # not empty (or not ours to remove): keep it and its parents
 
+
+def default_out(root, name):
+    """``root/name``, the default directory of a run (or sweep) of the scene ``name``; a
+    ValueError unless it resolves (symbolic links followed) to a folder inside ``root``."""
+    out = Path(root) / name
+    inside = Path(root).resolve()
+    where = out.resolve()
+    if where == inside or not where.is_relative_to(inside):
+        raise ValueError(f"the default run directory {out} of scene {name!r} resolves to {where},"
+                         f" outside {inside}; give --out DIR")
+    return out
+

@@ -1,6 +1,7 @@
 """Scenes: small TOML files describing an ensemble run, validated into a frozen dataclass.
 
-A scene gives the model parameter ``eps``, the initial measure (uniform on a box in phi and v),
+A scene gives its ``name`` (a plain file name: it names the run directory), the model
+parameter ``eps``, the initial measure (uniform on a box in phi and v),
 the holes (arcs of collision phase mod 2*pi, each ``[c - w/2, c + w/2)`` for centre c and width w),
 the horizon (a collision count and/or a time), the particle count per curve, the seed and what
 to record. Four kinds:
@@ -29,6 +30,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import re
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
@@ -207,7 +209,7 @@ def _validate(data, text):
             if not isinstance(data[table], dict):
                 raise ValueError(f"[{table}] must be a table")
             _keys(data[table], allowed, f"[{table}]")
-    name = _string(data, "name")
+    name = _file_name(_string(data, "name"))
     kind = _string(data, "kind")
     if kind not in KINDS:
         raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
@@ -329,6 +331,18 @@ def _string(data, key):
     if not isinstance(value, str) or not value:
         raise ValueError(f"{key} must be a non-empty string, got {value!r}")
     return value
+
+
+NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9._+=-]{0,99}")
+
+
+def _file_name(name):
+    """The scene's name names its run directory (runs/NAME): a plain file name, so that a
+    scene file from anyone cannot make a run write outside the output folder."""
+    if not NAME_PATTERN.fullmatch(name):
+        raise ValueError(f"name must be a plain file name (letters, digits and . _ + = -, not"
+                         f" starting with . or -, at most 100 characters), got {name!r}")
+    return name
 
 
 def _real(value, name):
