@@ -38,8 +38,11 @@ def build_parser():
     import argparse
     import importlib
 
-    parser = argparse.ArgumentParser(
-        prog="bouncer", description="Validated numerics for the bouncer model.")
+    class Parser(argparse.ArgumentParser):
+        def error(self, message):  # one line (argparse prints the usage first), exit 2
+            self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+    parser = Parser(prog="bouncer", description="Validated numerics for the bouncer model.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {version()}",
                         help="print the version of bouncer-verify and exit")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")

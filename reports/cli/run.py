@@ -1,5 +1,7 @@
 """``bouncer run SCENE_OR_FILE``: a trusted ensemble run of a scene."""
 
+import argparse
+import math
 import resource
 import shlex
 
@@ -37,7 +39,8 @@ def _run(args):
 
 
 def count(text):
-    """An integer given as 1000000 or 1e6 (an exact integer); ValueError otherwise."""
+    """An integer given as 1000000 or 1e6 (an exact integer); ``argparse.ArgumentTypeError``
+    (argparse's one-line error naming the option) otherwise."""
     try:
         return int(text)
     except ValueError:
@@ -45,9 +48,9 @@ def count(text):
     try:
         value = float(text)
     except ValueError:
-        raise ValueError(f"--particles must be an integer, got {text!r}") from None
+        value = math.nan
     if not value.is_integer():
-        raise ValueError(f"--particles must be an integer, got {text!r}")
+        raise argparse.ArgumentTypeError(f"need an integer such as 1000000 or 1e6, got {text!r}")
     return int(value)
 
 

@@ -179,8 +179,11 @@ def _run_locked(plan, out, resume, force, progress, execute, ctx):
     ckpt = out / CHECKPOINT
     if resuming:
         old = manifest.load_manifest(out / rundir.MANIFEST)
-        stored = parse_scene((out / "scene.toml").read_text(encoding="utf-8"),
-                             str(out / "scene.toml"))
+        try:
+            text = (out / "scene.toml").read_bytes().decode("utf-8")
+        except UnicodeDecodeError:
+            raise ValueError(f"{out / 'scene.toml'}: not UTF-8 text") from None
+        stored = parse_scene(text, str(out / "scene.toml"))
         if stored != scene or old["particles"] != plan.particles or old["seed"] != plan.seed:
             raise ValueError(f"--resume: {out} holds a run of scene {old['scene']['name']!r} with "
                              f"{old['particles']} particles and seed {old['seed']}; give the"

@@ -150,12 +150,13 @@ def _entries(out):
     return [p for p in out.iterdir() if p.name not in LOCK_FILES]
 
 
-def check_out(out, resume, force):
+def check_out(out, resume, force, resumable=True):
     """Check the run directory without touching it: returns True when resuming a run.
 
     A directory that exists and is not empty is used only with ``resume`` (it must hold a run)
     or replaced with ``force`` (only if it holds a run: never deletes other folders).
-    Raises ValueError otherwise, and for a path that is a file.
+    Raises ValueError otherwise, and for a path that is a file. ``resumable``: False for a
+    sweep, which has no --resume.
     """
     out = Path(out)
     if out.exists() and not out.is_dir():
@@ -167,6 +168,8 @@ def check_out(out, resume, force):
             raise ValueError(f"--resume: {out} holds no run (no {MANIFEST})")
         return True
     if exists and not force:
+        if not resumable:
+            raise ValueError(f"sweep directory {out} exists; use --force to overwrite it")
         raise ValueError(f"run directory {out} exists; use --resume to continue it or"
                          " --force to overwrite it")
     if exists and not is_run:
@@ -174,10 +177,10 @@ def check_out(out, resume, force):
     return False
 
 
-def prepare(out, resume, force):
+def prepare(out, resume, force, resumable=True):
     """``check_out``, then create the directory, or empty it (but for its lock) with ``force``."""
     out = Path(out)
-    resuming = check_out(out, resume, force)
+    resuming = check_out(out, resume, force, resumable)
     if not resuming and out.is_dir():
         for path in _entries(out):
             if path.is_dir() and not path.is_symlink():
@@ -202,12 +205,12 @@ RUN_FILES = (MANIFEST, PROVENANCE, "scene.toml", CHECKPOINT, "sample.csv", "surv
              "counts.csv", "portrait.npy", "velocity.csv")
 
 
-def remove_run_files(out):
-    """Remove the files a run writes in ``out`` (and their temporaries), nothing else: for a
-    run that stopped before its first chunk was saved. Returns the names it could not remove
-    (a folder made read-only)."""
+def remove_run_files(out, names=RUN_FILES):
+    """Remove the files a run writes in ``out`` (``names``, and their temporaries), nothing
+    else: for a run that stopped before its first chunk was saved. Returns the names it could
+    not remove (a folder made read-only)."""
     left = []
-    for name in RUN_FILES:
+    for name in names:
         for path in (Path(out) / name, temporary(Path(out) / name)):
             try:
                 path.unlink(missing_ok=True)
