@@ -45,7 +45,8 @@ def build_parser():
     parser = Parser(prog="bouncer", description="Validated numerics for the bouncer model.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {version()}",
                         help="print the version of bouncer-verify and exit")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND",
+                                help="what to do (bouncer COMMAND --help: its options)")
     for name in SUBCOMMANDS:
         importlib.import_module(f"reports.cli.{name}").add_parser(sub)
     return parser

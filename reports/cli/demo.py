@@ -2,7 +2,7 @@
 
 For each sampled collision k, verify recomputes the flight from the same float64 state
 (phi_k, v_k) at high precision with a certificate that no earlier root exists; the error of the
-fast tau is reported in units of condition number x unit roundoff (DESIGN fact 4).
+fast tau is reported in units of condition number x unit roundoff.
 """
 
 import math

@@ -71,7 +71,7 @@ def add_parser(subparsers):
                      help="a built-in scene (bouncer scenes lists them) or a scene TOML file")
     run.add_argument("--particles", type=count,
                      help="starts per curve, e.g. 1000000 or 1e6 (default: the scene's)")
-    run.add_argument("--seed", type=int, help="seed (default: the scene's)")
+    run.add_argument("--seed", type=int, help="random seed (default: the scene's)")
     run.add_argument("--out", help="run directory (default: runs/SCENE_NAME, which must stay"
                      " inside runs/)")
     run.add_argument("--threads", type=int, help="numba threads (results do not depend on it)")

@@ -38,7 +38,7 @@ def add_parser(subparsers):
     sweep.add_argument("--n-star", type=int, default=50,
                        help="rate = -ln P(n*)/n* (default 50 collisions)")
     sweep.add_argument("--particles", type=int, default=2000, help="starts per grid point")
-    sweep.add_argument("--seed", type=int, help="seed (default: the scene's)")
+    sweep.add_argument("--seed", type=int, help="random seed (default: the scene's)")
     sweep.add_argument("--verify-samples", type=int, default=500,
                        help="collisions verified over the whole sweep (default 500)")
     sweep.add_argument("--out", help="sweep directory (default: sweeps/SCENE_NAME)")

@@ -7,7 +7,7 @@ the horizon (a collision count and/or a time), the particle count per curve, the
 to record. Four kinds:
 
 ``escape``       one curve per (width, centre): a single hole open, starts in ``[start]`` (phi, v),
-                 which must not overlap the hole (the seed's Section 3).
+                 which must not overlap the hole (the paper's Section 3).
 ``transport``    for each width, all holes open at once; curve P_ij starts uniform on hole i in
                  phase (``[start]`` gives only v) and leaves through hole j (Section 4).
 ``phase-space``  no holes: a (phi, v) histogram of ``horizon.collisions`` collisions per start.
@@ -15,7 +15,7 @@ to record. Four kinds:
                  at collision n, on a log grid of n up to ``horizon.collisions`` (collisions
                  only); one curve per restitution: ``physics.restitution`` may be a list there.
 
-An optional ``[physics]`` table, for every kind, sets the dissipation (DESIGN fact 12): air drag
+An optional ``[physics]`` table, for every kind, sets the dissipation: air drag
 ``drag`` = k >= 0 with ``drag_law`` "linear" (eta(v) = k*v) or "quadratic" (eta(v) = k*v*|v|),
 and the coefficient of restitution ``restitution`` = r in (0, 1] (impacts v1 - u = -r*(v_in - u)).
 Left out, it is the elastic, drag-free model (drag = 0, "linear", r = 1), and ``Scene.elastic``

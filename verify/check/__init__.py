@@ -2,7 +2,7 @@
 
 ``check_integrator(flight_time, step=None)`` runs hypothesis property suites against a user's
 callables ``flight_time(phi, v, eps) -> float`` and ``step(phi, v, eps) -> (phi1, v1, tau)``
-and returns a :class:`CheckReport`. The properties (DESIGN.md Section 2; ``u = 2**-53``, ``kappa``
+and returns a :class:`CheckReport`. The properties (``u = 2**-53``, ``kappa``
 = :func:`verify.condition_number`, ``k`` the allowed multiple, 16 by default as for ``fastpath``):
 
 ``no_overstep``
