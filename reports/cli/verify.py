@@ -1,5 +1,7 @@
-"""``bouncer verify RUN_DIR``: audit a run (hashes, invariants, re-derived curves) and recompute
-its verification sample; exit 1 on any discrepancy."""
+"""``bouncer verify RUN_DIR``: audit a run (hashes, invariants, re-derived curves, every field of
+its manifest), recompute its verification sample and replay it from the seed
+(``reports.runs.recheck``). Exit 0 when every check holds, 1 on any discrepancy, 2 when the
+directory is not a readable run."""
 
 from reports.runs.recheck import recheck
 
