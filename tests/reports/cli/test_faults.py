@@ -437,3 +437,23 @@ def test_ctrl_c_while_the_command_imports_is_one_line(tmp_path):
                           env=dict(os.environ, PYTHONPATH=str(ROOT)))
     assert proc.returncode == 130
     assert proc.stderr == "bouncer: interrupted\n" and proc.stdout == ""
+
+
+def test_a_full_disk_taking_the_lock_leaves_nothing(work, monkeypatch, capsys):
+    """Writing the lock's holder fails: the lock is released, the folder made goes again."""
+    from reports.runs import lock
+
+    real = Path.write_text
+
+    def full(self, *args, **kwargs):
+        if self.name == lock.HOLDER_NAME:
+            real(self, "{", encoding="utf-8")
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(Path, "write_text", full)
+    assert bouncer(["run", "tiny.toml", "--out", "new", "--quiet"]) == 2
+    assert "new/.bouncer.lock.json: No space left on device" in one_line(capsys)
+    assert not (work / "new").exists()
+    monkeypatch.setattr(Path, "write_text", real)
+    assert bouncer(["run", "tiny.toml", "--out", "new", "--quiet"]) == 0
