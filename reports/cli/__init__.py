@@ -1,5 +1,8 @@
 """The ``bouncer`` command. Exit status: 0 ok, 1 failure, 2 bad input or a filesystem fault
-(one-line message naming the path), 130 interrupted (Ctrl-C; a run says how to resume).
+(one-line message naming the path), 3 inconclusive (``check``), 130 interrupted (Ctrl-C, at any
+moment; a run says how to resume). docs/runs.md has the table for every subcommand.
+
+    bouncer --version
 
     bouncer demo [--eps E] [--collisions N] [--sample S] [--seed S]
     bouncer scenes
