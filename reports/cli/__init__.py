@@ -1,5 +1,8 @@
 """The ``bouncer`` command. Exit status: 0 ok, 1 failure, 2 bad input or a filesystem fault
-(one-line message naming the path), 130 interrupted (Ctrl-C; a run says how to resume).
+(one-line message naming the path), 3 inconclusive (``check``), 130 interrupted (Ctrl-C, at any
+moment; a run says how to resume). docs/runs.md has the table for every subcommand.
+
+    bouncer --version
 
     bouncer demo [--eps E] [--collisions N] [--sample S] [--seed S]
     bouncer scenes
@@ -19,25 +22,55 @@
                    [--certify] [--dps D] [--json]
 """
 
-import argparse
 import sys
 
-from reports.cli import bench, check, demo, fit, orbits, plot, report, run, scenes, sweep, verify
-from reports.runs.rundir import RunFailed, RunInterrupted, os_error_text
+SUBCOMMANDS = ("demo", "scenes", "run", "sweep", "plot", "fit", "verify", "report", "check",
+               "bench", "orbits")
 
-SUBCOMMANDS = (demo, scenes, run, sweep, plot, fit, verify, report, check, bench, orbits)
+
+def version():
+    """The installed distribution's version (``importlib.metadata``); the source tree's
+    pyproject.toml is not read, so a checkout that is not installed says so."""
+    from importlib import metadata
+
+    try:
+        return metadata.version("bouncer-verify")
+    except metadata.PackageNotFoundError:
+        return "unknown (not installed: pip install -e .)"
 
 
 def build_parser():
-    parser = argparse.ArgumentParser(
-        prog="bouncer", description="Validated numerics for the bouncer model.")
-    sub = parser.add_subparsers(dest="command", required=True)
-    for command in SUBCOMMANDS:
-        command.add_parser(sub)
+    import argparse
+    import importlib
+
+    class Parser(argparse.ArgumentParser):
+        def error(self, message):  # one line (argparse prints the usage first), exit 2
+            self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+    parser = Parser(prog="bouncer", description="Validated numerics for the bouncer model.")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {version()}",
+                        help="print the version of bouncer-verify and exit")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND",
+                                help="what to do (bouncer COMMAND --help: its options)")
+    for name in SUBCOMMANDS:
+        importlib.import_module(f"reports.cli.{name}").add_parser(sub)
     return parser
 
 
 def main(argv=None):
+    """The ``bouncer`` command; returns the exit status. Everything, the imports of numba,
+    scipy and the rest included, runs under the handlers below: a Ctrl-C at any moment is one
+    line and exit status 130."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("bouncer: interrupted", file=sys.stderr)
+        return 130
+
+
+def _main(argv):
+    from reports.runs.rundir import RunFailed, RunInterrupted, os_error_text
+
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
@@ -56,8 +89,3 @@ def main(argv=None):
         hint = f"; continue with: {resume(err)}" if resume else ""
         print(f"bouncer: {err}{hint}", file=sys.stderr)
         return 130
-    except KeyboardInterrupt:
-        print("bouncer: interrupted", file=sys.stderr)
-        return 130
-
-

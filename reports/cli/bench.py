@@ -1,5 +1,8 @@
 """``bouncer bench``: ns per collision against the Holmes map, ensemble throughput, memory."""
 
+import math
+
+from reports.cli.threads import set_threads
 from reports.precision.bench import (
     dissipative_section,
     ensemble_table,
@@ -14,6 +17,9 @@ def bench_command(args):
     """Entry point of ``bouncer bench``."""
     if args.collisions < 1 or args.repeats < 1 or args.particles < 0:
         raise ValueError("--collisions and --repeats must be >= 1, --particles >= 0")
+    if not math.isfinite(args.eps):
+        raise ValueError(f"--eps must be a finite number, got {args.eps}")
+    set_threads(args.threads)
     if args.particles:
         ensembles = time_ensembles(args.particles, repeats=args.repeats, threads=args.threads)
         print(ensemble_table(ensembles))
@@ -31,12 +37,15 @@ def bench_command(args):
 def add_parser(subparsers):
     bench = subparsers.add_parser(
         "bench", help="ensemble and orbit speed against the Holmes map, memory")
-    bench.add_argument("--eps", type=float, default=0.6)
+    bench.add_argument("--eps", type=float, default=0.6,
+                       help="eps of the timed orbits (default 0.6)")
     bench.add_argument("--collisions", type=int, default=10_000_000,
                        help="orbit length for the per-collision timing (default 10^7)")
-    bench.add_argument("--repeats", type=int, default=5)
+    bench.add_argument("--repeats", type=int, default=5,
+                       help="timed repetitions; the fastest counts (default 5)")
     bench.add_argument("--particles", type=int, default=1_000_000,
                        help="paper-escape particles per curve for the ensemble timings (default"
                        " 10^6; 0 skips them)")
-    bench.add_argument("--threads", type=int, default=None)
+    bench.add_argument("--threads", type=int, default=None,
+                       help="numba threads of the ensemble timings (default: all)")
     bench.set_defaults(func=bench_command)

@@ -1,12 +1,14 @@
 """``bouncer check MODULE:FUNCTION [--step MODULE:FUNCTION] [--suite NAME]``.
 
 Runs ``verify.check_integrator`` on a user's flight-time function (and step function) from the
-shell. The callables run in a worker process, each call under ``--call-timeout`` and the
-whole check under ``--budget``; progress goes to stderr. Exit status: 0 when every property
-holds, 1 when one fails (the report, then the smallest failing input of each failed
-property), 2 for bad input (a module that does not import, a name that is not callable, an
-unknown suite: one line ``bouncer: error: ...``), 3 when the budget ran out before every
-property had its inputs and none failed (inconclusive: the report gives the counts reached).
+shell. The callables run in a worker process (the module is imported there, never in this
+process), each call under ``--call-timeout`` and the whole check under ``--budget``; progress
+goes to stderr. Exit status: 0 when every property ran and held, 1 when one fails (the report,
+then the smallest failing input of each failed property) or the check did not finish (one
+line), 2 for bad input (a module that raises, exits or crashes while importing, a name that is
+not callable, an unknown suite: one line ``bouncer: error: ...``), 3 when a property did not
+run to the end and none failed (inconclusive: the budget ran out, the report gives the counts
+reached; or no input could be checked).
 
 Wire it into the ``bouncer`` parser with ``add_parser(subparsers)``; ``main`` runs it alone
 (``python -m reports.cli.check check MODULE:FUNCTION``).
@@ -68,7 +70,8 @@ def check_command(args) -> int:
         import hypothesis  # noqa: F401
     except ImportError:
         return _error("bouncer check needs hypothesis: pip install 'bouncer-verify[test]'")
-    from verify.check import SUITES, check_integrator, load_callable
+    from verify.check import SUITES, check_integrator
+    from verify.check.calling import one_line
 
     if args.suite not in SUITES:
         return _error(f"unknown suite {args.suite!r}; choose one of {', '.join(SUITES)}")
@@ -81,18 +84,19 @@ def check_command(args) -> int:
     for option, value in (("--call-timeout", args.call_timeout), ("--budget", args.budget)):
         if not value > 0:
             return _error(f"{option} must be a positive number of seconds, got {value}")
-    try:  # load here for a one-line error; the worker process loads them again by name
-        load_callable(args.target, search_cwd=True)
-        if args.step is not None:
-            load_callable(args.step, search_cwd=True)
-    except ValueError as err:
-        return _error(str(err))
+    # the worker process imports the user's module (never this process: a module that exits
+    # or crashes while importing must not end the check with its own status)
     bar = None if args.no_progress else _ProgressBar()
     try:
         report = check_integrator(args.target, step=args.step, suite=args.suite,
                                   max_examples=args.max_examples, seed=args.seed, k=args.k,
                                   call_timeout=args.call_timeout, budget=args.budget,
                                   progress=bar)
+    except ValueError as err:
+        return _error(str(err))
+    except Exception as err:  # noqa: BLE001 - no report: the check did not run, not a pass
+        print(f"bouncer: error: the check did not finish: {one_line(err)}", file=sys.stderr)
+        return 1
     finally:
         if bar is not None:
             bar.close()

@@ -2,9 +2,10 @@
 
 For each sampled collision k, verify recomputes the flight from the same float64 state
 (phi_k, v_k) at high precision with a certificate that no earlier root exists; the error of the
-fast tau is reported in units of condition number x unit roundoff (DESIGN fact 4).
+fast tau is reported in units of condition number x unit roundoff.
 """
 
+import math
 import time
 
 import numpy as np
@@ -44,6 +45,12 @@ def run_demo(eps=0.6, phi0=4.0, v0=3.0, collisions=100_000, sample=200, seed=0, 
 
 
 def _demo(args):
+    for option, value, least in (("--collisions", args.collisions, 1),
+                                 ("--sample", args.sample, 1), ("--seed", args.seed, 0)):
+        if value < least:
+            raise ValueError(f"{option} must be >= {least}, got {value}")
+    if not math.isfinite(args.eps):
+        raise ValueError(f"--eps must be a finite number, got {args.eps}")
     run_demo(eps=args.eps, collisions=args.collisions, sample=args.sample, seed=args.seed)
     return 0
 
@@ -51,8 +58,12 @@ def _demo(args):
 def add_parser(subparsers):
     demo = subparsers.add_parser(
         "demo", help="an orbit with fastpath, a sample of it checked by verify")
-    demo.add_argument("--eps", type=float, default=0.6)
-    demo.add_argument("--collisions", type=int, default=100_000)
-    demo.add_argument("--sample", type=int, default=200)
-    demo.add_argument("--seed", type=int, default=0)
+    demo.add_argument("--eps", type=float, default=0.6,
+                      help="the plate's amplitude parameter eps (default 0.6)")
+    demo.add_argument("--collisions", type=int, default=100_000,
+                      help="length of the orbit from (phi, v) = (4, 3) (default 10^5)")
+    demo.add_argument("--sample", type=int, default=200,
+                      help="collisions of the orbit recomputed by verify (default 200)")
+    demo.add_argument("--seed", type=int, default=0,
+                      help="random seed of the sampled collisions (default 0)")
     demo.set_defaults(func=_demo)

@@ -3,8 +3,10 @@
 Survival-law inference (``reports.stats``) for every curve of each PATH: a run directory (all its
 curves, both clocks unless ``--clock``) or a CSV histogram ``lower,upper,count`` (clock ``time``,
 continuous, unless ``--clock collisions``: integer values). ``--json`` prints only a JSON list,
-one object per curve in input order; otherwise a table, and one PNG per curve next to the input
-(or in ``--out``). Unbounded interval ends and infinite values are JSON null.
+one object per curve in input order; otherwise a table, and one PNG per curve in ``--out``, or
+else beside the input: next to a CSV, in the folder RUN_DIR-fit beside a run directory (never
+inside it: the run directory holds what its manifest records, and nothing else).
+Unbounded interval ends and infinite values are JSON null.
 Exit status: 0 ok, 2 bad input (one line on stderr).
 """
 
@@ -37,20 +39,22 @@ def _arguments(p):
     p.add_argument("paths", nargs="+", metavar="PATH", help="run directory or CSV histogram")
     p.add_argument("--clock", choices=CLOCKS, help="only this clock (CSV: its meaning)")
     p.add_argument("--json", action="store_true", help="print only a JSON list to stdout")
-    p.add_argument("--out", type=Path, help="folder for the PNGs (default: next to the input)")
+    p.add_argument("--out", type=Path, help="folder for the PNGs (default: next to a CSV, the"
+                   " folder RUN_DIR-fit beside a run directory)")
     p.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
                    help="worker processes (default: min(2, cores))")
 
 
 def load(paths, clock):
-    """[(curve, png folder)] of all inputs, in order; ValueError for bad input."""
+    """[(curve, default png folder)] of all inputs, in order; ValueError for bad input."""
     curves = []
     for path in map(Path, paths):
         if path.is_dir():
             found = read_run(path, clocks=(clock,) if clock else CLOCKS)
             if not found:
                 raise ValueError(f"{path}: no curves for clock {clock}")
-            curves += [(c, path) for c in found]
+            beside = path.resolve().parent / f"{path.resolve().name}-fit"
+            curves += [(c, beside) for c in found]
         elif path.exists():
             curves.append((read_csv_histogram(path, clock or "time"), path.parent))
         else:

@@ -13,11 +13,14 @@ def _plot(args):
 def add_parser(subparsers):
     plot = subparsers.add_parser(
         "plot", help="survival curves (the portrait, <v_n>) of a run, as PNG")
-    plot.add_argument("run_dir", metavar="RUN_DIR")
+    plot.add_argument("run_dir", metavar="RUN_DIR", help="the run directory to draw")
     plot.add_argument("--out", help="image file (default: RUN_DIR/survival.png, portrait.png"
                                     " or velocity.png)")
-    plot.add_argument("--fit", choices=["exponential", "stretched", "power"])
-    plot.add_argument("--window", type=float, nargs=2, metavar=("LO", "HI"))
-    plot.add_argument("--clock", choices=["collisions", "time"], default="time")
+    plot.add_argument("--fit", choices=["exponential", "stretched", "power"],
+                      help="draw this model fitted to each curve (needs --window)")
+    plot.add_argument("--window", type=float, nargs=2, metavar=("LO", "HI"),
+                      help="the range of the clock the fit uses")
+    plot.add_argument("--clock", choices=["collisions", "time"], default="time",
+                      help="the clock of the fitted curves (default time)")
     plot.add_argument("--curve", help="fit only this curve")
     plot.set_defaults(func=_plot)

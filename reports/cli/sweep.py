@@ -1,6 +1,7 @@
 """``bouncer sweep``: an escape-rate map over eps, hole centre and/or width."""
 
 from reports.cli.threads import threads_option
+from reports.runs import rundir
 from reports.runs.scenes import load_scene
 from reports.runs.sweep import grid_values, sweep
 
@@ -10,7 +11,7 @@ def _sweep(args):
     threads = threads_option(args)
     grid = {name: grid_values(*getattr(args, name), name)
             for name in ("eps", "centre", "width") if getattr(args, name) is not None}
-    out = args.out or f"sweeps/{scene.name}"
+    out = args.out or rundir.default_out("sweeps", scene.name)
     manifest = sweep(scene, out, grid=grid, n_star=args.n_star, particles=args.particles,
                      seed=args.seed, verify_samples=args.verify_samples,
                      scheduler=args.scheduler, threads=threads, force=args.force,
@@ -37,7 +38,7 @@ def add_parser(subparsers):
     sweep.add_argument("--n-star", type=int, default=50,
                        help="rate = -ln P(n*)/n* (default 50 collisions)")
     sweep.add_argument("--particles", type=int, default=2000, help="starts per grid point")
-    sweep.add_argument("--seed", type=int, help="seed (default: the scene's)")
+    sweep.add_argument("--seed", type=int, help="random seed (default: the scene's)")
     sweep.add_argument("--verify-samples", type=int, default=500,
                        help="collisions verified over the whole sweep (default 500)")
     sweep.add_argument("--out", help="sweep directory (default: sweeps/SCENE_NAME)")

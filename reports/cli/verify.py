@@ -1,5 +1,7 @@
-"""``bouncer verify RUN_DIR``: audit a run (hashes, invariants, re-derived curves) and recompute
-its verification sample; exit 1 on any discrepancy."""
+"""``bouncer verify RUN_DIR``: audit a run (hashes, invariants, re-derived curves, every field of
+its manifest), recompute its verification sample and replay it from the seed
+(``reports.runs.recheck``). Exit 0 when every check holds, 1 on any discrepancy, 2 when the
+directory is not a readable run."""
 
 from reports.runs.recheck import recheck
 
@@ -14,6 +16,6 @@ def _verify(args):
 def add_parser(subparsers):
     recheck = subparsers.add_parser(
         "verify", help="audit a run and recompute its verification sample")
-    recheck.add_argument("run_dir", metavar="RUN_DIR")
+    recheck.add_argument("run_dir", metavar="RUN_DIR", help="the run directory to audit")
     recheck.add_argument("--quiet", action="store_true", help="no progress bar")
     recheck.set_defaults(func=_verify)

@@ -39,40 +39,29 @@ from __future__ import annotations
 
 import io
 import sys
+import threading
 import time
 from contextlib import closing
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
-from reports.runs import cluster, rundir
-from reports.runs.chunk import OVERSTEP_TOLERANCE, VERIFY_DPS, check_result
+from reports.runs import cluster, manifest, rundir
+from reports.runs.chunk import OVERSTEP_TOLERANCE, check_result, run_chunk
 from reports.runs.counts import CheckpointError, Tally
 from reports.runs.executor import Executor
 from reports.runs.integrity import tally_problems
 from reports.runs.lock import RunLock
-from reports.runs.plan import COLLISION_DECADES, TIME_DECADES, TIME_FIRST, check_size, make_plan
+from reports.runs.plan import check_size, make_plan
 from reports.runs.provenance import git, now, versions
-from reports.runs.rundir import CHECKPOINT, RunFailed, RunInterrupted
+from reports.runs.rundir import CHECKPOINT, PROVENANCE, RunFailed, RunInterrupted
 from reports.runs.scenes import parse_scene
 from reports.runs.signals import deferred_interrupt
 from reports.runs.survival import survival_curve, wilson
 from reports.runs.velocity import velocity_text
 
-
-def summary(tally, scene):
-    """The verification summary of the manifest."""
-    worst = max(tally.samples, key=lambda r: r[10], default=None)
-    out = {"sampled": len(tally.samples),
-           "worst_error": worst[10] if worst else 0.0,
-           "uncertain_settled": tally.settled,
-           "overstepped": 0,
-           "error_unit": "condition number x unit roundoff (kappa * 2**-53)",
-           "overstep_tolerance": OVERSTEP_TOLERANCE,
-           "verify_dps": VERIFY_DPS}
-    if worst:
-        out["worst_at"] = dict(zip(rundir.sample_columns(scene), worst, strict=True))
-    return out
+summary = manifest.verification_summary  # the manifest's verification summary of a tally
 
 
 def run(scene, out, particles=None, seed=None, resume=False, force=False, progress=True,
@@ -84,10 +73,15 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
     tasks to that cluster (``reports.runs.cluster``). The result is bit-identical either way, and a
     run started one way resumes the other way without recomputing finished chunks.
 
-    Raises ValueError for bad input (exit 2; ``RunBusy`` when another process holds the
-    directory's lock, ``CheckpointError`` for a checkpoint that fails its hash or invariants),
-    RunFailed when a check fails (exit 1) and RunInterrupted on Ctrl-C (the checkpoint is
-    consistent: resume it).
+    Before the directory is created, the cluster is connected to (or, here, the kernels are
+    compiled: ``compile_kernels``), so a run refused or stopped before its first chunk leaves
+    nothing behind: a new run that fails (or is interrupted) before its first chunk is
+    checkpointed removes what it wrote, and the directory if it made it.
+
+    Raises ValueError for bad input or a filesystem fault (exit 2; ``RunBusy`` when another
+    process holds the directory's lock, ``CheckpointError`` for a checkpoint that fails its hash
+    or invariants), RunFailed when a check fails (exit 1) and RunInterrupted on Ctrl-C (the
+    checkpoint is consistent: resume it; KeyboardInterrupt if nothing was kept).
     """
     plan = make_plan(scene, particles, seed)
     check_size(plan)
@@ -95,8 +89,66 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
     if scheduler is not None:
         cluster.check_available()
     rundir.check_out(out, resume, force)  # refuse before creating anything
-    with RunLock(out):
-        return _run_locked(plan, out, resume, force, progress, threads, scheduler)
+    new_dirs = rundir.missing_folders(out)
+    ctx = {"threads": threads, "hashes": {}, "provenance": {"versions": versions(), "git": git()},
+           "session": {"scheduler": None, "workers": None, "worker_threads": None,
+                       "chunks_computed": 0},
+           "compile_s": None, "kept": resume}
+    try:
+        with Executor(scheduler, ctx["session"]) as execute, RunLock(out):
+            # (RunBusy above: another process's run, not ours to clean up)
+            try:
+                if scheduler is None:
+                    ctx["compile_s"] = compile_kernels(plan, threads, progress)
+                return _run_locked(plan, out, resume, force, progress, execute, ctx)
+            except BaseException as err:
+                if ctx["kept"]:
+                    raise
+                left = rundir.remove_run_files(out)  # nothing to keep: leave no trace of it
+                if not isinstance(err, OSError):
+                    raise
+                what = (f"could not remove {', '.join(left)} from {out}" if left
+                        else "it left nothing behind")
+                raise ValueError(f"{rundir.os_error_text(err)}; the run stopped before its"
+                                 f" first chunk was saved and {what}") from None
+    except BaseException:
+        if not ctx["kept"]:
+            rundir.remove_new_folders(out, new_dirs)
+        raise
+
+
+def compile_kernels(plan, threads, progress):
+    """Compile (or load from numba's cache) the kernels of ``plan``'s scene by running a
+    one-particle chunk, so that compilation is neither charged to the run's rate nor shown
+    as a stalled progress bar; returns the seconds it took."""
+    start = time.perf_counter()
+    said = []
+
+    def say():  # only when it takes a while: loading cached kernels takes about a second
+        print(f"{plan.scene.name}: compiling the numba kernels (a first run takes ~30 s; later"
+              " runs load them from numba's cache) ...", end="", file=sys.stderr, flush=True)
+        said.append(True)
+
+    timer = threading.Timer(COMPILE_NOTICE_S, say) if progress else None
+    if timer is not None:
+        timer.start()
+    # a short horizon: the same kernels (argument types do not change), a particle's worth
+    # of work (a velocity scene runs every particle to its horizon)
+    short = replace(plan.scene, max_collisions=min(plan.scene.max_collisions or WARM_UP_N,
+                                                   WARM_UP_N))
+    try:
+        run_chunk(short, plan.seed, 0, 0, 1, threads)  # a failure there is the run's to meet
+    finally:
+        if timer is not None:
+            timer.cancel()
+            timer.join()
+        if said:
+            print(f" {time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
+    return round(time.perf_counter() - start, 3)
+
+
+WARM_UP_N = 10  # collisions of the one particle that compiles the kernels
+COMPILE_NOTICE_S = 2.0  # say that the kernels compile when it takes longer than this
 
 
 def _resume_tally(plan, out, old):
@@ -121,13 +173,17 @@ def _resume_tally(plan, out, old):
     return tally
 
 
-def _run_locked(plan, out, resume, force, progress, threads, scheduler):
+def _run_locked(plan, out, resume, force, progress, execute, ctx):
     scene = plan.scene
     resuming = rundir.prepare(out, resume, force)
     ckpt = out / CHECKPOINT
     if resuming:
-        old = rundir.read_json(out / rundir.MANIFEST)
-        stored = parse_scene((out / "scene.toml").read_text(encoding="utf-8"), "stored scene")
+        old = manifest.load_manifest(out / rundir.MANIFEST)
+        try:
+            text = (out / "scene.toml").read_bytes().decode("utf-8")
+        except UnicodeDecodeError:
+            raise ValueError(f"{out / 'scene.toml'}: not UTF-8 text") from None
+        stored = parse_scene(text, str(out / "scene.toml"))
         if stored != scene or old["particles"] != plan.particles or old["seed"] != plan.seed:
             raise ValueError(f"--resume: {out} holds a run of scene {old['scene']['name']!r} with "
                              f"{old['particles']} particles and seed {old['seed']}; give the"
@@ -138,21 +194,18 @@ def _run_locked(plan, out, resume, force, progress, threads, scheduler):
     else:
         rundir.write_atomic(out / "scene.toml", scene.source)
         tally = Tally.empty(plan)
-    ctx = {"threads": threads, "hashes": {"scene.toml": rundir.sha256_file(out / "scene.toml")},
-           "provenance": {"versions": versions(), "git": git()},
-           "session": {"scheduler": None, "workers": None, "worker_threads": None,
-                       "chunks_computed": 0}}
+    ctx["hashes"]["scene.toml"] = rundir.sha256_file(out / "scene.toml")
     session = ctx["session"]
     if ckpt.is_file():
         ctx["hashes"][CHECKPOINT] = rundir.sha256_file(ckpt)
     _manifest(out, plan, tally, "partial", ctx)
     done = sum(tally.finished.particles_done(plan, e) for e in range(len(plan.experiments)))
     bar = _progress(plan, done, plan.particles_total, progress)
-    jobs = (((e, k), (scene, plan.seed, e, k, plan.particles, threads))
+    jobs = (((e, k), (scene, plan.seed, e, k, plan.particles, ctx["threads"]))
             for e, k in plan.chunks if (e, k) not in tally.finished)
     saved, unsaved = None, False  # when the checkpoint was last written; chunks merged since
     try:
-        with Executor(scheduler, session) as execute, closing(execute(jobs)) as results:
+        with closing(execute(jobs)) as results:
             last = time.perf_counter()
             for _, result in results:
                 with deferred_interrupt():  # merge, checkpoint and manifest: all or nothing
@@ -189,13 +242,18 @@ def _run_locked(plan, out, resume, force, progress, threads, scheduler):
                 if unsaved:
                     ctx["hashes"][CHECKPOINT] = tally.save(ckpt)
                 _manifest(out, plan, tally, "failed", ctx, failure=str(err))
+                ctx["kept"] = True
         raise
     except KeyboardInterrupt:
         if unsaved:  # the chunks merged since the last checkpoint
             with deferred_interrupt():
                 _checkpoint(out, plan, tally, ctx)
+        if not ctx["kept"]:
+            raise  # before the first chunk: nothing to resume, the run leaves nothing
         raise RunInterrupted(out, len(tally.finished), plan.n_chunks) from None
     except OSError as err:
+        if not ctx["kept"]:
+            raise  # run() removes what it wrote and says so
         raise ValueError(f"{rundir.os_error_text(err)}; the checkpoint holds the chunks finished"
                          " before: fix this and continue with --resume") from None
     finally:
@@ -206,6 +264,7 @@ def _run_locked(plan, out, resume, force, progress, threads, scheduler):
 def _checkpoint(out, plan, tally, ctx):
     """The merged tally to the checkpoint, then the manifest (status partial) with its hash."""
     ctx["hashes"][CHECKPOINT] = tally.save(out / CHECKPOINT)
+    ctx["kept"] = True  # --resume continues from it (the partial manifest is there already)
     _manifest(out, plan, tally, "partial", ctx)
 
 
@@ -217,6 +276,7 @@ def _fail(out, plan, tally, ctx, bad):
     ver["overstepped"] = len(bad)
     ctx["hashes"].update(write_results(out, plan, tally))
     _manifest(out, plan, tally, "failed", ctx, failure=msg, verification=ver)
+    ctx["kept"] = True
     err = RunFailed(msg)
     err.recorded = True
     raise err
@@ -236,59 +296,19 @@ def _progress(plan, initial, total, enabled):
 
 
 def _manifest(out, plan, tally, status, ctx, failure=None, verification=None):
-    """Write and return the manifest; ``ctx``: threads, session, provenance and the SHA-256 of
-    the files written so far (``hashes``)."""
-    sc = plan.scene
-    curves = {}
-    for e, exp in enumerate(plan.experiments):
-        if sc.kind == "velocity":
-            curves[exp.name] = velocity_curve(plan, tally, e)
-            continue
-        clock = "esc_n" if "collisions" in sc.clocks else "esc_t"
-        esc = getattr(tally, clock)[e]
-        cens = tally.cens_n[e] if clock == "esc_n" else tally.cens_t[e]
-        done = tally.finished.particles_done(plan, e)
-        stuck = tally.stuck_n[e] if clock == "esc_n" else tally.stuck_t[e]
-        curves[exp.name] = {"particles_done": done, "censored": int(cens.sum()),
-                            "stuck": int(stuck.sum()),
-                            "escaped": {c: int(esc[j].sum()) for j, c in enumerate(exp.curves)}}
-    manifest = {
-        "status": status,
-        "scene": {"name": sc.name, "kind": sc.kind, "file": "scene.toml", "eps": sc.eps,
-                  "horizon": {"collisions": sc.max_collisions, "time": sc.max_time},
-                  **({"physics": sc.physics()} if not sc.elastic and sc.kind != "velocity"
-                     else {}),
-                  **({"physics_per_curve": {x.name: sc.curve_physics(e) for e, x
-                                            in enumerate(plan.experiments)}}
-                     if sc.kind == "velocity" else {})},
-        "seed": plan.seed,
-        "particles": plan.particles,
-        "particles_total": plan.particles * len(plan.experiments),
-        "chunk_size": sc.chunk_size,
-        "chunks": plan.n_chunks,
-        "chunks_done": len(tally.finished),
-        "threads": ctx["threads"],
-        "session": ctx["session"],
-        **ctx["provenance"],
-        "started": tally.started,
-        "updated": now(),
-        "finished": now() if status == "complete" else None,
-        "wall_time_s": round(tally.elapsed, 3),
-        "collisions": tally.collisions,
-        "collisions_per_s": round(tally.collisions / tally.elapsed) if tally.elapsed else None,
-        "verification": verification or summary(tally, sc),
-        "curves": curves,
-        "bins": {"collisions": {"first": 1, "decades": COLLISION_DECADES,
-                                "per_decade": sc.bins_per_decade, "integer": True},
-                 "time": {"first": TIME_FIRST, "decades": TIME_DECADES,
-                          "per_decade": sc.bins_per_decade, "below_first": [0.0, TIME_FIRST]}},
-        "survival_band": "95% Wilson score interval",
-        "hashes": dict(sorted(ctx["hashes"].items())),
-    }
-    if failure:
-        manifest["failure"] = failure
-    rundir.write_json(out / rundir.MANIFEST, manifest)
-    return manifest
+    """Write provenance.json, then the manifest with its hash; returns the manifest. ``ctx``:
+    threads, session, provenance, compile time and the SHA-256 of the files written so far
+    (``hashes``)."""
+    compute = round(tally.elapsed, 3)
+    record = {**ctx["provenance"], "threads": ctx["threads"], "session": ctx["session"],
+              "started": tally.started, "updated": now(),
+              "finished": now() if status == "complete" else None,
+              "compile_s": ctx["compile_s"], "compute_s": compute,
+              "collisions_per_s": round(tally.collisions / compute) if compute else None}
+    ctx["hashes"][PROVENANCE] = rundir.write_json(out / PROVENANCE, record)
+    out_manifest = manifest.build(plan, tally, status, ctx["hashes"], verification, failure)
+    rundir.write_json(out / rundir.MANIFEST, out_manifest)
+    return out_manifest
 
 
 COUNTS_COLUMNS = ("experiment", "clock", "outcome", "lower_edge", "count")
@@ -315,15 +335,6 @@ def survival_rows(plan, tally):
                     rows.append([curve, clock, xs, repr(float(pi)), repr(float(li)),
                                  repr(float(hi_))])
     return rows
-
-
-def velocity_curve(plan, tally, e):
-    """The manifest's figures of velocity curve e: particles done, and at the horizon the
-    particles moving, stuck and their mean velocity (None if none moves)."""
-    moving = int(tally.moving[e, -1])
-    return {"particles_done": tally.finished.particles_done(plan, e), "moving": moving,
-            "stuck": int(tally.stuck_at[e, -1]),
-            "mean_v_at_horizon": float(tally.sum_v[e, -1] / moving) if moving else None}
 
 
 def result_files(plan, tally):

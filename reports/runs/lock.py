@@ -54,7 +54,13 @@ class RunLock:
                           " finish or stop it, then use --resume") from None
         info = {"pid": os.getpid(), "host": socket.gethostname(), "started": now(),
                 "command": " ".join(["bouncer", *sys.argv[1:]])}
-        (self.out / HOLDER_NAME).write_text(json.dumps(info) + "\n", encoding="utf-8")
+        holder_file = self.out / HOLDER_NAME
+        try:
+            holder_file.write_text(json.dumps(info) + "\n", encoding="utf-8")
+        except OSError as err:  # a full disk: no lock held, no half-written holder left
+            holder_file.unlink(missing_ok=True)
+            self.lock.release()
+            raise OSError(err.errno, err.strerror, str(holder_file)) from None
         return self
 
     def __exit__(self, *exc):

@@ -1,9 +1,11 @@
 """``bouncer verify RUN_DIR``: audit a run directory and recompute its verification sample.
 
-Discrepancies are reported by file and line; any one fails the audit (exit status 1):
+Discrepancies are reported by file and line; any one fails the audit (exit status 1). A
+manifest.json that is not valid JSON of the manifest's schema (``reports.runs.manifest``) or an
+invalid scene.toml is not audited at all: ValueError, exit status 2.
 
-1. hashes: every file named in the manifest's ``hashes`` (outputs, scene, checkpoint) has that
-   SHA-256;
+1. hashes: every file the run writes (outputs, scene, checkpoint, sample, provenance.json) has
+   its SHA-256 in the manifest, and the file has that SHA-256;
 2. the checkpoint passes its own digest and the invariants of ``reports.runs.integrity``, and
    holds every chunk of the plan;
 3. counts.csv equals the counts.csv written from the checkpoint; survival.csv equals the one
@@ -11,34 +13,38 @@ Discrepancies are reported by file and line; any one fails the audit (exit statu
    rise; per curve escapes + censored + stuck = particles (portrait.npy for phase-space scenes;
    velocity.csv for velocity scenes: equal to the one written from the checkpoint, moving +
    stuck = particles at every grid point, mean_v**2 <= mean_v2);
-4. sample.csv equals the checkpoint's sample; the manifest's figures (collisions, chunks,
-   escaped and censored per curve, sampled, uncertain settled, worst error) agree with the
-   checkpoint and the sample;
+4. sample.csv equals the checkpoint's sample;
 5. for every row of sample.csv (a pre-collision state (phi, v) and the fast result):
    ``fastpath.step(phi, v, eps)`` gives the stored (phi1, v1, tau) bit for bit (with
    restitution < 1 ``fastpath.carried_step`` from (phi, v) and the row's carried state, which
    it checks is a departure from (phi, v): the step the kernel made), and ``verify.step`` from
    (phi, v) gives the stored tau_ref and error again; an overstep
-   tau - tau_ref > 16*kappa*u*tau_ref fails the check.
+   tau - tau_ref > 16*kappa*u*tau_ref fails the check;
+6. the seed: every row is a verification pick drawn from the manifest's seed, and its state is
+   replayed from the start drawn from the seed (``reports.runs.replay``);
+7. every field of the manifest equals the one the run's writer builds from scene.toml, the
+   seed, the particle count, the checkpoint and the recomputed sample (``manifest.build``), and
+   the status is complete.
 """
 
 from __future__ import annotations
 
 import csv
 import io
-import json
 import sys
 from pathlib import Path
 
 import numpy as np
 
 import fastpath
+from reports.runs import manifest as manifests
 from reports.runs import rundir
 from reports.runs.chunk import OVERSTEP_TOLERANCE, check_sample
 from reports.runs.counts import CheckpointError, Tally
-from reports.runs.driver import result_files, survival_rows, velocity_curve
+from reports.runs.driver import result_files, survival_rows
 from reports.runs.integrity import curve_problems, parse_counts, survival_problems, tally_problems
 from reports.runs.plan import make_plan
+from reports.runs.replay import SampleRow, replay_problems
 from reports.runs.rundir import CARRIED_COLUMNS
 from reports.runs.scenes import parse_scene
 from reports.runs.velocity import file_problems as velocity_file_problems
@@ -49,15 +55,16 @@ _REDERIVED = {"phase-space": "portrait.npy", "velocity": "velocity.csv"}
 
 
 def load_run(run_dir):
-    """(manifest, scene) of a run directory; ValueError if it is not one."""
+    """(manifest, scene) of a run directory, the manifest validated against its schema;
+    ValueError (one line naming the file) if it is not a readable run directory."""
     run_dir = Path(run_dir)
     if not (run_dir / rundir.MANIFEST).is_file() or not (run_dir / "scene.toml").is_file():
         raise ValueError(f"{run_dir} is not a run directory (no manifest.json and scene.toml)")
+    manifest = manifests.load_manifest(run_dir / rundir.MANIFEST)
     try:
-        manifest = rundir.read_json(run_dir / rundir.MANIFEST)
-        text = (run_dir / "scene.toml").read_text(encoding="utf-8")
-    except (UnicodeDecodeError, json.JSONDecodeError) as err:
-        raise ValueError(f"{run_dir}: manifest.json or scene.toml is unreadable: {err}") from None
+        text = (run_dir / "scene.toml").read_bytes().decode("utf-8")
+    except UnicodeDecodeError:
+        raise ValueError(f"{run_dir / 'scene.toml'}: not UTF-8 text") from None
     return manifest, parse_scene(text, f"{run_dir / 'scene.toml'}")
 
 
@@ -79,12 +86,11 @@ def _compare(name, expected, found, what):
 
 
 def _hashes(run_dir, manifest, expected):
-    recorded = manifest.get("hashes")
-    if not recorded:
-        return ["manifest.json: no content hashes (a run of an earlier version): its files"
-                " cannot be checked against it"]
+    recorded = manifest["hashes"]
     out = [f"manifest.json: no hash recorded for {name}" for name in expected
            if name not in recorded]
+    out += [f"manifest.json: a hash recorded for {name}, which this run does not write"
+            for name in recorded if name not in expected]
     for name, digest in recorded.items():
         path = run_dir / name
         if not path.is_file():
@@ -145,41 +151,42 @@ def _outputs(run_dir, plan, tally):
     return out
 
 
-def _manifest_figures(manifest, plan, tally, worst):
-    """Step 4: the manifest's figures against the checkpoint and the recomputed worst error."""
-    ver = manifest.get("verification", {})
-    pairs = [("collisions", manifest.get("collisions"), tally.collisions),
-             ("chunks_done", manifest.get("chunks_done"), len(tally.finished)),
-             ("chunks", manifest.get("chunks"), plan.n_chunks),
-             ("particles_total", manifest.get("particles_total"), plan.particles_total),
-             ("verification.sampled", ver.get("sampled"), len(tally.samples)),
-             ("verification.uncertain_settled", ver.get("uncertain_settled"), tally.settled),
-             ("verification.worst_error", ver.get("worst_error"), worst)]
-    for e, exp in enumerate(plan.experiments):
-        if plan.scene.kind == "velocity":
-            curve = manifest.get("curves", {}).get(exp.name, {})
-            want = velocity_curve(plan, tally, e)
-            pairs += [(f"curves.{exp.name}.{key}", curve.get(key), value)
-                      for key, value in want.items() if key != "particles_done"]
-            continue
-        # (a phase-space scene records no clock: its curve's figures are the zeros of esc_t,
-        # cens_t and stuck_t, and they are checked like any other)
-        clock = "collisions" if "collisions" in plan.scene.clocks else "time"
-        esc = tally.esc_n[e] if clock == "collisions" else tally.esc_t[e]
-        cens = tally.cens_n[e] if clock == "collisions" else tally.cens_t[e]
-        stuck = tally.stuck_n[e] if clock == "collisions" else tally.stuck_t[e]
-        curve = manifest.get("curves", {}).get(exp.name, {})
-        pairs.append((f"curves.{exp.name}.censored", curve.get("censored"), int(cens.sum())))
-        pairs.append((f"curves.{exp.name}.stuck", curve.get("stuck"), int(stuck.sum())))
-        for j, c in enumerate(exp.curves):
-            pairs.append((f"curves.{exp.name}.escaped.{c}", curve.get("escaped", {}).get(c),
-                          int(esc[j].sum())))
-    return [f"manifest.json: {key} is {got!r}, the checkpoint and sample give {want!r}"
-            for key, got, want in pairs if got != want]
+_SOURCES = {"scene": "scene.toml gives", "chunk_size": "scene.toml gives",
+            "seed": "the plan gives", "particles": "the plan gives",
+            "particles_total": "the plan gives", "chunks": "the plan gives",
+            "bins": "the histograms' bins are", "survival_band": "survival.csv's band is"}
+
+
+def _manifest_fields(manifest, plan, tally, worst):
+    """Step 7: every field of the manifest against the one built from what produced the
+    outputs; without a usable checkpoint (``tally`` None) the fields of the plan only."""
+    expected = manifests.build(plan, tally or Tally.empty(plan), "complete", manifest["hashes"])
+    fields = manifests.PLAN_FIELDS + (manifests.COUNT_FIELDS if tally is not None else ())
+    out = []
+    for key in fields:
+        source = _SOURCES.get(key, "the checkpoint and sample give")
+        out += [f"manifest.json: {path} is {got!r}, {source} {want!r}"
+                for path, got, want in manifests.differences(manifest[key], expected[key], key)]
+    if "failure" in manifest:
+        out.append(f"manifest.json: records a failure: {manifest['failure']}")
+    recorded = manifest["verification"]["worst_error"]
+    if recorded != worst and not any(": verification.worst_error is " in x for x in out):
+        out.append(f"manifest.json: verification.worst_error is {recorded!r}, verify gives"
+                   f" {worst!r} for sample.csv")
+    return out
+
+
+def _bar(progress, total, desc):
+    if not progress:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=desc, unit="collision", file=sys.stderr)
 
 
 def _sample(run_dir, scene, progress):
-    """Step 5: (rows, worst recomputed error, overstepped lines, discrepancies)."""
+    """Step 5: (rows, worst recomputed error, overstepped lines, discrepancies, the rows as
+    ``SampleRow`` for the replay)."""
     # a missing or non-UTF-8 sample.csv is reported by _outputs: no rows to recompute
     text = _text(run_dir / "sample.csv")
     worst, overstepped, out = 0.0, [], []
@@ -188,11 +195,8 @@ def _sample(run_dir, scene, progress):
     except csv.Error as err:  # a field over csv's size limit
         rows = []
         out.append(f"sample.csv: not readable as CSV ({err})")
-    bar = None
-    if progress:
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(rows), desc="verify sample", unit="collision", file=sys.stderr)
+    bar = _bar(progress, len(rows), "verify sample")
+    parsed = []
     for line, row in enumerate(rows, start=2):
         try:
             phi, v = float(row["phi"]), float(row["v"])
@@ -207,6 +211,11 @@ def _sample(run_dir, scene, progress):
         except (KeyError, ValueError, IndexError):
             out.append(f"sample.csv:{line}: not a sample row (experiment)")
             continue
+        try:
+            parsed.append(SampleRow(line, int(row["experiment"]), int(row["chunk"]),
+                                    int(row["particle"]), int(row["n"]), phi, v))
+        except (KeyError, TypeError, ValueError):
+            out.append(f"sample.csv:{line}: not a sample row (chunk, particle or n)")
         carries = physics.get("restitution", 1.0) < 1.0
         name = "fastpath.carried_step" if carries else "fastpath.step"
         try:
@@ -235,22 +244,23 @@ def _sample(run_dir, scene, progress):
             bar.update()
     if bar is not None:
         bar.close()
-    return rows, worst, overstepped, out
+    return rows, worst, overstepped, out, parsed
 
 
 def recheck(run_dir, progress=False):
-    """Audit the run directory (module docstring); returns (ok, report lines)."""
+    """Audit the run directory (module docstring); returns (ok, report lines). ValueError for
+    a directory that is not a run, or whose manifest or scene.toml is unreadable."""
     run_dir = Path(run_dir)
     manifest, scene = load_run(run_dir)
-    status = manifest.get("status")
+    status = manifest["status"]
     lines = [f"run {run_dir}: scene {scene.name}, status {status}"]
     if not (run_dir / "sample.csv").is_file() and status != "complete":
         raise ValueError(f"{run_dir} has no sample.csv (status {status}): nothing to verify yet")
-    plan = make_plan(scene, manifest.get("particles"), manifest.get("seed"))
-    outputs = {"phase-space": ["portrait.npy"], "velocity": ["velocity.csv"]}.get(
-        scene.kind, ["survival.csv", "counts.csv"])
-    problems = _hashes(run_dir, manifest, ["scene.toml", "sample.csv", rundir.CHECKPOINT,
-                                           *outputs])
+    try:
+        plan = make_plan(scene, manifest["particles"], manifest["seed"])
+    except ValueError as err:
+        raise ValueError(f"{run_dir / 'scene.toml'}: {err}") from None
+    problems = _hashes(run_dir, manifest, manifests.hashed_files(scene))
     try:
         tally = Tally.load(run_dir / rundir.CHECKPOINT)
     except CheckpointError as err:
@@ -265,19 +275,25 @@ def recheck(run_dir, progress=False):
             problems.append(f"{rundir.CHECKPOINT}: {len(tally.finished)} of {plan.n_chunks}"
                             " chunks finished")
     problems += _outputs(run_dir, plan, tally)
-    rows, worst, overstepped, sample_problems = _sample(run_dir, scene, progress)
+    rows, worst, overstepped, sample_problems, parsed = _sample(run_dir, scene, progress)
     problems += sample_problems
-    if tally is not None:
-        problems += _manifest_figures(manifest, plan, tally, worst)
+    bar = _bar(progress, len(parsed), "replay from the seed")
+    problems += replay_problems(plan, parsed, bar.update if bar is not None else None)
+    if bar is not None:
+        bar.close()
+    problems += _manifest_fields(manifest, plan, tally, worst)
     if status != "complete":
         problems.append(f"manifest.json: the run is not complete (status {status})")
-    recorded = manifest.get("verification", {}).get("worst_error", float("nan"))
+    recorded = manifest["verification"]["worst_error"]
     lines += [
         f"{len(rows)} sampled collisions recomputed by verify: worst error {worst:.3g} kappa*u"
         f" (recorded {recorded:.3g}), {len(overstepped)} overstepped"
         f" (tolerance {OVERSTEP_TOLERANCE:g} kappa*u)",
         f"checked: content hashes, checkpoint invariants, {_REDERIVED.get(scene.kind, _SURVIVAL)}"
-        " re-derived, sample.csv, the manifest's figures",
+        " re-derived, sample.csv, the sample replayed from the seed, every field of the"
+        " manifest",
+        f"not audited: {rundir.PROVENANCE} (how and when the run was made; only its hash is"
+        " checked)",
     ]
     for problem in problems[:SHOWN * 4]:
         lines.append(problem)
@@ -285,4 +301,3 @@ def recheck(run_dir, progress=False):
         lines.append(f"... and {len(problems) - SHOWN * 4} more")
     lines.append("OK" if not problems else f"FAILED: {len(problems)} discrepancies")
     return not problems, lines
-

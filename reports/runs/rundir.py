@@ -1,7 +1,9 @@
 """Files of a run directory, all written atomically (temporary file + ``os.replace``).
 
-    manifest.json    scene, seed, particles, versions, git commit, times, collisions,
-                     verification summary, status (partial, complete or failed)
+    manifest.json    what the run states about its outputs (``reports.runs.manifest``):
+                     scene, seed, particles, collisions, curves, bins, verification summary,
+                     status (partial, complete or failed), the SHA-256 of every other file
+    provenance.json  how and when it was made: versions, git commit, threads, cluster, times
     scene.toml       the scene text the run used (rerun: ``bouncer run RUN/scene.toml``)
     survival.csv     curve,clock,x,p,p_lo,p_hi     (escape and transport scenes)
     counts.csv       experiment,curve,clock,outcome,lower_edge,count   (the raw histograms)
@@ -26,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 MANIFEST = "manifest.json"
+PROVENANCE = "provenance.json"
 CHECKPOINT = "checkpoint.npz"
 
 
@@ -73,22 +76,37 @@ def sha256_file(path):
     return h.hexdigest()
 
 
+def temporary(path):
+    """The temporary file ``write_atomic`` writes before replacing ``path``."""
+    path = Path(path)
+    return path.with_name(f".{path.name}.tmp{os.getpid()}")
+
+
 def write_atomic(path, data):
     """Write text or bytes to ``path`` via a temporary file in the same folder + os.replace;
-    returns the SHA-256 of what was written."""
+    returns the SHA-256 of what was written. On any failure (a full disk, Ctrl-C) the
+    temporary file is removed and ``path`` is as it was; an OSError names ``path``."""
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
+    tmp = temporary(path)
     mode = "wb" if isinstance(data, bytes) else "w"
-    with open(tmp, mode, **({} if mode == "wb" else {"encoding": "utf-8", "newline": ""})) as f:
-        f.write(data)
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
+    try:
+        with open(tmp, mode, **({} if mode == "wb" else {"encoding": "utf-8",
+                                                          "newline": ""})) as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException as err:
+        tmp.unlink(missing_ok=True)
+        if isinstance(err, OSError) and err.filename is None:  # a write's error names no file
+            raise OSError(err.errno, err.strerror or str(err), str(path)) from None
+        raise
     return sha256_bytes(data)
 
 
 def write_json(path, obj):
-    write_atomic(path, json.dumps(obj, indent=2, sort_keys=False) + "\n")
+    """``obj`` as indented JSON via ``write_atomic``; returns its SHA-256."""
+    return write_atomic(path, json.dumps(obj, indent=2, sort_keys=False) + "\n")
 
 
 def read_json(path):
@@ -132,12 +150,13 @@ def _entries(out):
     return [p for p in out.iterdir() if p.name not in LOCK_FILES]
 
 
-def check_out(out, resume, force):
+def check_out(out, resume, force, resumable=True):
     """Check the run directory without touching it: returns True when resuming a run.
 
     A directory that exists and is not empty is used only with ``resume`` (it must hold a run)
     or replaced with ``force`` (only if it holds a run: never deletes other folders).
-    Raises ValueError otherwise, and for a path that is a file.
+    Raises ValueError otherwise, and for a path that is a file. ``resumable``: False for a
+    sweep, which has no --resume.
     """
     out = Path(out)
     if out.exists() and not out.is_dir():
@@ -149,6 +168,8 @@ def check_out(out, resume, force):
             raise ValueError(f"--resume: {out} holds no run (no {MANIFEST})")
         return True
     if exists and not force:
+        if not resumable:
+            raise ValueError(f"sweep directory {out} exists; use --force to overwrite it")
         raise ValueError(f"run directory {out} exists; use --resume to continue it or"
                          " --force to overwrite it")
     if exists and not is_run:
@@ -156,10 +177,10 @@ def check_out(out, resume, force):
     return False
 
 
-def prepare(out, resume, force):
+def prepare(out, resume, force, resumable=True):
     """``check_out``, then create the directory, or empty it (but for its lock) with ``force``."""
     out = Path(out)
-    resuming = check_out(out, resume, force)
+    resuming = check_out(out, resume, force, resumable)
     if not resuming and out.is_dir():
         for path in _entries(out):
             if path.is_dir() and not path.is_symlink():
@@ -168,3 +189,61 @@ def prepare(out, resume, force):
                 path.unlink()
     out.mkdir(parents=True, exist_ok=True)
     return resuming
+
+
+def missing_folders(out):
+    """``out`` and its ancestors that do not exist yet, deepest first: what creating ``out``
+    makes (``remove_new_folders`` removes them again)."""
+    out, missing = Path(out).absolute(), []
+    while not out.exists() and out != out.parent:
+        missing.append(out)
+        out = out.parent
+    return missing
+
+
+RUN_FILES = (MANIFEST, PROVENANCE, "scene.toml", CHECKPOINT, "sample.csv", "survival.csv",
+             "counts.csv", "portrait.npy", "velocity.csv")
+
+
+def remove_run_files(out, names=RUN_FILES):
+    """Remove the files a run writes in ``out`` (``names``, and their temporaries), nothing
+    else: for a run that stopped before its first chunk was saved. Returns the names it could
+    not remove (a folder made read-only)."""
+    left = []
+    for name in names:
+        for path in (Path(out) / name, temporary(Path(out) / name)):
+            try:
+                path.unlink(missing_ok=True)
+            except OSError:
+                left.append(path.name)
+    return left
+
+
+def remove_new_folders(out, new):
+    """Remove the folders ``missing_folders`` listed, if still empty but for the lock files of
+    ``out`` (a run that never started leaves nothing)."""
+    if not new:
+        return
+    for name in LOCK_FILES:
+        try:
+            (Path(out) / name).unlink(missing_ok=True)
+        except OSError:
+            pass
+    for folder in new:
+        try:
+            folder.rmdir()
+        except OSError:
+            return  # not empty (or not ours to remove): keep it and its parents
+
+
+def default_out(root, name):
+    """``root/name``, the default directory of a run (or sweep) of the scene ``name``; a
+    ValueError unless it resolves (symbolic links followed) to a folder inside ``root``."""
+    out = Path(root) / name
+    inside = Path(root).resolve()
+    where = out.resolve()
+    if where == inside or not where.is_relative_to(inside):
+        raise ValueError(f"the default run directory {out} of scene {name!r} resolves to {where},"
+                         f" outside {inside}; give --out DIR")
+    return out
+

@@ -1,12 +1,13 @@
 """Scenes: small TOML files describing an ensemble run, validated into a frozen dataclass.
 
-A scene gives the model parameter ``eps``, the initial measure (uniform on a box in phi and v),
+A scene gives its ``name`` (a plain file name: it names the run directory), the model
+parameter ``eps``, the initial measure (uniform on a box in phi and v),
 the holes (arcs of collision phase mod 2*pi, each ``[c - w/2, c + w/2)`` for centre c and width w),
 the horizon (a collision count and/or a time), the particle count per curve, the seed and what
 to record. Four kinds:
 
 ``escape``       one curve per (width, centre): a single hole open, starts in ``[start]`` (phi, v),
-                 which must not overlap the hole (the seed's Section 3).
+                 which must not overlap the hole (the paper's Section 3).
 ``transport``    for each width, all holes open at once; curve P_ij starts uniform on hole i in
                  phase (``[start]`` gives only v) and leaves through hole j (Section 4).
 ``phase-space``  no holes: a (phi, v) histogram of ``horizon.collisions`` collisions per start.
@@ -14,7 +15,7 @@ to record. Four kinds:
                  at collision n, on a log grid of n up to ``horizon.collisions`` (collisions
                  only); one curve per restitution: ``physics.restitution`` may be a list there.
 
-An optional ``[physics]`` table, for every kind, sets the dissipation (DESIGN fact 12): air drag
+An optional ``[physics]`` table, for every kind, sets the dissipation: air drag
 ``drag`` = k >= 0 with ``drag_law`` "linear" (eta(v) = k*v) or "quadratic" (eta(v) = k*v*|v|),
 and the coefficient of restitution ``restitution`` = r in (0, 1] (impacts v1 - u = -r*(v_in - u)).
 Left out, it is the elastic, drag-free model (drag = 0, "linear", r = 1), and ``Scene.elastic``
@@ -29,6 +30,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import re
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
@@ -207,7 +209,7 @@ def _validate(data, text):
             if not isinstance(data[table], dict):
                 raise ValueError(f"[{table}] must be a table")
             _keys(data[table], allowed, f"[{table}]")
-    name = _string(data, "name")
+    name = _file_name(_string(data, "name"))
     kind = _string(data, "kind")
     if kind not in KINDS:
         raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
@@ -329,6 +331,18 @@ def _string(data, key):
     if not isinstance(value, str) or not value:
         raise ValueError(f"{key} must be a non-empty string, got {value!r}")
     return value
+
+
+NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9._+=-]{0,99}")
+
+
+def _file_name(name):
+    """The scene's name names its run directory (runs/NAME): a plain file name, so that a
+    scene file from anyone cannot make a run write outside the output folder."""
+    if not NAME_PATTERN.fullmatch(name):
+        raise ValueError(f"name must be a plain file name (letters, digits and . _ + = -, not"
+                         f" starting with . or -, at most 100 characters), got {name!r}")
+    return name
 
 
 def _real(value, name):

@@ -30,6 +30,7 @@ import numpy as np
 from reports.runs import rundir
 
 Z95 = 1.959963984540054
+BAND = "95% Wilson score interval"  # what ``wilson`` at Z95 gives: p_lo, p_hi of survival.csv
 
 
 def wilson(k, n, z=Z95):

@@ -173,23 +173,40 @@ def sweep(base: Scene, out, grid=None, n_star=N_STAR, particles=PARTICLES, seed=
     if scheduler is not None:
         cluster.check_available()
     out = Path(out)
-    rundir.check_out(out, False, force)  # refuse before creating anything
-    with RunLock(out):
-        rundir.prepare(out, False, force)
-        return _sweep_locked(base, out, axes, values, points, live, n_star, particles, threads,
-                             scheduler, progress)
+    rundir.check_out(out, False, force, resumable=False)  # refuse before creating anything
+    new_dirs = rundir.missing_folders(out)
+    session = {"scheduler": None, "workers": None, "worker_threads": None,
+               "chunks_computed": 0}
+    # connected before the directory exists; a sweep cannot be resumed, so one stopped by
+    # anything but a failed check (recorded in its manifest) leaves nothing behind
+    try:
+        with Executor(scheduler, session) as execute, RunLock(out):
+            rundir.prepare(out, False, force, resumable=False)
+            try:
+                return _sweep_locked(base, out, axes, values, points, live, n_star, particles,
+                                     threads, execute, session, progress)
+            except RunFailed:
+                raise
+            except BaseException:
+                rundir.remove_run_files(out, SWEEP_FILES)
+                raise
+    except BaseException as err:
+        if not isinstance(err, RunFailed):
+            rundir.remove_new_folders(out, new_dirs)
+        raise
 
 
-def _sweep_locked(base, out, axes, values, points, live, n_star, particles, threads, scheduler,
-                  progress):
+SWEEP_FILES = (rundir.MANIFEST, "sweep.csv", "sample.csv", "escape-rate.png")
+
+
+def _sweep_locked(base, out, axes, values, points, live, n_star, particles, threads, execute,
+                  session, progress):
     plans = {i: make_plan(points[i]["scene"]) for i in live}
     jobs = [((i, k), (points[i]["scene"], base.seed, 0, k, particles, threads))
             for i in live for k in range(plans[i].chunks_per_experiment)]
     survivors = dict.fromkeys(live, 0)
     collisions = dict.fromkeys(live, 0)
     settled, samples, seen = 0, [], set()
-    session = {"scheduler": None, "workers": None, "worker_threads": None,
-               "chunks_computed": 0}
     bar = None
     if progress:
         from tqdm import tqdm
@@ -199,7 +216,7 @@ def _sweep_locked(base, out, axes, values, points, live, n_star, particles, thre
     manifest = _manifest(base, axes, values, points, n_star, particles, session, "partial")
     rundir.write_json(out / rundir.MANIFEST, manifest)
     try:
-        with Executor(scheduler, session) as execute, closing(execute(jobs)) as results:
+        with closing(execute(jobs)) as results:
             for (i, k), result in results:
                 check_result(result)
                 if (i, k) in seen:

@@ -26,21 +26,28 @@ the runner built it (``fastpath.ensemble.log_edges``): collisions
 unique(round(10**(k/per_decade))), time [0] + first*10**(k/per_decade); the last bin is open.
 
 CSV histograms: header ``lower,upper,count``, rows counting lower <= X < upper, increasing and
-not overlapping (gaps are empty bins); a last row with upper = inf counts particles censored at
+not overlapping (gaps are empty bins), edges in [0, 2**53] and counts adding up to at most 2**53
+(``MAX_CLOCK``, ``MAX_COUNT``); a last row with upper = inf counts particles censored at
 ``lower``.
 """
 
 from __future__ import annotations
 
 import csv
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from reports.runs.manifest import load_manifest
+
 CLOCKS = ("collisions", "time")
+# Counts and clock values up to 2**53: float64, in which the fits work, holds every integer up
+# to it exactly (a count or total beyond it, or a bin edge beyond it, where neighbouring
+# integers merge, would be silently rounded).
+MAX_COUNT = 2**53
+MAX_CLOCK = float(2**53)
 
 
 @dataclass(frozen=True)
@@ -100,28 +107,26 @@ def _int_count(text, where):
         raise ValueError(f"{where}: count {text!r} is not an integer")
     if value < 0:
         raise ValueError(f"{where}: negative count {text}")
+    if value > MAX_COUNT:
+        raise ValueError(f"{where}: count {text} is above 2**53 = {MAX_COUNT}, the largest"
+                         " count float64 holds exactly")
     return int(value)
 
 
 def read_run(path, clocks=CLOCKS):
     """Curves (experiment order of the manifest, then clock, then outcome) of a run directory."""
     path = Path(path)
-    try:
-        manifest = json.loads((path / "manifest.json").read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise ValueError(f"{path}: no manifest.json (not a run directory)") from None
-    except json.JSONDecodeError as err:
-        raise ValueError(f"{path / 'manifest.json'}: malformed JSON ({err})") from None
+    if not (path / "manifest.json").is_file():
+        raise ValueError(f"{path}: no manifest.json (not a run directory)")
+    manifest = load_manifest(path / "manifest.json")  # its schema: one line if malformed
     counts_file = path / "counts.csv"
     if not counts_file.is_file():
-        kind = (manifest.get("scene") or {}).get("kind") if isinstance(manifest, dict) else None
+        kind = manifest["scene"]["kind"]
         if kind in ("phase-space", "velocity"):  # these kinds record no survival counts
             raise ValueError(f"{path}: a {kind} run has no survival counts to fit (no counts.csv;"
                              f" `bouncer plot {path}` draws what it recorded)")
         raise ValueError(f"{path}: no counts.csv")
-    experiments = manifest.get("curves")
-    if not isinstance(experiments, dict) or "bins" not in manifest:
-        raise ValueError(f"{path / 'manifest.json'}: no 'curves' or 'bins' entry")
+    experiments = manifest["curves"]
     rows = {}
     with open(counts_file, newline="", encoding="utf-8") as f:
         reader = csv.reader(f)
@@ -188,6 +193,7 @@ def read_csv_histogram(path, clock="time"):
         raise ValueError(f"{path}: header must be lower,upper,count, got {','.join(header)!r}")
     lower, upper, counts = [], [], []
     censored = None  # count of the censored row, once read
+    total = 0
     for line, row in enumerate(reader, start=2):
         where = f"{path}:{line}"
         if not row:
@@ -199,10 +205,18 @@ def read_csv_histogram(path, clock="time"):
         except ValueError:
             raise ValueError(f"{where}: bin edges {row[0]!r}, {row[1]!r} are not numbers") from None
         count = _int_count(row[2], where)
+        total += count
+        if total > MAX_COUNT:
+            raise ValueError(f"{where}: the counts add up to more than 2**53 = {MAX_COUNT},"
+                             " the largest total float64 holds exactly")
         if censored is not None:
             raise ValueError(f"{where}: rows after the censored row (upper = inf)")
         if not math.isfinite(lo) or math.isnan(hi) or not lo < hi:
             raise ValueError(f"{where}: bins not increasing: lower {row[0]} upper {row[1]}")
+        if lo < 0 or (math.isfinite(hi) and hi > MAX_CLOCK):
+            raise ValueError(f"{where}: bin edges {row[0]}, {row[1]} outside [0, 2**53]: clock"
+                             " values (collisions, time) are >= 0, and float64 cannot tell"
+                             " neighbouring ones apart above 2**53")
         if lower and lo < upper[-1]:
             raise ValueError(f"{where}: bins not increasing: lower {row[0]} < previous upper "
                              f"{upper[-1]!r}")

@@ -2,7 +2,7 @@
 
 ``check_integrator(flight_time, step=None)`` runs hypothesis property suites against a user's
 callables ``flight_time(phi, v, eps) -> float`` and ``step(phi, v, eps) -> (phi1, v1, tau)``
-and returns a :class:`CheckReport`. The properties (DESIGN.md Section 2; ``u = 2**-53``, ``kappa``
+and returns a :class:`CheckReport`. The properties (``u = 2**-53``, ``kappa``
 = :func:`verify.condition_number`, ``k`` the allowed multiple, 16 by default as for ``fastpath``):
 
 ``no_overstep``
@@ -33,7 +33,11 @@ property that called it; the checker does not crash. The callables run in a work
 (:mod:`.worker`), so a call that hangs past ``call_timeout`` or kills the process (exit,
 segfault) is such a failure too; the whole check runs under ``budget`` seconds, and a property
 the budget cut short is INCONCLUSIVE with the count reached. Inputs where ``verify`` itself cannot
-decide the first root (:class:`verify.UndecidableCollision`) are discarded.
+decide the first root (:class:`verify.UndecidableCollision`) are discarded; a property left with
+no checked input is INCONCLUSIVE too. A check passes only when every property of its suite ran
+and held. A ``MODULE:FUNCTION`` spec is imported in the worker process only: a module that
+raises, calls ``sys.exit()`` or crashes while importing is a ``ValueError`` (nothing of it was
+checked), and never ends the caller's process.
 
 Each property draws its inputs in parts (e.g. random / close root pairs / near misses), each
 part its own hypothesis search with its share of ``max_examples``, so every kind of input is

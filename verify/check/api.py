@@ -11,9 +11,9 @@ from collections.abc import Callable
 from .budget import Budget, BudgetSpent
 from .calling import Bad
 from .driver import Run, property_parts, run_property
-from .loading import load_callable
+from .loading import load_callable, parse_spec
 from .properties import Checker
-from .report import CheckReport, PropertyResult, callable_name
+from .report import NO_INPUT, CheckReport, PropertyResult, callable_name
 from .suites import DEFAULT_EXAMPLES, NEEDS_STEP, check_suite, properties_of
 from .worker import Unavailable, Worker, how_to_load
 
@@ -29,24 +29,41 @@ def _positive(name, x, allow_inf):
 
 
 def _target(fn, what):
-    """(callable, spec or None) from a callable or a ``MODULE:FUNCTION`` string."""
+    """(callable or None, spec or None) from a callable or a ``MODULE:FUNCTION`` string. A
+    spec is only parsed here: the worker process imports it, so that a module that exits or
+    crashes while importing cannot end the caller's process."""
     if isinstance(fn, str):
-        return load_callable(fn, search_cwd=True), fn
+        parse_spec(fn)
+        return None, fn
     if not callable(fn):
         raise ValueError(f"{what} must be callable or MODULE:FUNCTION, got {fn!r}")
     return fn, None
 
 
+def _in_process(fns, specs, why):
+    """The callables to call in this process (specs imported here), and the note saying so."""
+    fns = {name: fn if fn is not None else load_callable(specs[name], search_cwd=True)
+           for name, fn in fns.items()}
+    return fns, None, (f"IN-PROCESS: {why}; no protection from hangs or crashes, the budget "
+                       "is checked between inputs only (pass MODULE:FUNCTION to run it in a "
+                       "worker process)")
+
+
 def _callers(fns, specs, call_timeout, budget):
-    """(the callables the properties call, the worker or None, how they run)."""
+    """(the callables the properties call, the worker or None, how they run). ValueError when
+    a ``MODULE:FUNCTION`` spec does not load in the worker (it raises, exits or crashes while
+    importing, or names no callable)."""
     try:
         how = {name: how_to_load(fn, specs[name]) for name, fn in fns.items()}
-        worker = Worker(how, call_timeout, budget)
+    except Unavailable as why:  # a callable that cannot be pickled
+        return _in_process(fns, specs, why)
+    worker = Worker(how, call_timeout, budget)
+    try:
         worker.start()
     except Unavailable as why:
-        return fns, None, (f"IN-PROCESS: {why}; no protection from hangs or crashes, the "
-                           "budget is checked between inputs only (pass MODULE:FUNCTION "
-                           "to run it in a worker process)")
+        if any(specs[name] is not None for name in fns):
+            raise ValueError(str(why)) from None
+        return _in_process(fns, specs, why)
     except BudgetSpent:  # every property will be inconclusive with 0 inputs
         return ({name: worker.callable(name) for name in fns}, worker,
                 "the budget ran out while the worker process started")
@@ -84,12 +101,16 @@ def check_integrator(
     the properties not finished are INCONCLUSIVE with the counts reached. progress:
     ``progress(property, inputs so far, inputs planned)`` after each input. Properties that
     need ``step`` are skipped without it (asking for one of them alone raises
-    ``ValueError``). Returns a :class:`CheckReport`; never raises for a misbehaving callable.
+    ``ValueError``). Returns a :class:`CheckReport`; never raises for a misbehaving callable
+    (an exception, ``sys.exit()``, a crash or a hang in a call is a failure of its property).
+    Raises ``ValueError`` for bad arguments, including a spec whose module raises, exits or
+    crashes while importing: nothing of it was checked.
     """
     suite = check_suite(suite)
     flight_time, ft_spec = _target(flight_time, "flight_time")
+    has_step = step is not None
     step, step_spec = (None, None) if step is None else _target(step, "step")
-    if suite in NEEDS_STEP and step is None:
+    if suite in NEEDS_STEP and not has_step:
         raise ValueError(f"suite {suite!r} needs a step callable (step=... / --step)")
     if isinstance(k, bool) or not isinstance(k, numbers.Real) or not (0 < k < math.inf):
         raise ValueError(f"k must be a positive finite number, got k={k!r}")
@@ -105,8 +126,8 @@ def check_integrator(
 
     start = time.perf_counter()
     clock = Budget(budget_s)
-    fns = {"flight_time": flight_time} if step is None else \
-        {"flight_time": flight_time, "step": step}
+    fns = {"flight_time": flight_time, "step": step} if has_step else \
+        {"flight_time": flight_time}
     specs = {"flight_time": ft_spec, "step": step_spec}
     calls, worker, isolation = _callers(fns, specs, call_timeout, clock)
     run = Run(seed, clock, (lambda: worker.faults) if worker else (lambda: 0), progress)
@@ -116,7 +137,7 @@ def check_integrator(
     try:
         for name in properties_of(suite):
             t0 = time.perf_counter()
-            if name in NEEDS_STEP and step is None:
+            if name in NEEDS_STEP and not has_step:
                 results.append(PropertyResult(name, "SKIP", 0, "needs a step callable"))
                 continue
             got = run_property(name, getattr(checker, name), strategies[name],
@@ -126,14 +147,17 @@ def check_integrator(
                 phi, v, eps = checker.worst_input
                 notes.insert(0, f"worst k = {checker.worst_k:.3g} at phi={phi!r}, v={v!r}, "
                                 f"eps={eps!r}; allowed {k:g}")
-            if name == "fixed_points" and step is None:
+            if name == "fixed_points" and not has_step:
                 notes.append("flight time only: no step given")
             if got.failure is not None:
                 status = "FAIL"
             elif got.cut:
                 status = "INCONCLUSIVE"
-            else:
-                status = "PASS" if got.inputs else "SKIP"
+            elif got.inputs:
+                status = "PASS"
+            else:  # it never ran: not a pass
+                status = "INCONCLUSIVE"
+                notes.append(NO_INPUT)
             results.append(PropertyResult(name, status, got.inputs, "; ".join(notes),
                                           got.failure, time.perf_counter() - t0, got.failed))
     finally:
@@ -143,7 +167,7 @@ def check_integrator(
         isolation += f"; {worker.faults} timeouts or crashes, {worker.restarts} restarts"
     return CheckReport(
         target=ft_spec or callable_name(flight_time),
-        step_target=None if step is None else step_spec or callable_name(step),
+        step_target=step_spec or (callable_name(step) if has_step else None),
         suite=suite,
         k=float(k),
         seed=seed,

@@ -40,7 +40,8 @@ def call_flight(fn, phi, v, eps) -> float:
         out = fn(phi, v, eps)
     except Bad:  # a worker's timeout or crash, already described
         raise
-    except Exception as err:  # the user's code: any exception is a failure of the property
+    except (Exception, SystemExit) as err:  # the user's code: any exception, or an exit,
+        # is a failure of the property (in-process, an exit must not end the caller)
         raise Bad(f"exception {one_line(err)}", "flight_time raised on a valid departure") \
             from None
     tau = as_float(out, "the flight time")
@@ -54,7 +55,7 @@ def call_step(fn, phi, v, eps) -> tuple[float, float, float]:
         out = fn(phi, v, eps)
     except Bad:
         raise
-    except Exception as err:
+    except (Exception, SystemExit) as err:
         raise Bad(f"exception {one_line(err)}", "step raised on a valid departure") from None
     try:
         phi1, v1, tau = out

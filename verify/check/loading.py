@@ -16,14 +16,10 @@ def load_callable(spec: str, *, search_cwd: bool = True) -> Callable:
     (``solvers/mine.py``); FUNCTION may be dotted (``Solver.flight_time``). With ``search_cwd``
     the current directory is put on ``sys.path`` first, so users can name their own files.
     Raises ``ValueError`` with a one-line message when the spec is malformed, the module
-    cannot be imported, the attribute is missing or is not callable.
+    cannot be imported (it raises, or calls ``sys.exit()``, while importing), the attribute is
+    missing or is not callable.
     """
-    if not isinstance(spec, str):
-        raise ValueError(f"expected MODULE:FUNCTION, got {spec!r}")
-    module_name, sep, attr = spec.rpartition(":")
-    if not sep or not module_name.strip() or not attr.strip():
-        raise ValueError(f"expected MODULE:FUNCTION (e.g. mymodule:flight_time), got {spec!r}")
-    module_name, attr = module_name.strip(), attr.strip()
+    module_name, attr = parse_spec(spec)
     if search_cwd:
         cwd = os.getcwd()
         if cwd not in sys.path and "" not in sys.path:
@@ -38,6 +34,17 @@ def load_callable(spec: str, *, search_cwd: bool = True) -> Callable:
     if not callable(obj):
         raise ValueError(f"{spec!r} is not callable (it is a {type(obj).__name__})")
     return obj
+
+
+def parse_spec(spec: str) -> tuple[str, str]:
+    """``"MODULE:FUNCTION"`` -> (MODULE, FUNCTION), without importing anything; ``ValueError``
+    when the spec is malformed."""
+    if not isinstance(spec, str):
+        raise ValueError(f"expected MODULE:FUNCTION, got {spec!r}")
+    module_name, sep, attr = spec.rpartition(":")
+    if not sep or not module_name.strip() or not attr.strip():
+        raise ValueError(f"expected MODULE:FUNCTION (e.g. mymodule:flight_time), got {spec!r}")
+    return module_name.strip(), attr.strip()
 
 
 def _import(module_name: str):
@@ -64,7 +71,15 @@ def _import(module_name: str):
         raise
     except ModuleNotFoundError as err:
         raise ValueError(f"cannot import module {module_name!r}: {err}") from None
-    except Exception as err:  # the user's module raised while importing
+    except KeyboardInterrupt:
+        raise
+    except SystemExit as err:  # a script's sys.exit(): nothing of it was checked
+        raise ValueError(
+            f"importing module {module_name!r} called sys.exit({err.code!r}); a module to"
+            " check must not exit when imported (put the script part under"
+            " if __name__ == '__main__':)"
+        ) from None
+    except BaseException as err:  # the user's module raised while importing
         msg = str(err).splitlines()[0] if str(err) else ""
         raise ValueError(
             f"importing module {module_name!r} failed: {type(err).__name__}: {msg}"

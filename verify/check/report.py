@@ -9,6 +9,8 @@ from dataclasses import dataclass
 
 from .suites import PROPERTIES
 
+NO_INPUT = "no input could be checked"  # the note of a property that never ran
+
 
 @dataclass(frozen=True)
 class Failure:
@@ -44,8 +46,9 @@ class Failure:
 
 @dataclass(frozen=True)
 class PropertyResult:
-    """Outcome of one property: ``status`` is "PASS", "FAIL", "SKIP" or "INCONCLUSIVE" (the
-    budget ran out before its search finished; ``inputs`` is the count reached)."""
+    """Outcome of one property: ``status`` is "PASS", "FAIL", "SKIP" (it needs a step callable
+    and none was given) or "INCONCLUSIVE" (the budget ran out before its search finished,
+    ``inputs`` is the count reached; or no input could be checked)."""
 
     name: str
     status: str
@@ -76,17 +79,21 @@ class CheckReport:
 
     @property
     def verdict(self) -> str:
-        """"failed" if a property failed, else "inconclusive" if the budget cut one short,
-        else "passed"."""
+        """"failed" if a property failed, else "inconclusive" if one did not run to the end
+        (the budget cut it short, or no input could be checked), else "passed": every
+        property of the suite ran and held (a property that needs a step callable, when none
+        was given, is skipped)."""
         if any(r.status == "FAIL" for r in self.results):
             return "failed"
-        if any(r.status == "INCONCLUSIVE" for r in self.results):
+        if not any(r.status == "PASS" for r in self.results) or any(
+                r.status not in ("PASS", "SKIP") for r in self.results):
             return "inconclusive"
         return "passed"
 
     @property
     def ok(self) -> bool:
-        """Every property held on all its inputs (skips aside); inconclusive is not ok."""
+        """Every property ran and held on all its inputs (skips for want of a step callable
+        aside); inconclusive is not ok."""
         return self.verdict == "passed"
 
     @property
@@ -116,6 +123,8 @@ class CheckReport:
                 what = f"{r.failed} of {r.inputs} inputs fail"
             elif r.status == "SKIP":
                 what = "skipped"
+            elif r.status == "INCONCLUSIVE" and NO_INPUT in r.note:
+                what = "not run"
             elif r.status == "INCONCLUSIVE":
                 what = f"{r.inputs} of {self.max_examples} inputs when the budget ran out"
             else:
@@ -133,8 +142,13 @@ class CheckReport:
             for f in fails:
                 lines.extend("  " + line for line in str(f).splitlines())
         elif self.verdict == "inconclusive":
-            lines.append(f"inconclusive: the budget of {self.budget:g} s ran out before every "
-                         "property had its inputs; no property failed on the inputs tried")
+            if any(r.status == "INCONCLUSIVE" and NO_INPUT not in r.note for r in self.results):
+                lines.append(f"inconclusive: the budget of {self.budget:g} s ran out before "
+                             "every property had its inputs; no property failed on the inputs "
+                             "tried")
+            else:
+                lines.append(f"inconclusive: a property had {NO_INPUT}; no property failed "
+                             "on the inputs tried")
         else:
             lines.append("all properties hold")
         return "\n".join(lines)

@@ -7,7 +7,8 @@ caller's ``__main__``), talking pickled messages over a socket pair:
 
     parent -> child   ("load", sys_path, {"flight_time": how, "step": how})
                       how = ("spec", "MODULE:FUNCTION") or ("pickle", bytes)
-    child -> parent   ("ready", warm_up_note) | ("load-failed", text)
+    child -> parent   ("loaded", None) | ("load-failed", text)
+    child -> parent   ("ready", warm_up_note)
     parent -> child   (name, (phi, v, eps))
     child -> parent   ("ok", output) | ("raised", text) | ("unpicklable", repr of output)
 
@@ -87,7 +88,8 @@ class Worker:
     # -- lifecycle
     def start(self) -> None:
         """Start a worker and load the callables. Raises :class:`Unavailable` if they do not
-        load there, :class:`Bad` if it does not get ready in time, :class:`BudgetSpent`."""
+        load there (an import that raises, exits or kills the process), :class:`Bad` if the
+        warm-up call kills it or it does not get ready in time, :class:`BudgetSpent`."""
         parent, child = socket.socketpair()
         env = dict(os.environ)
         env["PYTHONPATH"] = os.pathsep.join(filter(None, (_ROOT, env.get("PYTHONPATH"))))
@@ -100,26 +102,33 @@ class Worker:
             child.close()
         self.conn = Connection(parent.detach())
         self.conn.send(("load", list(sys.path), self.how))
-        wait = min(START_TIMEOUT, self.budget.remaining())
-        try:
-            reply = self._receive(wait)
+        deadline = self.budget.elapsed() + START_TIMEOUT
+        try:  # importing: a death here is the import's (an exit or crash at import time)
+            reply = self._receive(min(START_TIMEOUT, self.budget.remaining()))
         except Bad as bad:
-            raise Bad(bad.text, "the worker died while importing the callables or in one "
-                      "warm-up call at (phi, v, eps) = (0.0, pi, 0.5)", "crash") from None
+            what = ", ".join(value if kind == "spec" else name
+                             for name, (kind, value) in self.how.items())
+            raise Unavailable(f"{bad.text} while importing {what}") from None
+        if reply is not None and reply[0] == "load-failed":
+            self.stop()
+            raise Unavailable(reply[1])
+        if reply is not None:  # loaded: now the warm-up call
+            wait = max(0.0, min(deadline - self.budget.elapsed(), self.budget.remaining()))
+            try:
+                reply = self._receive(wait)
+            except Bad as bad:
+                raise Bad(bad.text, "the worker died in its warm-up call at (phi, v, eps) = "
+                          "(0.0, pi, 0.5)", "crash") from None
         if reply is None:
             self.stop()
-            if wait < START_TIMEOUT:
+            if self.budget.remaining() <= 0.0:
                 raise BudgetSpent
             self.faults += 1
             raise Bad(f"no answer within {START_TIMEOUT:g} s",
                       "the worker did not get ready: importing the callables and one warm-up "
                       f"call at (phi, v, eps) = (0.0, pi, 0.5) took over {START_TIMEOUT:g} s",
                       "timeout")
-        kind, value = reply
-        if kind == "load-failed":
-            self.stop()
-            raise Unavailable(value)
-        self.warm_up_note = value or ""
+        self.warm_up_note = reply[1] or ""
 
     def stop(self) -> None:
         if self.conn is not None:
@@ -229,14 +238,19 @@ def serve(conn: Connection) -> None:
     sys.path[:] = sys_path + [p for p in sys.path if p not in sys_path]
     try:
         fns = {name: _load(how) for name, how in hows.items()}
-    except BaseException as err:  # noqa: BLE001 - report any load failure to the parent
-        conn.send(("load-failed", one_line(err)))
+    except KeyboardInterrupt:
+        raise
+    except BaseException as err:  # noqa: BLE001 - sys.exit() too: report it to the parent
+        conn.send(("load-failed", str(err) if isinstance(err, ValueError) else one_line(err)))
         return
+    conn.send(("loaded", None))
     notes = []
     for name, fn in fns.items():
         try:
             fn(*WARM_UP)
-        except Exception as err:  # noqa: BLE001 - judged later, on the drawn inputs
+        except KeyboardInterrupt:
+            raise
+        except BaseException as err:  # noqa: BLE001 - judged later, on the drawn inputs
             notes.append(f"the warm-up call of {name} at (0.0, pi, 0.5) raised {one_line(err)}")
     conn.send(("ready", "; ".join(notes)))
     while True:
@@ -246,7 +260,9 @@ def serve(conn: Connection) -> None:
             return
         try:
             out = fns[name](*args)
-        except Exception as err:  # noqa: BLE001 - the user's code: report, keep serving
+        except KeyboardInterrupt:
+            raise
+        except BaseException as err:  # noqa: BLE001 - the user's code (sys.exit() too): report
             conn.send(("raised", one_line(err)))
             continue
         try:

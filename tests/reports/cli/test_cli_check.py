@@ -113,3 +113,57 @@ def test_a_hang_exits_1_naming_the_input(capsys):
     assert "did not return within the call timeout of 0.5 s" in captured.out
     assert "accuracy: examples.planted_defects:hanging_flight_time at phi=" in captured.out
     assert captured.err == ""
+
+
+WRONG_SOLVER = "def flight_time(phi, v, eps):\n    return 2.0 * v\n"
+
+
+@pytest.mark.parametrize(
+    "ending, text",
+    [
+        ("import sys\nprint('script output')\nsys.exit(0)\n", "called sys.exit(0)"),
+        ("import sys\nsys.exit(3)\n", "called sys.exit(3)"),
+        ("import os\nos._exit(0)\n", "died (exit code 0) while importing script_style"),
+        ("raise SystemExit('done')\n", "called sys.exit('done')"),
+    ],
+    ids=["sys.exit(0)", "sys.exit(3)", "os._exit(0)", "SystemExit"],
+)
+def test_a_module_that_exits_while_importing_is_bad_input_not_a_pass(ending, text, tmp_path,
+                                                                      monkeypatch, capsys):
+    """A wrong solver in a script ending with an exit is never judged as passing: the exit is
+    the module's, nothing was checked, exit status 2 with one line."""
+    (tmp_path / "script_style.py").write_text(WRONG_SOLVER + ending)
+    monkeypatch.chdir(tmp_path)
+    code = main(["check", "script_style:flight_time", "--suite", "fixed_points",
+                 "--no-progress"])
+    captured = capsys.readouterr()
+    assert code == 2
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("bouncer: error: ")
+    assert text in lines[0]
+    assert "all properties hold" not in captured.out
+
+
+def test_a_call_that_exits_fails_its_property(tmp_path, monkeypatch, capsys):
+    (tmp_path / "exits.py").write_text(
+        "import sys\ndef flight_time(phi, v, eps):\n    sys.exit(0)\n")
+    monkeypatch.chdir(tmp_path)
+    code = main(["check", "exits:flight_time", "--suite", "fixed_points", "--no-progress"])
+    out = capsys.readouterr().out
+    assert code == 1
+    assert "FAIL  fixed_points" in out and "SystemExit" in out
+
+
+def test_a_check_that_does_not_finish_exits_1_with_one_line(monkeypatch, capsys):
+    import verify.check
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("lost the worker's answer")
+
+    monkeypatch.setattr(verify.check, "check_integrator", broken)
+    code = main(["check", "fastpath:flight_time", "--no-progress"])
+    captured = capsys.readouterr()
+    assert code == 1
+    assert captured.err == ("bouncer: error: the check did not finish: RuntimeError: lost the"
+                            " worker's answer\n")
+    assert captured.out == ""

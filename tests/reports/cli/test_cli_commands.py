@@ -110,3 +110,52 @@ def test_failure_exits_1(tmp_path, monkeypatch, capsys):
     path.write_text(TINY)
     assert main(["run", str(path), "--out", str(tmp_path / "run"), "--quiet"]) == 1
     assert "OVERSTEP" in capsys.readouterr().err
+
+
+def test_version(capsys):
+    from importlib import metadata
+
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0
+    assert capsys.readouterr().out == f"bouncer {metadata.version('bouncer-verify')}\n"
+
+
+def test_every_subcommand_and_option_has_a_help_line():
+    import argparse
+
+    from reports.cli import SUBCOMMANDS, build_parser
+
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    helps = {c.dest: c.help for c in sub._choices_actions}
+    assert sorted(sub.choices) == sorted(SUBCOMMANDS)
+    missing = [f"{name} {a.option_strings or a.dest}" for name, sp in sub.choices.items()
+               for a in sp._actions if not a.help] + [n for n in sub.choices if not helps[n]]
+    assert missing == []
+    assert all(a.help for a in parser._actions)
+
+
+@pytest.mark.parametrize("command", ["run", "report"])
+@pytest.mark.parametrize("text, value", [("1e6", 10**6), ("2000", 2000), ("2.5e3", 2500)])
+def test_particles_takes_integers_written_as_floats(command, text, value):
+    from reports.cli import build_parser
+
+    argv = [command, "paper-escape", "--particles", text] if command == "run" else \
+        [command, "--particles", text]
+    assert build_parser().parse_args(argv).particles == value
+
+
+def test_the_default_run_directory_stays_under_runs(tmp_path, monkeypatch, capsys):
+    """runs/NAME through a symbolic link to another folder is refused, and nothing is written
+    there."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "tiny.toml").write_text(TINY)
+    (tmp_path / "elsewhere").mkdir()
+    (tmp_path / "runs").mkdir()
+    (tmp_path / "runs" / "tiny").symlink_to(tmp_path / "elsewhere")
+    assert main(["run", "tiny.toml", "--quiet"]) == 2
+    assert "resolves to" in one_line_error(capsys) and not any((tmp_path / "elsewhere").iterdir())
+    (tmp_path / "runs" / "tiny").unlink()
+    assert main(["run", "tiny.toml", "--quiet"]) == 0
+    assert (tmp_path / "runs" / "tiny" / "manifest.json").is_file()

@@ -31,12 +31,30 @@ def write_csv(path, curve):
     return path
 
 
+BINS = {"collisions": {"first": 1, "decades": 8, "per_decade": 20, "integer": True},
+        "time": {"first": 0.1, "decades": 9, "per_decade": 20, "below_first": [0.0, 0.1]}}
+
+
+def manifest_of(kind, curves, particles):
+    """A manifest of the runner's schema (``reports.runs.manifest.SCHEMA``) with these curves:
+    what ``bouncer fit`` reads of it are the curves and the bins."""
+    return {"status": "complete",
+            "scene": {"name": "synthetic", "kind": kind, "file": "scene.toml", "eps": 0.6,
+                      "horizon": {"collisions": 1000, "time": None}},
+            "seed": 0, "particles": particles, "particles_total": particles * len(curves),
+            "chunk_size": 65536, "chunks": len(curves), "chunks_done": len(curves),
+            "collisions": 0,
+            "verification": {"sampled": 0, "worst_error": 0.0, "uncertain_settled": 0,
+                             "overstepped": 0, "error_unit": "kappa * u",
+                             "overstep_tolerance": 16.0, "verify_dps": 30},
+            "curves": curves, "bins": BINS, "survival_band": "95% Wilson score interval",
+            "hashes": {}}
+
+
 def write_run(folder, n=20_000, seed=0):
     """A run directory in the runner's format: one experiment, two outcomes, both clocks."""
     rng = np.random.default_rng(seed)
     folder.mkdir()
-    bins = {"collisions": {"first": 1, "decades": 8, "per_decade": 20, "integer": True},
-            "time": {"first": 0.1, "decades": 9, "per_decade": 20, "below_first": [0.0, 0.1]}}
     rows = ["experiment,clock,outcome,lower_edge,count"]
     n_edges = np.unique(np.round(10.0 ** (np.arange(161) / 20)))
     t_edges = np.concatenate([[0.0], 0.1 * 10.0 ** (np.arange(181) / 20)])
@@ -50,10 +68,9 @@ def write_run(folder, n=20_000, seed=0):
             k = np.searchsorted(edges, values[mask], side="right") - 1
             for b, c in zip(*np.unique(k, return_counts=True), strict=True):
                 rows.append(f"exp,{clock},{name},{float(edges[b])!r},{c}")
-    manifest = {"curves": {"exp": {"particles_done": n, "censored": int(censored.sum()),
-                                   "escaped": {"A": int((hole & ~censored).sum()),
-                                               "B": int((~hole & ~censored).sum())}}},
-                "bins": bins}
+    manifest = manifest_of("escape", {"exp": {
+        "particles_done": n, "censored": int(censored.sum()), "stuck": 0,
+        "escaped": {"A": int((hole & ~censored).sum()), "B": int((~hole & ~censored).sum())}}}, n)
     (folder / "manifest.json").write_text(json.dumps(manifest))
     (folder / "counts.csv").write_text("\n".join(rows) + "\n")
     return folder
@@ -102,6 +119,19 @@ def test_table_and_figures(tmp_path):
     assert len(pngs) == 1 and pngs[0].read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_figures_of_a_run_go_beside_it_never_into_it(tmp_path):
+    """The run directory holds what its manifest records: the PNGs go to RUN_DIR-fit beside
+    it (or to --out)."""
+    run = write_run(tmp_path / "run", n=2000)
+    before = sorted(p.name for p in run.iterdir())
+    args = argparse.Namespace(paths=[str(run)], clock="collisions", json=False, out=None,
+                              jobs=1)
+    assert fit_cli.main(args) == 0
+    assert sorted(p.name for p in run.iterdir()) == before
+    pngs = sorted(p.name for p in (tmp_path / "run-fit").iterdir())
+    assert pngs == ["fit-exp-A-collisions.png", "fit-exp-B-collisions.png"]
+
+
 def test_add_parser_registers_fit():
     parser = argparse.ArgumentParser()
     sub = parser.add_subparsers()
@@ -118,6 +148,12 @@ def test_add_parser_registers_fit():
     ("lower,upper,count\n1,2,3\n2,1.5,3\n", "not increasing"),
     ("lower,upper,count\n1,2,3\n1.5,3,3\n", "not increasing"),
     ("lower,upper,count\n1,2,0\n2,3,0\n3,inf,5\n", "no escapes"),
+    ("lower,upper,count\n0,1,1e300\n1,2,5\n", "count 1e300 is above 2**53"),
+    ("lower,upper,count\n0,1,9223372036854775807\n1,2,5\n", "is above 2**53"),
+    ("lower,upper,count\n0,1,4503599627370496\n1,2,4503599627370497\n",
+     "add up to more than 2**53"),
+    ("lower,upper,count\n1e300,1.5e300,10\n1.5e300,1.7e300,5\n", "outside [0, 2**53]"),
+    ("lower,upper,count\n-5,1,10\n1,2,5\n", "outside [0, 2**53]"),
 ])
 def test_bad_input_is_one_line_and_exit_2(tmp_path, text, message):
     path = tmp_path / "bad.csv"
@@ -128,6 +164,22 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, text, message):
     assert proc.stdout == ""
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and message in lines[0] and "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize("edit, field", [
+    (lambda m: m.__setitem__("bins", []), "field bins"),
+    (lambda m: m["curves"]["exp"].__setitem__("particles_done", "20000"), "field curves.exp"),
+    (lambda m: [1, 2, 3], "is not of type 'object'"),
+])
+def test_run_directory_with_a_malformed_manifest_is_one_line(tmp_path, edit, field):
+    run = write_run(tmp_path / "run", n=200)
+    manifest = json.loads((run / "manifest.json").read_text())
+    manifest = edit(manifest) or manifest
+    (run / "manifest.json").write_text(json.dumps(manifest))
+    proc = run_cli(run, "--json")
+    assert proc.returncode == 2 and proc.stdout == "" and "Traceback" not in proc.stderr
+    line, = proc.stderr.strip().splitlines()
+    assert f"{run / 'manifest.json'}: " in line and field in line
 
 
 def test_run_directory_that_does_not_add_up_is_rejected(tmp_path):
@@ -145,7 +197,10 @@ def test_run_without_counts_names_its_kind(tmp_path, kind):
     (and where to look instead); a survival run that lost counts.csv still says it is missing."""
     run = tmp_path / "run"
     run.mkdir()
-    (run / "manifest.json").write_text(json.dumps({"scene": {"name": "s", "kind": kind}}))
+    curve = ({"particles_done": 5, "moving": 5, "stuck": 0, "mean_v_at_horizon": 3.0}
+             if kind == "velocity" else
+             {"particles_done": 5, "censored": 5, "stuck": 0, "escaped": {}})
+    (run / "manifest.json").write_text(json.dumps(manifest_of(kind, {"c": curve}, 5)))
     proc = run_cli(run, "--json")
     assert proc.returncode == 2 and "Traceback" not in proc.stderr
     line, = proc.stderr.strip().splitlines()

@@ -15,6 +15,7 @@ import pytest
 
 from reports.cli import main
 from reports.runs import chunk, cluster, counts, driver, executor, sweep
+from reports.runs.manifest import load_provenance
 from reports.runs.plan import make_plan
 from reports.runs.rundir import RunFailed
 from reports.runs.scenes import parse_scene
@@ -119,6 +120,11 @@ def test_merge_is_keyed_by_chunk_index(scene):
     assert driver.summary(ordered, scene) == driver.summary(shuffled, scene)
 
 
+def chunks_computed(run_dir):
+    """The chunks the last session of the run computed (its provenance record)."""
+    return load_provenance(run_dir)["session"]["chunks_computed"]
+
+
 def test_cluster_run_is_bit_identical_to_local(scene, reference, local_cluster, tmp_path,
                                                capsys):
     path = tmp_path / "scene.toml"
@@ -128,7 +134,7 @@ def test_cluster_run_is_bit_identical_to_local(scene, reference, local_cluster, 
                  "--scheduler", local_cluster.scheduler_address]) == 0
     assert "2 workers, 8 chunks computed there" in capsys.readouterr().out
     same_results(reference, out)
-    session = json.loads((out / "manifest.json").read_text())["session"]
+    session = load_provenance(out)["session"]
     assert session["scheduler"] == local_cluster.scheduler_address and session["workers"] == 2
 
 
@@ -149,8 +155,8 @@ def test_resume_local_run_on_the_cluster(scene, reference, client, tmp_path, mon
     partial = json.loads((tmp_path / "r" / "manifest.json").read_text())
     assert partial["status"] == "partial" and partial["chunks_done"] == 3
     submitted = counting(client, monkeypatch)
-    manifest = driver.run(scene, tmp_path / "r", resume=True, progress=False, scheduler=client)
-    assert len(submitted) == CHUNKS - 3 == manifest["session"]["chunks_computed"]
+    driver.run(scene, tmp_path / "r", resume=True, progress=False, scheduler=client)
+    assert len(submitted) == CHUNKS - 3 == chunks_computed(tmp_path / "r")
     same_results(reference, tmp_path / "r")
 
 
@@ -176,8 +182,8 @@ def test_checkpoint_cadence(scene, reference, tmp_path, monkeypatch, stop):
     assert partial["chunks_done"] == (1 if stop is Interrupt else 3)
     assert len(counts.Tally.load(tmp_path / "r" / "checkpoint.npz").finished) == (
         partial["chunks_done"])
-    manifest = driver.run(scene, tmp_path / "r", resume=True, progress=False)
-    assert manifest["session"]["chunks_computed"] == CHUNKS - partial["chunks_done"]
+    driver.run(scene, tmp_path / "r", resume=True, progress=False)
+    assert chunks_computed(tmp_path / "r") == CHUNKS - partial["chunks_done"]
     same_results(reference, tmp_path / "r")
 
 
@@ -204,8 +210,8 @@ def test_resume_cluster_run_locally(scene, reference, client, tmp_path, monkeypa
         return real_chunk(*args, **kwargs)
 
     monkeypatch.setattr(executor, "run_chunk", count_chunk)
-    manifest = driver.run(scene, tmp_path / "r", resume=True, progress=False)
-    assert len(calls) == CHUNKS - 5 == manifest["session"]["chunks_computed"]
+    driver.run(scene, tmp_path / "r", resume=True, progress=False)
+    assert len(calls) == CHUNKS - 5 == chunks_computed(tmp_path / "r")
     same_results(reference, tmp_path / "r")
 
 
@@ -276,8 +282,8 @@ def test_a_killed_worker_loses_and_doubles_nothing(scene, reference, client, tmp
     pids = set(client.run(os.getpid).values())
     monkeypatch.setattr(cluster, "map_chunks",
                         functools.partial(cluster.map_chunks, function=dying))
-    manifest = driver.run(scene, tmp_path / "r", progress=False, scheduler=client)
+    driver.run(scene, tmp_path / "r", progress=False, scheduler=client)
     died = int(Path(marker).read_text())
     assert died in pids  # a worker of the cluster really died mid-run
-    assert manifest["session"]["chunks_computed"] == CHUNKS
+    assert chunks_computed(tmp_path / "r") == CHUNKS
     same_results(reference, tmp_path / "r")

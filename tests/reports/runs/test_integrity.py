@@ -85,7 +85,7 @@ def edit_csv(path, edit):
 def test_manifest_hashes_every_file(run_dir, capsys):
     hashes = json.loads((run_dir / "manifest.json").read_text())["hashes"]
     assert set(hashes) == {"scene.toml", "checkpoint.npz", "survival.csv", "counts.csv",
-                           "sample.csv"}
+                           "sample.csv", "provenance.json"}
     for name, digest in hashes.items():
         assert rundir.sha256_file(run_dir / name) == digest, name
     code, out = audit(run_dir, capsys)
@@ -257,14 +257,15 @@ def test_binary_scene_file_is_named(tmp_path, capsys):
 
 
 def test_directory_read_only_mid_run(tmp_path, capsys, monkeypatch):
-    """The 4th atomic write (mid-run) fails as on a read-only directory: one line naming the
-    file, exit 2; the run then resumes to the uninterrupted result."""
+    """The 6th atomic write (the manifest after the first checkpoint: mid-run) fails as on a
+    read-only directory: one line naming the file, exit 2; the run then resumes to the
+    uninterrupted result."""
     (tmp_path / "tiny.toml").write_text(TINY)
     real, calls = rundir.write_atomic, []
 
     def failing(path, data):
         calls.append(path)
-        if len(calls) == 4:
+        if len(calls) == 6:
             raise PermissionError(13, "Permission denied", str(path))
         return real(path, data)
 

@@ -44,8 +44,8 @@ def rehash(run_dir, name):
 
 
 def problems_of(lines):
-    """The discrepancy lines of a report: between the 'checked:' line and the verdict."""
-    start = next(i for i, x in enumerate(lines) if x.startswith("checked: "))
+    """The discrepancy lines of a report: between the 'not audited:' line and the verdict."""
+    start = next(i for i, x in enumerate(lines) if x.startswith("not audited: "))
     return lines[start + 1:-1]
 
 
@@ -62,7 +62,10 @@ def test_clean_run_report(run):
         f"{n} sampled collisions recomputed by verify: worst error {worst:.3g} kappa*u"
         f" (recorded {worst:.3g}), 0 overstepped (tolerance 16 kappa*u)",
         "checked: content hashes, checkpoint invariants, counts.csv and survival.csv"
-        " re-derived, sample.csv, the manifest's figures",
+        " re-derived, sample.csv, the sample replayed from the seed, every field of the"
+        " manifest",
+        "not audited: provenance.json (how and when the run was made; only its hash is"
+        " checked)",
         "OK"]
     assert recheck(str(run))[0] is True  # a path given as a string
 
@@ -71,7 +74,8 @@ def test_clean_phase_space_report(portrait_run):
     ok, lines = recheck(portrait_run)
     assert ok is True and lines[-1] == "OK"
     assert lines[2] == ("checked: content hashes, checkpoint invariants, portrait.npy"
-                        " re-derived, sample.csv, the manifest's figures")
+                        " re-derived, sample.csv, the sample replayed from the seed, every"
+                        " field of the manifest")
 
 
 def test_phase_space_portrait_must_match_the_checkpoint(portrait_run, tmp_path):
@@ -115,16 +119,20 @@ def test_the_report_shows_twenty_discrepancies_and_counts_the_rest(run):
     assert len(problems_of(lines)) == 21  # 20 shown and the count of the rest
 
 
-def test_recorded_worst_error_is_reported_or_nan(run):
+def test_recorded_worst_error_is_reported_and_checked(run):
+    worst = manifest_of(run)["verification"]["worst_error"]
     edit_manifest(run, lambda m: m["verification"].__setitem__("worst_error", 0.125))
     ok, lines = recheck(run)
     assert "(recorded 0.125)" in lines[1]
+    assert problems_of(lines) == [f"manifest.json: verification.worst_error is 0.125, the"
+                                  f" checkpoint and sample give {worst!r}"]
     edit_manifest(run, lambda m: m["verification"].pop("worst_error"))
-    ok, lines = recheck(run)
-    assert "(recorded nan)" in lines[1]
-    assert any(x.startswith("manifest.json: verification.worst_error is None") for x in lines)
+    with pytest.raises(ValueError, match=r"manifest.json: field verification: 'worst_error' is"
+                                         r" a required property"):
+        recheck(run)
     edit_manifest(run, lambda m: m.pop("verification"))
-    assert "(recorded nan)" in recheck(run)[1][1]
+    with pytest.raises(ValueError, match="'verification' is a required property"):
+        recheck(run)
 
 
 # ---- what the run directory must hold -------------------------------------------------------
@@ -138,8 +146,11 @@ def test_not_a_run_directory(run, name):
 
 
 def test_unreadable_manifest_or_scene(run):
+    (run / "scene.toml").write_bytes(b"\xff")
+    with pytest.raises(ValueError, match=r"run/scene.toml: not UTF-8 text"):
+        load_run(run)
     (run / "manifest.json").write_text("{not json")
-    with pytest.raises(ValueError, match=r"run: manifest.json or scene.toml is unreadable: "):
+    with pytest.raises(ValueError, match=r"run/manifest.json: not valid JSON \(Expecting"):
         load_run(run)
 
 
@@ -199,26 +210,42 @@ def test_an_interrupted_run_is_reported_with_its_finished_chunks(tmp_path, monke
 
 def test_hashes(run):
     manifest = manifest_of(run)
-    expected = ["scene.toml", "sample.csv", "checkpoint.npz", "survival.csv", "counts.csv"]
+    expected = ["scene.toml", "sample.csv", "checkpoint.npz", "provenance.json", "survival.csv",
+                "counts.csv"]
     assert _hashes(run, manifest, expected) == []
-    assert _hashes(run, {}, expected) == [
-        "manifest.json: no content hashes (a run of an earlier version): its files cannot be"
-        " checked against it"]
+    assert _hashes(run, {"hashes": {}}, expected[:2]) == [
+        "manifest.json: no hash recorded for scene.toml",
+        "manifest.json: no hash recorded for sample.csv"]
     del manifest["hashes"]["counts.csv"]
     assert _hashes(run, manifest, expected) == ["manifest.json: no hash recorded for counts.csv"]
-    manifest["hashes"]["extra.txt"] = "0" * 64
+    manifest["hashes"]["portrait.npy"] = "0" * 64
     (run / "sample.csv").write_text("edited\n")
-    assert _hashes(run, manifest, expected[:2]) == [
+    assert _hashes(run, manifest, expected) == [
+        "manifest.json: no hash recorded for counts.csv",
+        "manifest.json: a hash recorded for portrait.npy, which this run does not write",
         "sample.csv: SHA-256 differs from the manifest's (edited or corrupted)",
-        "extra.txt: missing (the manifest records its hash)"]
+        "portrait.npy: missing (the manifest records its hash)"]
 
 
-def test_a_run_without_hashes_fails_with_one_reason(run):
-    edit_manifest(run, lambda m: m.pop("hashes"))
+def test_a_run_without_hashes_is_refused_or_fails_for_each_file(run):
+    edit_manifest(run, lambda m: m["hashes"].clear())
     ok, lines = recheck(run)
     assert not ok and problems_of(lines) == [
-        "manifest.json: no content hashes (a run of an earlier version): its files cannot be"
-        " checked against it"]
+        f"manifest.json: no hash recorded for {name}" for name in
+        ("scene.toml", "sample.csv", "checkpoint.npz", "provenance.json", "survival.csv",
+         "counts.csv")]
+    edit_manifest(run, lambda m: m.pop("hashes"))
+    with pytest.raises(ValueError, match="'hashes' is a required property"):
+        recheck(run)
+
+
+@pytest.mark.parametrize("name", ["../outside.csv", "/etc/passwd", ".bouncer.lock"])
+def test_a_hash_for_a_file_outside_the_run_is_refused(run, name):
+    """The audit reads only the files a run writes: a hash recorded under another name (a path
+    out of the run directory) fails the manifest's schema before anything is opened."""
+    edit_manifest(run, lambda m: m["hashes"].__setitem__(name, "0" * 64))
+    with pytest.raises(ValueError, match="field hashes: .* is not one of"):
+        recheck(run)
 
 
 # ---- line comparisons ------------------------------------------------------------------------
@@ -232,7 +259,7 @@ def test_compare_names_lines_from_one_and_counts_them():
 
 
 def test_worst_error_nan_is_not_equal(run):
-    """A manifest figure compared with ``!=``: a NaN worst error is a discrepancy."""
+    """A manifest field compared by type and value: a NaN worst error is a discrepancy."""
     edit_manifest(run, lambda m: m["verification"].__setitem__("worst_error", math.nan))
     assert not recheck(run)[0]
 
@@ -257,18 +284,27 @@ def test_each_manifest_figure_is_checked(run, path):
     value = _at(manifest_of(run), path)[0][path[-1]]
     edit_manifest(run, lambda m: _at(m, path)[0].__setitem__(path[-1], value + 1))
     ok, lines = recheck(run)
+    source = "the plan gives" if path[0] in ("chunks", "particles_total") else \
+        "the checkpoint and sample give"
     assert not ok and problems_of(lines) == [
-        f"manifest.json: {key} is {value + 1!r}, the checkpoint and sample give {value!r}"]
+        f"manifest.json: {key} is {value + 1!r}, {source} {value!r}"]
 
 
-@pytest.mark.parametrize("path", [("verification",), ("curves",), ("curves", "from hole 2"),
+def test_a_curve_missing_from_the_manifest_is_a_discrepancy(run):
+    curve = manifest_of(run)["curves"]["from hole 2"]
+    edit_manifest(run, lambda m: m["curves"].pop("from hole 2"))
+    assert problems_of(recheck(run)[1]) == [
+        f"manifest.json: curves.from hole 2 is None, the checkpoint and sample give {curve!r}"]
+
+
+@pytest.mark.parametrize("path", [("verification",), ("curves",),
                                   ("curves", "from hole 2", "escaped")], ids=".".join)
-def test_missing_manifest_sections_are_discrepancies(run, path):
+def test_missing_manifest_sections_are_refused_by_the_schema(run, path):
     edit_manifest(run, lambda m: _at(m, path)[0].pop(path[-1]))
-    ok, lines = recheck(run)
-    found = problems_of(lines)
-    assert not ok and found and all(x.startswith("manifest.json: ") and " is None, " in x
-                                    for x in found)
+    with pytest.raises(ValueError) as err:
+        recheck(run)
+    assert str(err.value).startswith(f"{run / 'manifest.json'}: ")
+    assert "\n" not in str(err.value)
 
 
 ESCAPE = """
@@ -401,8 +437,8 @@ def test_velocity_run_report_and_missing_file(velocity_run, tmp_path):
     run_dir = Path(shutil.copytree(velocity_run, tmp_path / "run"))
     ok, lines = recheck(run_dir)
     assert ok is True and lines[2] == ("checked: content hashes, checkpoint invariants,"
-                                       " velocity.csv re-derived, sample.csv, the manifest's"
-                                       " figures")
+                                       " velocity.csv re-derived, sample.csv, the sample"
+                                       " replayed from the seed, every field of the manifest")
     (run_dir / "velocity.csv").write_bytes(b"\xff")
     rehash(run_dir, "velocity.csv")
     assert problems_of(recheck(run_dir)[1]) == ["velocity.csv is missing or not UTF-8 text"]
@@ -430,7 +466,8 @@ def test_velocity_manifest_figures(velocity_run, tmp_path, key):
         f"manifest.json: curves.r=0.9.{key} is {value + 1!r}, the checkpoint and sample give"
         f" {value!r}"]
     edit_manifest(run_dir, lambda m: m["curves"]["r=0.9"].__setitem__("particles_done", 7))
-    assert len(problems_of(recheck(run_dir)[1])) == 1  # particles_done is not a figure checked
+    assert ("manifest.json: curves.r=0.9.particles_done is 7, the checkpoint and sample give 100"
+            in problems_of(recheck(run_dir)[1]))
 
 
 # ---- the recomputed sample -------------------------------------------------------------------
@@ -447,8 +484,11 @@ def _edit_sample(run_dir, edits):
 
 
 def _sample_problems(run_dir):
+    """The discrepancies of step 5 (the recomputed sample): not the comparison with the
+    checkpoint, nor the replay from the seed (an edited state fails that too)."""
     return [x for x in problems_of(recheck(run_dir)[1])
-            if x.startswith("sample.csv:") and "the checkpoint has" not in x]
+            if x.startswith("sample.csv:") and "the checkpoint has" not in x
+            and "drawn from seed" not in x]
 
 
 def test_a_sample_row_verify_refuses_fails_the_audit_by_line(run, capsys):
@@ -524,14 +564,15 @@ def test_a_forged_phase_space_curve_figure_fails(portrait_run, tmp_path, key, va
         f"manifest.json: curves.portrait.{key} is {value}, the checkpoint and sample give 0"]
 
 
-@pytest.mark.parametrize("path", [("curves",), ("curves", "r=0.9")], ids=".".join)
-def test_velocity_manifest_without_its_curves(velocity_run, tmp_path, path):
+def test_velocity_manifest_without_its_curves(velocity_run, tmp_path):
     run_dir = Path(shutil.copytree(velocity_run, tmp_path / "run"))
-    edit_manifest(run_dir, lambda m: _at(m, path)[0].pop(path[-1]))
-    found = problems_of(recheck(run_dir)[1])
-    assert found and all(x.startswith("manifest.json: curves.r=") and " is None, " in x
-                         for x in found)
-    assert any(x.startswith("manifest.json: curves.r=0.9.moving is None") for x in found)
+    curve = manifest_of(run_dir)["curves"]["r=0.9"]
+    edit_manifest(run_dir, lambda m: m["curves"].pop("r=0.9"))
+    assert problems_of(recheck(run_dir)[1]) == [
+        f"manifest.json: curves.r=0.9 is None, the checkpoint and sample give {curve!r}"]
+    edit_manifest(run_dir, lambda m: m.pop("curves"))
+    with pytest.raises(ValueError, match="'curves' is a required property"):
+        recheck(run_dir)
 
 
 def test_velocity_run_totals_are_checked_too(velocity_run, tmp_path):

@@ -35,11 +35,15 @@ def test_progress_bar_is_labelled_verify_sample(run, capsys):
     n = manifest_of(run)["verification"]["sampled"]
     assert main(["verify", str(run)]) == 0
     captured = capsys.readouterr()
-    refreshes = [x.rstrip("\n") for x in captured.err.split("\r") if x]
-    assert refreshes and all(x.startswith("verify sample: ") for x in refreshes)
-    assert refreshes[0].startswith("verify sample:   0%|") and f" 0/{n} " in refreshes[0]
-    assert refreshes[-1].startswith("verify sample: 100%|") and f" {n}/{n} " in refreshes[-1]
-    assert refreshes[-1].endswith("collision/s]") and captured.out.endswith("OK\n")
+    refreshes = [x.rstrip("\n") for x in captured.err.replace("\n", "\r").split("\r") if x]
+    ours = [x for x in refreshes if x.startswith("verify sample: ")]
+    replay = [x for x in refreshes if x.startswith("replay from the seed: ")]
+    assert ours and replay and len(ours) + len(replay) == len(refreshes)
+    assert refreshes.index(ours[-1]) < refreshes.index(replay[0])  # the sample first
+    assert ours[0].startswith("verify sample:   0%|") and f" 0/{n} " in ours[0]
+    assert ours[-1].startswith("verify sample: 100%|") and f" {n}/{n} " in ours[-1]
+    assert ours[-1].endswith("collision/s]") and captured.out.endswith("OK\n")
+    assert replay[-1].startswith("replay from the seed: 100%|") and f" {n}/{n} " in replay[-1]
 
 
 def test_a_sample_with_cr_line_ends_is_still_checked_by_line(run, capsys):
@@ -81,7 +85,8 @@ def test_sample_returns_the_overstepped_lines(run):
     tau = float(rows[2].split(",")[8])
     _edit_sample(run, {3: {"tau": repr(tau * (1 + 1e-9))}})
     scene = parse_scene((run / "scene.toml").read_text())
-    got_rows, worst, overstepped, out = _sample(run, scene, False)
+    got_rows, worst, overstepped, out, parsed = _sample(run, scene, False)
+    assert [r.line for r in parsed] == list(range(2, len(rows) + 1))
     assert overstepped == [3] and len(got_rows) == len(rows) - 1
     assert worst > 16 and out[-1] == ("sample.csv:3: OVERSTEP: tau exceeds verify's first root"
                                       " by more than 16*kappa*u")
