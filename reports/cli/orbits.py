@@ -33,7 +33,8 @@ def add_parser(subparsers):
     p.add_argument("--period", type=int, default=1, help="collisions per period (default 1)")
     p.add_argument("--winding", type=int, help="total time 2*pi*M (default: from the guess)")
     p.add_argument("--shift", type=int, default=0, help="velocity shift pi*L per period")
-    p.add_argument("--model", choices=("exact", "holmes"), default="exact")
+    p.add_argument("--model", choices=("exact", "holmes"), default="exact",
+                   help="the map: exact (default) or the Holmes approximation")
     p.add_argument("--certify", action="store_true", help="prove it with verify (exact map)")
     p.add_argument("--dps", type=int, default=50, help="digits of the certificate (>= 15)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
