@@ -5,26 +5,25 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import prange
 
-from fastpath._jit import jit, parallel_jit
-from fastpath._validate import count, float_inputs, physics, scalar_inputs
-from fastpath.advance import CARRIED, carried_collide
-from fastpath.collision import collide
-from fastpath.drag_flight import solve_drag_flight
-from fastpath.flight import (
+from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.arithmetic.phase import reduce_phase
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.dissipative.carried import CARRIED, carried_collide
+from fastpath.dissipative.drag_flight import solve_drag_flight
+from fastpath.dissipative.impact import dissipative_collide
+from fastpath.elastic.collision import collide
+from fastpath.elastic.flight import METHODS, departure_of, solve_flight
+from fastpath.elastic.holmes import holmes_collide
+from fastpath.inputs import count, float_inputs, physics, scalar_inputs
+from fastpath.kernels.orbit import dissipative_orbit, exact_orbit, holmes_orbit
+from fastpath.status import (
     CONVERGED,
-    METHODS,
     NOT_DEPARTING,
     OVERFLOW,
     UNCERTAIN,
-    departure_of,
-    solve_flight,
+    FlightStatus,
+    UncertainCollision,
 )
-from fastpath.gap import UNIT_ROUNDOFF
-from fastpath.holmes import holmes_collide
-from fastpath.impact import dissipative_collide
-from fastpath.orbit import dissipative_orbit, exact_orbit, holmes_orbit
-from fastpath.phase import reduce_phase
-from fastpath.status import FlightStatus, UncertainCollision
 
 # The defaults of the physics keywords: the elastic call passes these very objects, which
 # ``_elastic`` recognises by identity before any validation (the elastic path pays ~50 ns).

@@ -267,7 +267,7 @@ def hash_flight(h, fastpath, phi, v, eps, physics, method):
 
 def step_digests():
     import fastpath
-    from fastpath.moments import moments
+    from fastpath.kernels.moments import moments
 
     rng = np.random.default_rng(20240601)
     result = {}

@@ -63,7 +63,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import fastpath
-from fastpath.moments import moments
+from fastpath.kernels.moments import moments
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim
 from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit
 from reports.runs.chunk import check_sample

@@ -36,7 +36,7 @@ import numba
 import numpy as np
 
 import fastpath
-from fastpath.ensemble import NO_LIMIT, holmes_escape_chunk
+from fastpath.kernels.escape import NO_LIMIT, holmes_escape_chunk
 from reports.runs.chunk import kernel
 from reports.runs.counts import Counts
 from reports.runs.driver import run

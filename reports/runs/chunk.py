@@ -22,13 +22,7 @@ import mpmath
 import numpy as np
 
 import verify
-from fastpath.ensemble import (
-    NO_LIMIT,
-    bin_index,
-    escape_chunk,
-    exit_hole,
-    portrait_chunk,
-)
+from fastpath.kernels.escape import NO_LIMIT, bin_index, escape_chunk, exit_hole, portrait_chunk
 from reports.runs.counts import Counts, exact_block_sums
 from reports.runs.plan import BLOCKS, PORTRAIT_BLOCKS, chunk_starts, make_plan
 from reports.runs.rundir import CARRIED_COLUMNS, RunFailed
@@ -70,13 +64,13 @@ _VERIFY_LOCK = threading.Lock()
 
 def _dissipative_kernel():
     """The dissipative ensemble kernel, imported only by scenes that use it."""
-    from fastpath.dissipative_ensemble import dissipative_escape_chunk
+    from fastpath.kernels.dissipative_escape import dissipative_escape_chunk
 
     return dissipative_escape_chunk
 
 
 def _law_code(name):
-    from fastpath.drag import LAWS
+    from fastpath.physics import LAWS
 
     return LAWS[name]
 
@@ -205,7 +199,7 @@ def simulate_chunk(plan, e, k):
 
 
 def _velocity_kernel():
-    from fastpath.velocity_ensemble import velocity_chunk
+    from fastpath.kernels.velocity import velocity_chunk
 
     return velocity_chunk
 
@@ -302,11 +296,11 @@ def _code_digest():
     results from workers that run other sources."""
     root = Path(__file__).resolve().parents[2]
     digest = hashlib.sha256()
-    files = [*sorted((root / "fastpath").glob("*.py")),
+    files = [*sorted((root / "fastpath").rglob("*.py")),
              *(root / "verify" / f"{name}.py" for name in _VERIFY_SOURCES),
              *sorted((root / "reports" / "runs").glob("*.py"))]
     for path in files:
-        digest.update(path.name.encode() + b"\0" + path.read_bytes())
+        digest.update(path.relative_to(root).as_posix().encode() + b"\0" + path.read_bytes())
     return digest.hexdigest()[:16]
 
 

@@ -13,22 +13,10 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.advance import (
-    CARRIED,
-    DETACHED,
-    PHI,
-    STUCK,
-    S,
-    V,
-    W,
-    advance,
-    begin,
-    departure_point,
-    detachment,
-    new_state,
-)
-from fastpath.drag import LAWS, NONE
-from fastpath.flight import AUTO, CONVERGED
+from fastpath.dissipative.carried import CARRIED, DETACHED, PHI, STUCK, S, V, W, advance, begin, departure_point, detachment, new_state
+from fastpath.physics import LAWS, NONE
+from fastpath.elastic.flight import AUTO
+from fastpath.status import CONVERGED
 
 
 def steps_of(phi0, v0, eps, r, n, k=0.0, law=NONE):

@@ -8,12 +8,13 @@ import pytest
 from fastpath_figures import record
 
 import fastpath
-from fastpath.collision import collide
-from fastpath.drag import LAWS, NONE, gap_state
-from fastpath.drag_flight import solve_drag_flight
-from fastpath.flight import solve_flight
-from fastpath.impact import dissipative_collide
-from fastpath.phase import centre_phase
+from fastpath.elastic.collision import collide
+from fastpath.physics import LAWS, NONE
+from fastpath.dissipative.drag import gap_state
+from fastpath.dissipative.drag_flight import solve_drag_flight
+from fastpath.elastic.flight import solve_flight
+from fastpath.dissipative.impact import dissipative_collide
+from fastpath.arithmetic.phase import centre_phase
 
 FUNCS = [fastpath.flight_time, fastpath.flight, fastpath.step]
 

@@ -34,21 +34,13 @@ from fastpath_figures import record
 from mpmath import mp
 
 import fastpath
-from fastpath.drag import LINEAR, QUADRATIC, gap_state
-from fastpath.drag_short_flight import drag_short_window, particle_offset
-from fastpath.drag_sticking import (
-    DETACHES,
-    NEVER,
-    UNDECIDED,
-    detach_kind,
-    detachment_frame,
-    drag_accumulation_tail,
-    drag_detachment,
-    drag_detachment_phase,
-)
-from fastpath.gap import departure
-from fastpath.phase import centre_phase
-from fastpath.sticking import detachment_phase
+from fastpath.physics import LINEAR, QUADRATIC
+from fastpath.dissipative.drag import gap_state
+from fastpath.dissipative.drag_short_flight import drag_short_window, particle_offset
+from fastpath.dissipative.drag_sticking import DETACHES, NEVER, UNDECIDED, detach_kind, detachment_frame, drag_accumulation_tail, drag_detachment, drag_detachment_phase
+from fastpath.elastic.gap import departure
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.dissipative.sticking import detachment_phase
 
 U = 2.0**-53
 LAW = {"linear": LINEAR, "quadratic": QUADRATIC}
@@ -302,7 +294,7 @@ def test_w0_zero_departure_from_drag_detachment(law, eps, k):
 def test_moments_with_drag_and_restitution_count_every_particle(law):
     """fastpath.moments with drag and r < 1 (eps = 0.6, k = 0.1: never detaches): at every n of
     the grid, moving + stuck + flagged = particles, and particles do get stuck."""
-    from fastpath.moments import moments
+    from fastpath.kernels.moments import moments
 
     n = 64
     m = moments(np.full(n, 4.0), np.linspace(2.0, 4.0, n), 0.6, [10, 100, 1000], drag=0.1,

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.ensemble import NO_LIMIT, bin_index, escape_chunk, exit_hole, log_edges
+from fastpath.kernels.escape import NO_LIMIT, bin_index, escape_chunk, exit_hole, log_edges
 
 TWO_PI = 2 * math.pi
 EPS = 0.6

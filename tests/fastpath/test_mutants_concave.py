@@ -38,9 +38,10 @@ import pytest
 from fastpath_tolerances import U, kappa
 from mpmath import mp
 
-import fastpath.concave as concave
-from fastpath.concave import ITERATION_LIMIT, bracket
-from fastpath.gap import departure
+import fastpath.elastic.concave as concave
+from fastpath.status import ITERATION_LIMIT
+from fastpath.elastic.concave import bracket
+from fastpath.elastic.gap import departure
 from fastpath.status import FlightStatus
 
 DPS = 40
@@ -225,7 +226,7 @@ def test_newton_inexact_at_its_threshold():
     (docstring): (|d''| + |eps*delta|)*delta**2 > u*t*|d'| with delta = d/d'. At equality it is
     not inexact (the answer is final). With eps = 0, d'' = -1, d' = -1, d = 2**-30 and
     t = 2**-7 both sides are exactly 2**-60."""
-    from fastpath.concave import _newton_inexact
+    from fastpath.elastic.concave import _newton_inexact
 
     t, d, d1 = 2.0**-7, 2.0**-30, -1.0
     assert (abs(-1.0) + 0.0) * (d / d1) ** 2 == U * t * abs(d1) == 2.0**-60  # the tie, exact
@@ -241,7 +242,7 @@ def _w0_error_for(index, target, sin_phi, cos_phi, v, eps, t, least=0.0):
     """The smallest w0_error >= ``least`` at which ``tight_gap``'s output ``index`` (5: E,
     6: R) reaches ``target``, by bisection over the float64 bit patterns (E and R do not
     decrease as w0_error grows)."""
-    from fastpath.tight_gap import tight_gap
+    from fastpath.elastic.tight_gap import tight_gap
 
     def bits(x):
         return struct.unpack("<q", struct.pack("<d", x))[0]
@@ -276,7 +277,7 @@ def test_refinement_at_a_gap_exactly_on_its_bound_is_at_the_root(t, side):
     the Newton point t - d/d' = 2 + O(2**-59), i.e. exactly 2.0, after one evaluation
     (the correction is not inexact: (d/d')**2 ~ 2**-60 <= u*t*|d'| ~ 2**-52). The mutants
     take d = +E as "before" (d = -E as "after") and spend a Halley step: two evaluations."""
-    from fastpath.tight_gap import tight_gap
+    from fastpath.elastic.tight_gap import tight_gap
 
     sin_phi, cos_phi, v = math.sin(_PHI), math.cos(_PHI), 1.0
     d = t * (v - 0.5 * t)
@@ -297,7 +298,7 @@ def test_refinement_at_a_slope_exactly_minus_its_bound_is_flat():
     the slope's bound R is exactly 1 (asserted). |d| <= E, and d' = -R does not prove d' < 0
     (the exact slope may be 0): float64 cannot tell a root from a flat top there, and the
     refinement must say UNCERTAIN (at t, after one evaluation). The mutant calls it a root."""
-    from fastpath.tight_gap import tight_gap
+    from fastpath.elastic.tight_gap import tight_gap
 
     sin_phi, cos_phi, v, t = math.sin(_PHI), math.cos(_PHI), 1.0, 2.0
     w0_error = _w0_error_for(6, 1.0, sin_phi, cos_phi, v, 0.0, t)
@@ -320,7 +321,7 @@ def test_refinement_at_a_slope_exactly_its_bound_is_flat():
     found by a search over such flights; w0_error (above the departure's own bound, so still a
     valid bound) is chosen so that R is exactly the computed d' (asserted, with |d| <= E). The
     mutant takes the point as "before" and goes on."""
-    from fastpath.tight_gap import tight_gap
+    from fastpath.elastic.tight_gap import tight_gap
 
     phi, v, eps, t = 3.141592644557456, 9.032337222943266e-09, -1.0, 2.054437778516293e-10
     sin_phi, cos_phi = math.sin(phi), math.cos(phi)
@@ -519,7 +520,7 @@ def test_the_refinement_is_tried_at_the_smallest_t():
     slope are below every rounding bound (both underflow): flat by the loose test, and the
     refinement must evaluate ``tight_gap`` there (it finds it flat too: UNCERTAIN after two
     evaluations). The mutant stops at the loose verdict without trying."""
-    from fastpath.tight_gap import SMALLEST_T
+    from fastpath.elastic.tight_gap import SMALLEST_T
 
     phi, v, eps = 0.0, 2.0**-1001, 0.5
     sin_phi, cos_phi = math.sin(phi), math.cos(phi)

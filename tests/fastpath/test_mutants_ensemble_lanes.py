@@ -7,11 +7,11 @@ where its moderate phase reduction is the one ``collide`` uses (|phi + tau| < 2*
 
 import numpy as np
 
-from fastpath.collision import collide
-from fastpath.ensemble import lane_collide
-from fastpath.flight import GENERAL, departure_phase
-from fastpath.lockstep import COS, DELTA, DONE, FAILED, HI, LO, SIN, T
-from fastpath.phase import centre_phase
+from fastpath.elastic.collision import collide
+from fastpath.kernels.escape import lane_collide
+from fastpath.elastic.flight import GENERAL, departure_phase
+from fastpath.elastic.lockstep import COS, DELTA, DONE, FAILED, HI, LO, SIN, T
+from fastpath.arithmetic.phase import centre_phase
 
 
 def _states(n, seed=5):
@@ -69,9 +69,9 @@ def test_lockstep_step_is_halley_from_the_holmes_start():
     each: 8u*|step|, plus u*t for the subtraction), checked in mpmath from the same floats."""
     import mpmath
 
-    from fastpath.gap import departure
-    from fastpath.lockstep import _evaluation, _start
-    from fastpath.sincos import sin_cos
+    from fastpath.elastic.gap import departure
+    from fastpath.elastic.lockstep import _evaluation, _start
+    from fastpath.arithmetic.sincos import sin_cos
 
     u = 2.0**-53
     phi, v, eps = _states(300, seed=11)
@@ -101,9 +101,9 @@ def test_lockstep_iterates_stay_inside_the_bracket():
     """Every evaluation that neither answers nor gives up moves to a point strictly inside the
     updated bracket; where Halley's step leaves it (short flights, v < 1, eps near +-1) the
     guard takes the bracket's midpoint."""
-    from fastpath.gap import departure
-    from fastpath.lockstep import _evaluation, _start
-    from fastpath.sincos import sin_cos
+    from fastpath.elastic.gap import departure
+    from fastpath.elastic.lockstep import _evaluation, _start
+    from fastpath.arithmetic.sincos import sin_cos
 
     rng = np.random.default_rng(0)
     guarded = 0
@@ -130,10 +130,10 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
     """_start: t = 2v, the certified bracket of this departure (``fastpath.concave.bracket`` of
     w0 = v + eps*sin(phi)), no answer yet, and the lane eligible exactly when
     2*w0 >= 1 + |eps| (the other conditions hold for these states)."""
-    from fastpath.concave import bracket
-    from fastpath.gap import departure
-    from fastpath.lockstep import _start
-    from fastpath.sincos import sin_cos
+    from fastpath.elastic.concave import bracket
+    from fastpath.elastic.gap import departure
+    from fastpath.elastic.lockstep import _start
+    from fastpath.arithmetic.sincos import sin_cos
 
     phi, v, eps = _states(300, seed=2)
     for p, w, e in zip(phi, v * 0.1, eps, strict=True):
@@ -160,8 +160,8 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
 
 def test_lockstep_collide_answers_eps_one():
     """|eps| = 1 is concave (DESIGN fact 11): the lanes answer such flights too (eps = 1)."""
-    from fastpath.lockstep import lockstep_collide
-    from fastpath.sincos import sin_cos
+    from fastpath.elastic.lockstep import lockstep_collide
+    from fastpath.arithmetic.sincos import sin_cos
 
     centred, error = departure_phase(0.3)
     s, c = sin_cos(centred)
@@ -186,7 +186,7 @@ def _crafted(v, delta, lo=0.25, hi=4.0):
 
 def _bounds(v):
     """(d_err, d1_err) at t = 1, eps = 0, as ``gap_error`` and ``rate_error`` give them."""
-    from fastpath.gap import gap_error, rate_error
+    from fastpath.elastic.gap import gap_error, rate_error
 
     return gap_error(0.0, v, 0.0, 1.0), rate_error(0.0, v, 0.0, 1.0)
 
@@ -195,8 +195,8 @@ def test_lockstep_root_test_includes_a_gap_on_its_error_bound():
     """|d| == d_err with d' < -d1_err is a root (``abs(d) <= d_err``), even where the Newton
     correction is far from final (|d'| only 2*d1_err): the lane answers at t + newton (inside
     the bracket here). As ``abs(d) < d_err`` it would give up as a flat top."""
-    from fastpath.concave import newton_is_final
-    from fastpath.lockstep import TAU, _evaluation
+    from fastpath.elastic.concave import newton_is_final
+    from fastpath.elastic.lockstep import TAU, _evaluation
 
     v = 16 * _U
     d_err, d1_err = _bounds(v)
@@ -213,7 +213,7 @@ def test_lockstep_root_test_includes_a_gap_on_its_error_bound():
 def test_lockstep_root_test_needs_a_rate_below_its_error_bound():
     """d' == -d1_err exactly (with |d| < d_err) is not a certain descent: no answer; the lane
     gives up as a flat top (``not d1 > d1_err``). As ``d1 <= -d1_err`` it would answer."""
-    from fastpath.lockstep import _evaluation
+    from fastpath.elastic.lockstep import _evaluation
 
     v = 2.0**-50
     d_err, d1_err = _bounds(v)
@@ -227,7 +227,7 @@ def test_lockstep_root_test_needs_a_rate_below_its_error_bound():
 def test_lockstep_flat_top_includes_a_rate_on_its_error_bound():
     """d' == d1_err exactly with |d| < d_err is a flat top (the rise is not certain): the
     lane gives up. As ``not d1 >= d1_err`` it would raise lo to t and step on."""
-    from fastpath.lockstep import _evaluation
+    from fastpath.elastic.lockstep import _evaluation
 
     v = 2.0**-52
     d_err, d1_err = _bounds(v)
@@ -242,7 +242,7 @@ def test_lockstep_bracket_moves_only_on_a_gap_beyond_its_error_bound():
     """d == +-d_err exactly with |d'| <= d1_err: the sign of the gap is not certain, so neither
     bracket end moves and the lane gives up as a flat top. As ``d >= d_err`` (``d <= -d_err``)
     it would move lo (hi) to t and step on."""
-    from fastpath.lockstep import _evaluation
+    from fastpath.elastic.lockstep import _evaluation
 
     for v in (2.0**-50, -(2.0**-50)):  # d = +d_err, then d = -d_err
         d_err, d1_err = _bounds(v)
@@ -259,7 +259,7 @@ def test_lockstep_halley_step_onto_a_bracket_end_is_bisected():
     """A Halley step that lands exactly on a bracket end is not inside the bracket: the guard
     bisects (``lo < t_next < hi``). As ``<=`` the lane would stop there (bracket closed) and
     give up. The step is first taken in a wide bracket; that end is then put on it."""
-    from fastpath.lockstep import _evaluation
+    from fastpath.elastic.lockstep import _evaluation
 
     # d = 0.5 > d_err, d' = -1: lo moves to t = 1 and Halley steps right (to 1.4);
     # d = -0.5 < -d_err, d' = -1.5: hi moves to t = 1 and Halley steps left (to 0.625)
@@ -281,7 +281,7 @@ def test_escape_chunk_counts_each_particle_into_its_own_block():
     2, 1), no hole (width 0), each censored at exactly 5 collisions, give 10, 10, 10, 5 (a block
     size (m + blocks + 1)//blocks = 3 would give 15, 15, 5, 0; a first lane's block
     (first - lane)//per_block, wrapped as a negative index, 5, 10, 10, 10)."""
-    from fastpath.ensemble import escape_chunk, log_edges
+    from fastpath.kernels.escape import escape_chunk, log_edges
 
     m, blocks, max_n = 7, 4, 5
     rng = np.random.default_rng(3)
@@ -305,7 +305,7 @@ def test_overlapping_holes_count_into_the_first_listed():
     returns the first j): with two identical holes every escape is in hole 0, in the lanes'
     vectorised hole test too (``hole[lane] < 0`` keeps the first; ``<= 0`` would let hole 1
     overwrite hole 0)."""
-    from fastpath.ensemble import escape_chunk, log_edges
+    from fastpath.kernels.escape import escape_chunk, log_edges
 
     m, blocks, max_n = 50, 2, 2000
     rng = np.random.default_rng(4)

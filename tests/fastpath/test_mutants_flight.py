@@ -24,20 +24,11 @@ import pytest
 from mpmath import mp
 
 import fastpath
-from fastpath.flight import (
-    AUTO,
-    GENERAL,
-    ITERATION_LIMIT,
-    SEED,
-    departure_phase,
-    first_root,
-    flight_from,
-    lower_bound_flight,
-    may_be_graze,
-    polish,
-)
-from fastpath.gap import departure, gap, gap_error, gap_rate, rate_error
-from fastpath.sincos import sin_cos
+from fastpath.elastic.flight import AUTO, GENERAL, LOWER_BOUND as SEED, departure_phase, flight_from
+from fastpath.status import ITERATION_LIMIT
+from fastpath.elastic.lower_bound import first_root, lower_bound_flight, may_be_graze, polish
+from fastpath.elastic.gap import departure, gap, gap_error, gap_rate, rate_error
+from fastpath.arithmetic.sincos import sin_cos
 from fastpath.status import FlightStatus
 
 U = 2.0**-53
@@ -47,7 +38,7 @@ UNCERTAIN = int(FlightStatus.UNCERTAIN)
 NOT_DEPARTING = int(FlightStatus.NOT_DEPARTING)
 MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
 OVERFLOW = int(FlightStatus.OVERFLOW)
-flight_module = importlib.import_module("fastpath.flight")  # fastpath.flight is the API function
+flight_module = importlib.import_module("fastpath.elastic.lower_bound")
 
 
 def _py(function):

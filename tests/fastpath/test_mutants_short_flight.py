@@ -12,8 +12,8 @@ import math
 import pytest
 from mpmath import mp
 
-from fastpath.gap import UNIT_ROUNDOFF as U
-from fastpath.short_flight import c4, departure_deceleration, s3, short_window
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF as U
+from fastpath.dissipative.short_flight import c4, departure_deceleration, s3, short_window
 
 DPS = 50
 
@@ -131,7 +131,7 @@ def test_the_window_is_open_at_m_h_exactly_half_a():
 def _count_gap_evaluations(monkeypatch, gap=None, rate=None):
     """Run ``short_flight`` as plain Python (``py_func``) with its gap (optionally replaced)
     counted: returns (the solver, the list of evaluation times)."""
-    import fastpath.short_flight as module
+    import fastpath.dissipative.short_flight as module
 
     calls = []
     real_gap = module.relative_gap
@@ -161,7 +161,7 @@ def test_at_most_sixty_evaluations_then_the_limit(monkeypatch):
     """A gap that stays negative while Newton keeps moving down (a stand-in: d = -1, d' = -1e3,
     every step 1e-3) exhausts the solver: exactly ITERATION_LIMIT = 60 evaluations, reported as
     60 (kills the loop bound 60 -> 59 and -> 61, and the start 1 -> 2)."""
-    from fastpath.short_flight import ITERATION_LIMIT
+    from fastpath.status import ITERATION_LIMIT
 
     solve, calls = _count_gap_evaluations(
         monkeypatch, gap=lambda *args: -1.0, rate=lambda *args: -1e3)

@@ -25,8 +25,8 @@ from fastpath_figures import record
 from mpmath import mp
 
 import fastpath
-from fastpath.gap import departure
-from fastpath.sticking import accumulation_tail, detachment_phase
+from fastpath.elastic.gap import departure
+from fastpath.dissipative.sticking import accumulation_tail, detachment_phase
 
 U = 2.0**-53
 

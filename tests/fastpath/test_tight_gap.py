@@ -14,8 +14,8 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 from mpmath import mp
 
-from fastpath.gap import departure, gap_error, rate_error
-from fastpath.tight_gap import tight_gap
+from fastpath.elastic.gap import departure, gap_error, rate_error
+from fastpath.elastic.tight_gap import tight_gap
 
 DPS = 60
 

@@ -38,11 +38,12 @@ from mpmath import mp
 
 import fastpath
 import verify
-from fastpath.drag import LINEAR, QUADRATIC, gap_state
-from fastpath.drag_short_flight import drag_short_window
-from fastpath.drag_sticking import drag_detachment_phase
-from fastpath.gap import departure
-from fastpath.phase import centre_phase
+from fastpath.physics import LINEAR, QUADRATIC
+from fastpath.dissipative.drag import gap_state
+from fastpath.dissipative.drag_short_flight import drag_short_window
+from fastpath.dissipative.drag_sticking import drag_detachment_phase
+from fastpath.elastic.gap import departure
+from fastpath.arithmetic.phase import centre_phase
 from verify.drag_sticking import can_detach, drag_accumulation, riding
 
 U = 2.0**-53

@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.ensemble import bin_index, escape_chunk
-from fastpath.phase import TWO_PI
+from fastpath.kernels.escape import bin_index, escape_chunk
+from fastpath.arithmetic.phase import TWO_PI
 from reports.runs import chunk
 from reports.runs.plan import chunk_starts, make_plan
 from reports.runs.scenes import parse_scene

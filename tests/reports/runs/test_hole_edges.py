@@ -23,8 +23,8 @@ from hypothesis import strategies as st
 
 import fastpath
 import verify
-from fastpath.ensemble import bin_index, escape_chunk, exit_hole
-from fastpath.phase import TWO_PI
+from fastpath.kernels.escape import bin_index, escape_chunk, exit_hole
+from fastpath.arithmetic.phase import TWO_PI
 from reports.runs import chunk
 from reports.runs.plan import chunk_starts, make_plan
 from reports.runs.scenes import parse_scene

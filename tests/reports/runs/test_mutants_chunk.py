@@ -16,7 +16,7 @@ import pytest
 
 import fastpath
 import verify
-from fastpath.phase import TWO_PI
+from fastpath.arithmetic.phase import TWO_PI
 from reports.runs import chunk
 from reports.runs.counts import CheckpointError, Finished, Tally
 from reports.runs.plan import SAMPLE_DEPTH, chunk_starts, make_plan

@@ -12,8 +12,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from fastpath.ensemble import NO_LIMIT, escape_chunk, exit_hole
-from fastpath.phase import TWO_PI
+from fastpath.kernels.escape import NO_LIMIT, escape_chunk, exit_hole
+from fastpath.arithmetic.phase import TWO_PI
 
 LO = 5.0
 WIDTH = (3.0 - LO) + TWO_PI  # rounded: the upper edge lo + width - TWO_PI is within 2**-51 of 3

@@ -24,8 +24,8 @@ import pytest
 
 import fastpath
 import verify
-from fastpath.ensemble import bin_index
-from fastpath.phase import TWO_PI
+from fastpath.kernels.escape import bin_index
+from fastpath.arithmetic.phase import TWO_PI
 from reports.runs import chunk
 from reports.runs.plan import chunk_starts, make_plan
 from reports.runs.scenes import parse_scene

@@ -24,13 +24,14 @@ import math
 import numpy as np
 from numba import prange
 
-from fastpath._jit import parallel_jit
-from fastpath._validate import count, float_inputs, physics
-from fastpath.collision import collide_from
-from fastpath.dissipative_moments import dissipative_moments_kernel
-from fastpath.flight import CONVERGED, GENERAL
-from fastpath.holmes import holmes_collide
-from fastpath.phase import reduce_phase
+from fastpath.arithmetic.jit import parallel_jit
+from fastpath.arithmetic.phase import reduce_phase
+from fastpath.elastic.collision import collide_from
+from fastpath.elastic.flight import GENERAL
+from fastpath.elastic.holmes import holmes_collide
+from fastpath.inputs import count, float_inputs, physics
+from fastpath.kernels.dissipative_moments import dissipative_moments_kernel
+from fastpath.status import CONVERGED
 
 EXACT = 0
 HOLMES = 1

@@ -31,10 +31,9 @@ The incoming relative velocity d'(tau) ~ -w keeps a relative error of a few u as
 
 import math
 
-from fastpath._jit import jit
-from fastpath.gap import UNIT_ROUNDOFF
-
-ITERATION_LIMIT = 60
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.status import ITERATION_LIMIT
 SERIES_LIMIT = 1.0  # the Taylor series below are good to < u for t <= 1 (10th term < 1e-21)
 
 

@@ -20,8 +20,8 @@ particle, as in ``moments_kernel``.
 import numpy as np
 from numba import prange
 
-from fastpath._jit import jit, parallel_jit
-from fastpath.advance import (
+from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.dissipative.carried import (
     EPISODE,
     STATE_SIZE,
     STUCK,
@@ -32,7 +32,8 @@ from fastpath.advance import (
     begin,
     detachment,
 )
-from fastpath.flight import AUTO, CONVERGED
+from fastpath.elastic.flight import AUTO
+from fastpath.status import CONVERGED
 
 
 @jit

@@ -1,10 +1,9 @@
-"""One flight: the smallest positive root of the gap.
+"""The paper's lower-bound step: a flight approached from below, never overstepping its root.
 
-For |eps| <= 1 (exactly 1 included) the gap is concave and ``fastpath.concave`` finds its single
-root in a certified bracket. For |eps| > 1, where several roots can exist, lower-bound steps
-approach the first root from below, never overstepping it (up to rounding).
+Used for |eps| > 1, where the gap can have several roots (and for every eps with the method
+"lower_bound").
 
-Global step (the seed's, DESIGN fact 3). Gravity and the plate's acceleration give
+Global step (the paper's, DESIGN fact 3). Gravity and the plate's acceleration give
 d2(t) >= -(1 + |eps|) =: -a (d1, d2, d3: the first three derivatives of d), so from a time t_k
 with d_k = d(t_k) > 0 and slope r_k = d1(t_k),
 
@@ -45,27 +44,11 @@ intermediate (v**2, t*v overflowing) gives OVERFLOW.
 
 import math
 
-from fastpath._jit import jit
-from fastpath.concave import concave_flight
-from fastpath.gap import UNIT_ROUNDOFF, departure, gap, gap_error, gap_rate, rate_error
-from fastpath.lockstep import lockstep_flight_one
-from fastpath.phase import CODY_WAITE_LIMIT, PAYNE_HANEK_ERROR, centre_phase
-from fastpath.rotation import sin_cos_of_sum
-from fastpath.sincos import sin_cos, sin_cos_error
-from fastpath.status import FlightStatus
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.elastic.gap import gap, gap_error, gap_rate, rate_error
+from fastpath.status import CONVERGED, ITERATION_LIMIT, MAX_ITERATIONS, OVERFLOW, UNCERTAIN
 
-CONVERGED = int(FlightStatus.CONVERGED)
-UNCERTAIN = int(FlightStatus.UNCERTAIN)
-NOT_DEPARTING = int(FlightStatus.NOT_DEPARTING)
-MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
-OVERFLOW = int(FlightStatus.OVERFLOW)
-
-AUTO = 0  # bracketed Halley for |eps| <= 1 (fastpath.concave), lower-bound steps otherwise
-SEED = 1  # lower-bound steps for every eps (kept for comparison)
-GENERAL = 2  # AUTO without the lockstep attempt: for a flight the lockstep did not answer
-METHODS = {"auto": AUTO, "seed": SEED}
-
-ITERATION_LIMIT = 60
 _GROWTH_ROUNDS = 4  # rounds of growing H in the local step
 
 
@@ -98,7 +81,7 @@ def certified_step(d, r, c, j, eps, a):
     """Largest step from a point with d > 0 that the module docstring's lower models certify.
 
     a > 0 bounds -d2 from above for the rest of the flight (1 + |eps| here; with drag
-    ``fastpath.drag_flight`` passes its own bound), c is a lower bound on d2 at the point where
+    ``fastpath.dissipative.drag_flight`` passes its own bound), c is a lower bound on d2 at the point where
     only the plate's part still varies (third derivative j, Taylor remainder |eps|*s**2/2).
     """
     best = lower_bound_step(d, r, a)
@@ -111,73 +94,6 @@ def certified_step(d, r, c, j, eps, a):
         best = h  # q_H > 0 on [0, H]
         h = min(s_h, 4.0 * h)
     return best
-
-
-@jit
-def phase_error_of(phi_given, phi_centred):
-    """Bound on the error of the centred phase: 0 if unchanged, else one ulp (``phase``), and
-    for |phi| >= 2**20 (Payne-Hanek) the absolute PAYNE_HANEK_ERROR besides."""
-    if phi_centred == phi_given:
-        return 0.0
-    error = 2.0 * UNIT_ROUNDOFF * abs(phi_centred)
-    return error + PAYNE_HANEK_ERROR if abs(phi_given) >= CODY_WAITE_LIMIT else error
-
-
-@jit
-def departure_phase(phi):
-    """(centred phase, bound on its error) of a departure at any real phi, with its sine taken
-    from ``fastpath.sincos``: the centring's error plus what ``sin_cos`` adds beyond libm."""
-    centred = centre_phase(phi)
-    return centred, phase_error_of(phi, centred) + sin_cos_error(centred)
-
-
-@jit
-def departure_of(phi, v, eps):
-    """(w0, bound): w0 = v + eps*sin(phi) as the flight kernels compute it, with its error bound."""
-    centred, phase_error = departure_phase(phi)
-    return departure(centred, sin_cos(centred)[0], v, eps, phase_error)
-
-
-@jit
-def solve_flight(phi, v, eps, method=AUTO):
-    """Return (tau, iterations, status) for a departure at phase phi (any real) with velocity v.
-
-    tau is the smallest positive root of the gap; ``status`` is a FlightStatus code.
-    """
-    centred, phase_error = departure_phase(phi)
-    sin_phi, cos_phi = sin_cos(centred)  # as collide: flight and step give the same tau
-    tau, _, _, iterations, status = flight_from(
-        centred, sin_phi, cos_phi, v, eps, method, phase_error
-    )
-    return tau, iterations, status
-
-
-@jit
-def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, phase_error=0.0):
-    """(tau, sin(phi + tau), cos(phi + tau), iterations, status) for phi in [-pi, pi).
-
-    The caller supplies sin and cos of the departure phase, which the previous collision has
-    already computed: an orbit needs one libm sine and cosine per collision. phase_error bounds
-    the error of phi itself (its reduction). NOT_DEPARTING only where w0 <= 0 is certain; a w0
-    within its rounding bound of zero is UNCERTAIN.
-    """
-    w0, w0_error = departure(phi, sin_phi, v, eps, phase_error)
-    if not abs(w0) < math.inf:
-        return math.nan, math.nan, math.nan, 0, OVERFLOW
-    if not w0 > -w0_error:
-        return math.nan, math.nan, math.nan, 0, NOT_DEPARTING
-    if not w0 > w0_error:
-        return math.nan, math.nan, math.nan, 0, UNCERTAIN
-    if abs(eps) <= 1.0 and method != SEED:
-        if method == AUTO:
-            tau, sin1, cos1, evaluations, done = lockstep_flight_one(phi, sin_phi, cos_phi, v,
-                                                                     eps, w0_error)
-            if done:  # the common flight, as the ensembles compute it (fastpath.lockstep)
-                return tau, sin1, cos1, evaluations, CONVERGED
-        return concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error)
-    tau, iterations, status = lower_bound_flight(phi, v, eps, w0)
-    sin1, cos1 = sin_cos_of_sum(phi, tau)
-    return tau, sin1, cos1, iterations, status
 
 
 @jit

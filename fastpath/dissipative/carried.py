@@ -43,17 +43,21 @@ import math
 
 import numpy as np
 
-from fastpath._jit import jit
-from fastpath.drag import particle
-from fastpath.drag_flight import solve_drag_flight
-from fastpath.drag_short_flight import drag_short_flight, drag_short_window
-from fastpath.drag_sticking import DETACHES, NEVER, drag_accumulation_tail, drag_detachment
-from fastpath.flight import AUTO, CONVERGED, NOT_DEPARTING, UNCERTAIN, flight_from, phase_error_of
-from fastpath.gap import UNIT_ROUNDOFF, departure
-from fastpath.impact import dissipative_collide
-from fastpath.phase import TWO_PI, centre_phase, reduce_phase
-from fastpath.short_flight import short_flight, short_window
-from fastpath.sticking import (
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.phase import TWO_PI, centre_phase, reduce_phase
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.dissipative.drag import particle
+from fastpath.dissipative.drag_flight import solve_drag_flight
+from fastpath.dissipative.drag_short_flight import drag_short_flight, drag_short_window
+from fastpath.dissipative.drag_sticking import (
+    DETACHES,
+    NEVER,
+    drag_accumulation_tail,
+    drag_detachment,
+)
+from fastpath.dissipative.impact import dissipative_collide
+from fastpath.dissipative.short_flight import short_flight, short_window
+from fastpath.dissipative.sticking import (
     accumulation_tail,
     can_detach,
     detachment_flight,
@@ -61,6 +65,9 @@ from fastpath.sticking import (
     detachment_velocity,
     inelastic_impact,
 )
+from fastpath.elastic.flight import AUTO, flight_from, phase_error_of
+from fastpath.elastic.gap import departure
+from fastpath.status import CONVERGED, NOT_DEPARTING, UNCERTAIN
 
 # state indices
 PHI, V, T = 0, 1, 2  # the last impact recorded (phase in [0, 2*pi), velocity, time)

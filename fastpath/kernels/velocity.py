@@ -25,8 +25,8 @@ point of a start, resumed or not, is filled here: the caller adds nothing.
 import numpy as np
 from numba import prange
 
-from fastpath._jit import jit, parallel_jit
-from fastpath.advance import (
+from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.dissipative.carried import (
     CARRIED,
     PHI,
     STATE_SIZE,
@@ -39,8 +39,9 @@ from fastpath.advance import (
     detachment,
     store_carried,
 )
-from fastpath.ensemble import _flag, _store_sample
-from fastpath.flight import AUTO, CONVERGED
+from fastpath.elastic.flight import AUTO
+from fastpath.kernels.escape import _flag, _store_sample
+from fastpath.status import CONVERGED
 
 
 @jit

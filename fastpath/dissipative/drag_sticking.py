@@ -1,4 +1,4 @@
-"""Chattering and sticking with drag and restitution r < 1 (issue 16 item 5).
+"""Chattering and sticking with drag and restitution r < 1.
 
 Riding. A particle riding the plate moves with it: velocity u = -eps*sin(theta), acceleration
 -eps*cos(theta). Its free acceleration is -1 - eta(u), so the plate pushes it with the force
@@ -69,17 +69,16 @@ with |A''| <= |eps|*(1 + k) (linear) or |eps| + 2k*eps**2 (quadratic: eta2 = 2k)
 
 import math
 
-from fastpath._jit import jit
-from fastpath.drag import LINEAR, QUADRATIC, eta, gap_state
-from fastpath.drag_flight import lower_bound_drag_flight
-from fastpath.flight import UNCERTAIN
-from fastpath.gap import UNIT_ROUNDOFF
-from fastpath.phase import PI, TWO_PI, centre_phase, reduce_phase
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.phase import PI, PI_LOW, TWO_PI, TWO_PI_LOW, centre_phase, reduce_phase
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.dissipative.drag import eta, gap_state
+from fastpath.dissipative.drag_flight import lower_bound_drag_flight
+from fastpath.dissipative.sticking import TAIL_Q
+from fastpath.physics import LINEAR, QUADRATIC
+from fastpath.status import UNCERTAIN
 
 _U = UNIT_ROUNDOFF
-TAIL_Q = UNIT_ROUNDOFF
-_PI_LOW = 1.2246467991473532e-16  # pi - float(pi)
-_TWO_PI_LOW = 2.4492935982947064e-16  # 2*pi - float(2*pi)
 
 NEVER, DETACHES, UNDECIDED = 0, 1, -1
 
@@ -171,9 +170,9 @@ def drag_detachment_phase(eps, k, law):
     if theta != theta:
         return math.nan
     if eps < 0.0:
-        return reduce_phase((theta + PI) + _PI_LOW)
+        return reduce_phase((theta + PI) + PI_LOW)
     if theta < 0.0:
-        return (TWO_PI + theta) + _TWO_PI_LOW
+        return (TWO_PI + theta) + TWO_PI_LOW
     return theta
 
 

@@ -1,4 +1,4 @@
-"""Impacts with restitution, and the collision map with drag (issue 16).
+"""Impacts with restitution, and the collision map with drag.
 
 An impact at phase theta = phi + tau with incoming particle velocity v_in and plate velocity
 u = -eps*sin(theta) reverses the relative velocity and shrinks it by r (0 < r <= 1):
@@ -13,14 +13,15 @@ v - tau, resp. V(tau) of ``fastpath.drag.particle``. With drag == 0 and r == 1 t
 
 import math
 
-from fastpath._jit import jit
-from fastpath.collision import collide
-from fastpath.drag import particle
-from fastpath.drag_flight import drag_flight
-from fastpath.flight import AUTO, CONVERGED, departure_phase, flight_from
-from fastpath.gap import departure
-from fastpath.phase import reduce_phase
-from fastpath.sincos import sin_cos
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.phase import reduce_phase
+from fastpath.arithmetic.sincos import sin_cos
+from fastpath.dissipative.drag import particle
+from fastpath.dissipative.drag_flight import drag_flight
+from fastpath.elastic.collision import collide
+from fastpath.elastic.flight import AUTO, departure_phase, flight_from
+from fastpath.elastic.gap import departure
+from fastpath.status import CONVERGED
 
 
 @jit

@@ -12,9 +12,8 @@ For a departure at phase phi with velocity v, after a time t (DESIGN section 2):
 
 import math
 
-from fastpath._jit import jit
-
-UNIT_ROUNDOFF = 2.0**-53
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 
 
 @jit

@@ -14,8 +14,9 @@ import math
 
 import numpy as np
 
-from fastpath._jit import jit
-from fastpath.advance import (
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.phase import reduce_phase
+from fastpath.dissipative.carried import (
     NO_STICKING,
     PHI,
     STATE_SIZE,
@@ -26,11 +27,11 @@ from fastpath.advance import (
     begin,
     detachment,
 )
-from fastpath.collision import collide_from
-from fastpath.drag import NONE
-from fastpath.flight import AUTO, CONVERGED, GENERAL
-from fastpath.holmes import holmes_collide
-from fastpath.phase import reduce_phase
+from fastpath.elastic.collision import collide_from
+from fastpath.elastic.flight import AUTO, GENERAL
+from fastpath.elastic.holmes import holmes_collide
+from fastpath.physics import NONE
+from fastpath.status import CONVERGED
 
 
 @jit

@@ -32,8 +32,8 @@ each by the serial ``run_block``, so the counts do not depend on the number of t
 import numpy as np
 from numba import prange
 
-from fastpath._jit import jit, parallel_jit
-from fastpath.advance import (
+from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.dissipative.carried import (
     CARRIED,
     PHI,
     STATE_SIZE,
@@ -47,8 +47,9 @@ from fastpath.advance import (
     detachment,
     store_carried,
 )
-from fastpath.ensemble import _flag, _store_sample, bin_index, exit_hole
-from fastpath.flight import AUTO, CONVERGED
+from fastpath.elastic.flight import AUTO
+from fastpath.kernels.escape import _flag, _store_sample, bin_index, exit_hole
+from fastpath.status import CONVERGED
 
 
 @jit

@@ -4,14 +4,14 @@ The ensemble kernels spend almost all their time in flights of the concave case 
 that start at the Holmes time t = 2*v and end after three or four evaluations. Written with
 early exits, each flight waits on its own branches and on libm; written as a fixed number of
 evaluations whose decisions are selects, a loop over particles compiles to vector instructions
-(``fastpath.ensemble``) and the flight costs a few nanoseconds.
+(``fastpath.kernels.escape``) and the flight costs a few nanoseconds.
 
-``lockstep_flight`` is the method of ``fastpath.concave`` (its Holmes start, the certified
+``lockstep_flight`` is the method of ``fastpath.elastic.concave`` (its Holmes start, the certified
 bracket, the classification of each evaluation with its error bounds, Halley steps with the
 bisection guard, the clamped Newton correction at the root), with three changes that keep it
 branch-free:
 
-* sines and cosines come from ``fastpath.sincos.sin_cos`` (no call; error <= 4u instead of
+* sines and cosines come from ``fastpath.arithmetic.sincos.sin_cos`` (no call; error <= 4u instead of
   libm's ulp, within the gap's error bound: for t >= 1 ``gap_error`` allows >= 16u*|eps| for the
   plate term and ``rate_error`` >= 8u*|eps|), also for the rotations of later iterates;
 * exactly ``LOCKSTEP_EVALUATIONS`` evaluations, a lane's answer frozen at its first root;
@@ -20,11 +20,11 @@ branch-free:
 * whatever it does not handle, it does not answer: ``done`` is False for a flight that is not a
   certain departure, starts short (2*w0 < 1 + |eps|), has |phi + 2v| >= 2**20, a non-finite
   value, a flat top, a bracket closed to adjacent floats, or no root within the evaluations.
-  The caller then runs ``concave_flight``'s general loop. About 1 flight in 25 of the seed's
+  The caller then runs ``concave_flight``'s general loop. About 1 flight in 25 of the paper's
   escape ensemble (measured in the benchmark's report).
 
 Final step: as ``concave_flight``, the Newton correction is taken at a point where |d| is within
-its rounding bound, or where it is provably as good (``fastpath.concave.newton_is_final``): one
+its rounding bound, or where it is provably as good (``fastpath.elastic.concave.newton_is_final``): one
 evaluation fewer in most flights.
 
 The answer is a pure function of the inputs, so ``concave_flight`` (one flight) and the
@@ -33,11 +33,12 @@ ensemble (a batch) return the same bits for the same departure.
 
 import math
 
-from fastpath._jit import inline_jit, jit
-from fastpath.concave import bracket_from_root, newton_is_final
-from fastpath.gap import departure, gap_error, rate_error
-from fastpath.rotation import two_sum
-from fastpath.sincos import SIN_COS_LIMIT, sin_cos
+from fastpath.arithmetic.jit import inline_jit, jit
+from fastpath.arithmetic.phase import MODERATE_LIMIT
+from fastpath.arithmetic.rounding import select, two_sum
+from fastpath.arithmetic.sincos import sin_cos
+from fastpath.elastic.concave import bracket_from_root, newton_is_final
+from fastpath.elastic.gap import departure, gap_error, rate_error
 
 LOCKSTEP_EVALUATIONS = 4
 
@@ -49,14 +50,8 @@ LOCKSTEP_EVALUATIONS = 4
 
 
 @inline_jit
-def _select(condition, a, b):
-    """a if condition else b, as a select."""
-    return a if condition else b
-
-
-@inline_jit
 def moderate_bracket(v, w0, w0_error, eps):
-    """``fastpath.concave.bracket`` for 1e-150 < |v| < 1e150 (v**2 neither under- nor overflows),
+    """``fastpath.elastic.concave.bracket`` for 1e-150 < |v| < 1e150 (v**2 neither under- nor overflows),
     without the branch to hypot."""
     return bracket_from_root(v, w0, w0_error, eps, math.sqrt(v * v + 4.0 * abs(eps)))
 
@@ -66,8 +61,8 @@ def _rotate(s, c, h):
     """(sin, cos) of the angle moved on by h: first order below 1e-8, else angle addition."""
     sh, ch = sin_cos(h)
     tiny = abs(h) < 1e-8
-    sh = _select(tiny, h, sh)
-    ch = _select(tiny, 1.0, ch)
+    sh = select(tiny, h, sh)
+    ch = select(tiny, 1.0, ch)
     return s * ch + c * sh, c * ch - s * sh
 
 
@@ -130,10 +125,10 @@ def _start(phi, sin_phi, v, eps, w0_error):
     w0 = v + eps * sin_phi
     two_v = 2.0 * v
     theta0, theta0_error = two_sum(phi, two_v)
-    eligible = (2.0 * w0 >= 1.0 + abs(eps) and abs(theta0) < SIN_COS_LIMIT
+    eligible = (2.0 * w0 >= 1.0 + abs(eps) and abs(theta0) < MODERATE_LIMIT
                 and 1e-150 < abs(v) < 1e150)
     lo, hi = moderate_bracket(v, w0, w0_error, eps)
-    s, c = sin_cos(_select(eligible, theta0, 0.0))
+    s, c = sin_cos(select(eligible, theta0, 0.0))
     s, c = s + c * theta0_error, c - s * theta0_error  # |theta0_error| <= ulp: first order
     state = (two_v, 0.0, s, c, 0.0, lo, hi, math.nan, 0.0, 0.0, 1.0, 0, False,
              not (eligible and hi < math.inf))
@@ -152,7 +147,7 @@ def _answer(state):
 def lockstep_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
     """(tau, sin(phi + tau), cos(phi + tau), evaluations, done) for |eps| <= 1, phi in [-pi, pi).
 
-    As ``fastpath.concave.concave_flight`` (same arguments, a certain departure w0 > w0_error),
+    As ``fastpath.elastic.concave.concave_flight`` (same arguments, a certain departure w0 > w0_error),
     for the flights described in the module docstring; done False: no answer, use that.
     Straight-line code for the ensemble's loops over lanes.
     """

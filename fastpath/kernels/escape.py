@@ -30,15 +30,15 @@ n = min(``sample_target[i]``, last collision it made in this kernel).
 import numpy as np
 from numba import get_num_threads, prange
 
-from fastpath._jit import inline_jit, jit, parallel_jit
-from fastpath.collision import collide
-from fastpath.flight import CONVERGED, GENERAL, departure_phase
-from fastpath.gap import UNIT_ROUNDOFF
-from fastpath.holmes import holmes_collide
-from fastpath.lockstep import _select, lockstep_collide
-from fastpath.phase import TWO_PI, centre_moderate, reduce_moderate
-from fastpath.rotation import two_sum
-from fastpath.sincos import sin_cos, sin_cos_error
+from fastpath.arithmetic.jit import inline_jit, jit, parallel_jit
+from fastpath.arithmetic.phase import MODERATE_LIMIT, TWO_PI, centre_moderate, reduce_moderate
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, select, two_sum
+from fastpath.arithmetic.sincos import sin_cos, sin_cos_error
+from fastpath.elastic.collision import collide
+from fastpath.elastic.flight import GENERAL, departure_phase
+from fastpath.elastic.holmes import holmes_collide
+from fastpath.elastic.lockstep import lockstep_collide
+from fastpath.status import CONVERGED
 
 NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only
 LANES = 64  # particles in flight together in a group (a multiple of the vector width)
@@ -68,8 +68,8 @@ def in_hole(phi, lo, width):
     d_hi, d_lo = two_sum(phi, -lo)
     wrapped, carry = two_sum(d_hi, TWO_PI)
     wraps = d_hi < 0.0
-    d_hi = _select(wraps, wrapped, d_hi)
-    d_lo = _select(wraps, d_lo + carry, d_lo)
+    d_hi = select(wraps, wrapped, d_hi)
+    d_lo = select(wraps, d_lo + carry, d_lo)
     return (d_hi - width) + d_lo < 0.0
 
 
@@ -124,10 +124,10 @@ def lane_collide(centred, v, eps, phase_error):
     x = centred + tau
     phi1 = reduce_moderate(x)
     centred1 = centre_moderate(phi1)
-    phase_error1 = _select(centred1 == phi1, 0.0, 2.0 * UNIT_ROUNDOFF * abs(centred1))
+    phase_error1 = select(centred1 == phi1, 0.0, 2.0 * UNIT_ROUNDOFF * abs(centred1))
     v1 = tau - v - 2.0 * eps * sin1
     return (tau, phi1, v1, centred1, phase_error1 + sin_cos_error(centred1),
-            answered and abs(x) < 2.0**20)
+            answered and abs(x) < MODERATE_LIMIT)
 
 
 def escape_chunk(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max_time,
@@ -206,7 +206,7 @@ def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_wi
         for h in range(len(hole_lo)):  # exit_hole of every lane, vectorised over the lanes
             lo_h, width_h = hole_lo[h], hole_width[h]
             for lane in range(active):
-                hole[lane] = _select(hole[lane] < 0 and in_hole(phi1[lane], lo_h, width_h), h,
+                hole[lane] = select(hole[lane] < 0 and in_hole(phi1[lane], lo_h, width_h), h,
                                      hole[lane])
         idle = False
         for lane in range(active):

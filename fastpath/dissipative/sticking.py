@@ -50,16 +50,16 @@ is within rounding (|eps| - 1 below ~1e-10) the flight is UNCERTAIN.
 
 import math
 
-from fastpath._jit import jit
-from fastpath.flight import CONVERGED, UNCERTAIN, lower_bound_flight
-from fastpath.gap import UNIT_ROUNDOFF, gap, gap_error
-from fastpath.phase import PI, TWO_PI, centre_phase
-from fastpath.rotation import sin_cos_of_sum
-from fastpath.short_flight import departure_deceleration
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.phase import PI, PI_LOW, TWO_PI, TWO_PI_LOW, centre_phase
+from fastpath.arithmetic.rotation import sin_cos_of_sum
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.dissipative.short_flight import departure_deceleration
+from fastpath.elastic.gap import gap, gap_error
+from fastpath.elastic.lower_bound import lower_bound_flight
+from fastpath.status import CONVERGED, UNCERTAIN
 
 TAIL_Q = UNIT_ROUNDOFF  # sum the tail once its second-order size q is <= u (docstring)
-_PI_LOW = 1.2246467991473532e-16  # pi - float(pi)
-_TWO_PI_LOW = 2.4492935982947064e-16  # 2*pi - float(2*pi)
 
 
 @jit
@@ -110,8 +110,8 @@ def detachment_phase(eps):
         return math.nan
     alpha = detachment_angle(eps)
     if eps > 0.0:
-        return (TWO_PI - alpha) + _TWO_PI_LOW
-    return (PI - alpha) + _PI_LOW
+        return (TWO_PI - alpha) + TWO_PI_LOW
+    return (PI - alpha) + PI_LOW
 
 
 @jit

@@ -8,7 +8,7 @@ import numbers
 
 import numpy as np
 
-from fastpath.drag import LAWS
+from fastpath.physics import LAWS
 
 _LAW_NAMES = tuple(LAWS)  # a str compares by value; a tuple test never calls array __eq__
 

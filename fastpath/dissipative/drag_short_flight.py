@@ -33,10 +33,12 @@ it (``fastpath.short_flight``).
 
 import math
 
-from fastpath._jit import jit
-from fastpath.drag import LINEAR, eta, phi1, phi2, sinc, sinhc, tanc, tanhc
-from fastpath.gap import UNIT_ROUNDOFF
-from fastpath.short_flight import ITERATION_LIMIT, SERIES_LIMIT, s3
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.dissipative.drag import eta, phi1, phi2, sinc, sinhc, tanc, tanhc
+from fastpath.dissipative.short_flight import SERIES_LIMIT, s3
+from fastpath.physics import LINEAR
+from fastpath.status import ITERATION_LIMIT
 
 _U = UNIT_ROUNDOFF
 

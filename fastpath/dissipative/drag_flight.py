@@ -1,6 +1,6 @@
-"""One flight with drag: the smallest positive root of the gap of ``fastpath.drag``.
+"""One flight with drag: the smallest positive root of the gap of ``fastpath.dissipative.drag``.
 
-Bounds on the gap's curvature (the seed's Section 2 with friction). d'' = p(t) + eps*cos(phi + t)
+Bounds on the gap's curvature (the paper's Section 2 with friction). d'' = p(t) + eps*cos(phi + t)
 with the particle's acceleration p(t) = -1 - eta(V(t)). V moves monotonically towards the terminal
 velocity (p = 0 there): from above it (the usual case, 1 + eta(v) >= 0) V decreases, so eta(V)
 decreases and p increases towards 0; from below (falling faster than terminal after an impact
@@ -8,28 +8,28 @@ on a plate moving down fast) p > 0 decreases towards 0. Either way, for s >= t,
 
     p(s) >= min(p(t), 0),   so   d''(s) >= -a(t),   a(t) = max(1 + eta(V(t)), 0) + |eps|.
 
-At departure a(0) = max(1 + eta(v), 0) + |eps|: 1 + eta(v) + |eps| as the seed writes it when
+At departure a(0) = max(1 + eta(v), 0) + |eps|: 1 + eta(v) + |eps| as the paper writes it when
 v >= terminal (v < 0 included: then eta(v) < 0 and the bound is below 1 + |eps|, still valid
 because V only decreases), and |eps| alone below terminal (not 1 + max(eta(v), 0) + |eps|,
 which holds too but is looser). Since a(t) only shrinks (in the usual case) the
 lower-bound steps take a(t_k) at each iterate: past the top of a fast flight with quadratic drag
 a(t) is ~1 + |eps| instead of 1 + k*v**2 + |eps|.
 
-Lower-bound steps (as ``fastpath.flight``): from t_k with d_k > 0 and slope r_k the seed's step
-with a(t_k), and the local step of ``fastpath.flight.certified_step`` with
+Lower-bound steps (as ``fastpath.elastic.lower_bound``): from t_k with d_k > 0 and slope r_k the paper's step
+with a(t_k), and the local step of ``fastpath.elastic.lower_bound.certified_step`` with
 c_k = min(p(t_k), 0) + eps*cos(phi + t_k) (the particle's part frozen at its lower bound, the
 plate's part with its Taylor remainder), all lowered by their rounding bounds
-(``fastpath.drag.gap_state``); the same stop, polish, graze test and statuses. In the graze test
+(``fastpath.dissipative.drag.gap_state``); the same stop, polish, graze test and statuses. In the graze test
 the largest curvature after t is b = |eps| + max(p(t), 0) (p <= 0 and increasing, or p > 0 and
 decreasing; |eps| - 1 without drag) and the third derivative is bounded by |eps| + |p'|,
 with |p'| = eta'(V)*|p| <= k*|p(t)| (linear) or 2*k*max(|V(t)|, 1/sqrt(k))*|p(t)|
 (quadratic: V stays between V(t) and the terminal velocity).
 
-Concave flights (Halley in a bracket, as ``fastpath.concave``). If 1 + eta(v) >= 0 then p is
+Concave flights (Halley in a bracket, as ``fastpath.elastic.concave``). If 1 + eta(v) >= 0 then p is
 increasing, so on [0, t] d'' <= p(t) + |eps| = -m(t). A point t with m(t) > 0 certifies the gap
 concave on [0, t]: with d(0) = 0 < d'(0) there is at most one root in (0, t], so d(t) > E puts t
 before the first root and d(t) < -E after it (E the gap's rounding bound). Halley steps in the
-bracket [lo, hi] start, as in ``fastpath.concave``, for long flights (2*w0 >= 1 + |eps|) at the
+bracket [lo, hi] start, as in ``fastpath.elastic.concave``, for long flights (2*w0 >= 1 + |eps|) at the
 particle's own landing time to first order in the drag, 2*v*(1 - k*v/3) (linear) or 2*v*(1 -
 k*v**2/4) (quadratic; Y(2v) = -k*v**3*2/3 resp. -k*v**4/2 to first order, divided by |Y'(2v)| =
 v), when that correction is below a half; else at the root of w0*t - (1 + eta(v) -
@@ -38,32 +38,30 @@ the root), a step that would go backwards is replaced by the root of the local q
 + d'*s + d''*s**2/2 (forward, d'' < 0). The first point where m(t) <= 0 (drag so strong or a
 fall so long that the particle nears its terminal velocity: even |eps| < 1 then allows a convex
 gap and several roots) hands the flight to the lower-bound steps, which go on from the bracket's
-lower end with the iterations left. The end is as in ``fastpath.concave``: a Newton correction
+lower end with the iterations left. The end is as in ``fastpath.elastic.concave``: a Newton correction
 clamped into the bracket; UNCERTAIN at a flat zero.
 """
 
 import math
 
-from fastpath._jit import jit
-from fastpath.concave import _AFTER, _AT_ROOT, _BEFORE, halley
-from fastpath.drag import LINEAR, NONE, QUADRATIC, eta, gap_state
-from fastpath.flight import (
-    AUTO,
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rotation import sin_cos_of_sum
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.arithmetic.sincos import sin_cos
+from fastpath.dissipative.drag import eta, gap_state
+from fastpath.elastic.concave import AFTER, AT_ROOT, BEFORE, halley
+from fastpath.elastic.flight import AUTO, departure_phase
+from fastpath.elastic.gap import departure
+from fastpath.elastic.lower_bound import certified_step, lower_bound_step
+from fastpath.physics import LINEAR, NONE, QUADRATIC
+from fastpath.status import (
+    CONVERGED,
     ITERATION_LIMIT,
-    certified_step,
-    departure_phase,
-    lower_bound_step,
+    MAX_ITERATIONS,
+    NOT_DEPARTING,
+    OVERFLOW,
+    UNCERTAIN,
 )
-from fastpath.gap import UNIT_ROUNDOFF, departure
-from fastpath.rotation import sin_cos_of_sum
-from fastpath.sincos import sin_cos
-from fastpath.status import FlightStatus
-
-CONVERGED = int(FlightStatus.CONVERGED)
-UNCERTAIN = int(FlightStatus.UNCERTAIN)
-NOT_DEPARTING = int(FlightStatus.NOT_DEPARTING)
-MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
-OVERFLOW = int(FlightStatus.OVERFLOW)
 
 _U = UNIT_ROUNDOFF
 
@@ -73,7 +71,7 @@ def drag_flight(phi, sin_phi, cos_phi, v, eps, drag, law, w0_error, method=AUTO)
     """(tau, sin(phi + tau), cos(phi + tau), iterations, status) with drag (module docstring).
 
     phi in [-pi, pi) with its sine and cosine; w0_error bounds the rounding error of
-    w0 = v + eps*sin_phi (``fastpath.gap.departure``). Statuses as ``fastpath.flight.flight_from``.
+    w0 = v + eps*sin_phi (``fastpath.elastic.gap.departure``). Statuses as ``fastpath.elastic.flight.flight_from``.
     method: AUTO (Halley where the gap is provably concave) or SEED (lower-bound steps only).
     """
     w0 = v + eps * sin_phi
@@ -128,18 +126,18 @@ def concave_drag_flight(phi, cos_phi, v, eps, drag, law, w0, lo):
         if not p_high + abs(eps) * (1.0 + 2.0 * _U) < 0.0:
             return lo, evaluations, MAX_ITERATIONS  # not certified concave up to t
         if d > d_err:
-            where = _BEFORE
+            where = BEFORE
         elif d < -d_err:
-            where = _AFTER
+            where = AFTER
         elif d1 < -d1_err:
-            where = _AT_ROOT
+            where = AT_ROOT
         elif d1 > d1_err:
-            where = _BEFORE
+            where = BEFORE
         else:
             return t, evaluations, UNCERTAIN  # a flat zero: float64 cannot place the root
-        if where == _AT_ROOT:
+        if where == AT_ROOT:
             return min(max(t - d / d1, lo), hi), evaluations, CONVERGED
-        if where == _BEFORE and hi == math.inf:
+        if where == BEFORE and hi == math.inf:
             lo = t
             t_next = t - 2.0 * d * d1 / (2.0 * d1 * d1 - d * d2)
             if not t_next > lo:  # backwards before the top: the local model's root instead
@@ -179,7 +177,7 @@ def lower_bound_drag_flight(phi, v, eps, drag, law, t, used):
 @jit
 def polish(t, d, d1, d1_err):
     """One Newton correction t - d/d' at a stop with |d| within rounding of zero, taken only
-    where the slope is negative beyond its error (``fastpath.flight.polish``)."""
+    where the slope is negative beyond its error (``fastpath.elastic.lower_bound.polish``)."""
     if not d1 < -d1_err:
         return t
     return t - d / d1
@@ -188,7 +186,7 @@ def polish(t, d, d1, d1_err):
 @jit
 def may_be_graze(phi, vel, v_err, eps, drag, law, t, r, d_err):
     """Whether a gap within rounding of zero at t may be a near-tangent dip (module docstring;
-    the argument of ``fastpath.flight.may_be_graze`` with the drag's curvature and jerk bounds)."""
+    the argument of ``fastpath.elastic.lower_bound.may_be_graze`` with the drag's curvature and jerk bounds)."""
     p = -1.0 - eta(vel, drag, law)
     p_err = abs(eta(vel + v_err, drag, law) - eta(vel - v_err, drag, law)) + 4.0 * _U * abs(p)
     # sup of p after t: 0 (approached, p increasing) or p(t) (p > 0 decreasing); -1 without drag
