@@ -88,7 +88,7 @@ def count(name, value, minimum=0):
     return int(value)
 
 
-def physics(drag, drag_law, restitution):
+def physics_options(drag, drag_law, restitution):
     """Check the keyword-only physics options; return (drag, law code, restitution).
 
     drag: a finite real number >= 0; drag_law: "linear" or "quadratic" (``fastpath.drag.LAWS``);

@@ -95,7 +95,7 @@ def model_of(physics):
     return _MODELS[type(physics)]
 
 
-@overload(model_of, inline="always")
+@overload(model_of)
 def _model_of_compiled(physics):
     code = _MODELS[physics.instance_class]
     return lambda physics: code
@@ -106,7 +106,7 @@ def with_eps(physics, eps):
     return physics._replace(eps=eps)
 
 
-@overload(with_eps, inline="always")
+@overload(with_eps)
 def _with_eps_compiled(physics, eps):
     cls = physics.instance_class
     return lambda physics, eps: cls(eps, physics.drag, physics.law, physics.restitution)

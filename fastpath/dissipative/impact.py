@@ -6,9 +6,10 @@ u = -eps*sin(theta) reverses the relative velocity and shrinks it by r (0 < r <=
     v1 - u = -r*(v_in - u),   i.e.   v1 = (1 + r)*u - r*v_in,
 
 so the kinetic energy relative to the plate, (v - u)**2/2, loses the share 1 - r**2. The flight
-before it is ``fastpath.flight`` without drag and ``fastpath.drag_flight`` with it; v_in is
-v - tau, resp. V(tau) of ``fastpath.drag.particle``. With drag == 0 and r == 1 the elastic
-``fastpath.collision.collide`` is called unchanged, so its results are reproduced bit for bit.
+before it is ``fastpath.elastic.flight`` without drag and ``fastpath.dissipative.drag_flight``
+with it; v_in is v - tau, resp. V(tau) of ``fastpath.dissipative.drag.particle``. With drag == 0
+and r == 1 the elastic ``fastpath.elastic.collision.collide`` is called unchanged, so its results
+are reproduced bit for bit.
 """
 
 import math
@@ -31,9 +32,11 @@ def impact_velocity(v_in, u, restitution):
 
 
 @jit
-def dissipative_collide(phi, v, eps, drag, law, restitution):
-    """(phi1, v1, tau, iterations, status): one flight (with drag k = drag and law code ``law``,
-    ``fastpath.drag``) and one impact with restitution r; phi any real, phi1 in [0, 2*pi)."""
+def dissipative_collide(physics, phi, v):
+    """(phi1, v1, tau, iterations, status): one flight (with the drag of the description
+    ``physics``, ``fastpath.dissipative.drag``) and one impact with its restitution r; phi any
+    real, phi1 in [0, 2*pi)."""
+    eps, drag, restitution = physics.eps, physics.drag, physics.restitution
     if drag == 0.0 and restitution == 1.0:
         return collide(phi, v, eps)
     centred, phase_error = departure_phase(phi)
@@ -46,8 +49,8 @@ def dissipative_collide(phi, v, eps, drag, law, restitution):
     else:
         _, w0_error = departure(centred, sin_phi, v, eps, phase_error)
         tau, sin1, _, iterations, status = drag_flight(
-            centred, sin_phi, cos_phi, v, eps, drag, law, w0_error, AUTO
+            physics, centred, sin_phi, cos_phi, v, w0_error, AUTO
         )
-        v_in = particle(v, drag, law, tau)[1] if status == CONVERGED else math.nan
+        v_in = particle(v, drag, physics.law, tau)[1] if status == CONVERGED else math.nan
     v1 = impact_velocity(v_in, -eps * sin1, restitution)
     return reduce_phase(centred + tau), v1, tau, iterations, status

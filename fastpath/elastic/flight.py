@@ -94,6 +94,7 @@ def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, phase_error=0.0):
             if done:  # the common flight, as the ensembles compute it (fastpath.elastic.lockstep)
                 return tau, sin1, cos1, evaluations, CONVERGED
         return concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error)
-    tau, iterations, status = lower_bound_flight(phi, v, eps, w0)
+    # the first step from d(0) = 0, d1(0) = w0 with d2 >= -(1 + |eps|)
+    tau, iterations, status = lower_bound_flight(phi, v, eps, 2.0 * w0 / (1.0 + abs(eps)))
     sin1, cos1 = sin_cos_of_sum(phi, tau)
     return tau, sin1, cos1, iterations, status

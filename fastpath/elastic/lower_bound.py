@@ -50,6 +50,7 @@ from fastpath.elastic.gap import gap, gap_error, gap_rate, rate_error
 from fastpath.status import CONVERGED, ITERATION_LIMIT, MAX_ITERATIONS, OVERFLOW, UNCERTAIN
 
 _GROWTH_ROUNDS = 4  # rounds of growing H in the local step
+GOING_ON = -1  # ``next_point``: no end yet
 
 
 @jit
@@ -97,7 +98,7 @@ def certified_step(d, r, c, j, eps, a):
 
 
 @jit
-def may_be_graze(phi, eps, t, r, d_err):
+def may_be_graze(eps, phi, t, r, d_err):
     """Whether a gap within rounding of zero at t (|d| <= d_err) may be a near-tangent dip.
 
     The exact gap is then <= 2*d_err at t. Where it is locally concave, d2 = d''(t) < 0, it
@@ -110,7 +111,7 @@ def may_be_graze(phi, eps, t, r, d_err):
     if convex_bound <= 0.0:
         return False  # the gap is concave everywhere: no dip
     # raised by its rounding bound, the argument's rounding u*(|phi| + t) included (as in
-    # lower_bound_flight): the shortcut needs d'' < 0 for certain
+    # elastic_gap_bounds): the shortcut needs d'' < 0 for certain
     curvature = -1.0 + eps * math.cos(phi + t) + 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
     if curvature < 0.0 and r < 0.0 and 2.0 * d_err < -r * (-curvature / abs(eps)):
         return False
@@ -118,39 +119,65 @@ def may_be_graze(phi, eps, t, r, d_err):
 
 
 @jit
-def lower_bound_flight(phi, v, eps, w0, start=0.0):
-    """(tau, iterations, status) by certified lower-bound steps; phi reduced, w0 > 0.
+def elastic_gap_bounds(eps, phi, v, t):
+    """What a lower-bound step at t needs, without drag: (d, d1, E, R, c, j, eps, a).
 
-    start > 0: the steps begin at t = start instead, a point the caller has certified to lie
-    before the first root (d > 0 on (0, start]; e.g. a departure with w0 = 0 from a convex gap,
-    ``fastpath.sticking``). w0 is then not used.
+    d and its slope d1 with their rounding bounds E, R (``fastpath.elastic.gap``); c = d2(t)
+    lowered by its rounding bound (the argument's u*(|phi| + t) included); the jerk
+    j = d3(t) = -eps*sin(phi + t); a = 1 + |eps|, the bound on -d2 for the rest of the flight.
     """
-    a = 1.0 + abs(eps)
-    t = start if start > 0.0 else 2.0 * w0 / a  # else the step from d(0) = 0, d'(0) = w0
+    d = gap(phi, v, eps, t)
+    r = gap_rate(phi, v, eps, t)
+    d_err = gap_error(phi, v, eps, t)
+    r_err = rate_error(phi, v, eps, t)
+    theta = phi + t
+    curvature = -1.0 + eps * math.cos(theta) - 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
+    return d, r, d_err, r_err, curvature, -eps * math.sin(theta), eps, 1.0 + abs(eps)
+
+
+@jit
+def next_point(t, bounds, grazes):
+    """One lower-bound iteration from t, given the gap's ``bounds`` there (as
+    ``elastic_gap_bounds``) and whether a zero gap there may be a graze: (t_next, status),
+    status GOING_ON or the FlightStatus of the flight's end at t_next.
+
+    The models take the worst values within rounding: d, d1 and d2 lowered by their bounds.
+    """
+    d, r, d_err, r_err, curvature, jerk, eps, a = bounds
+    if not (abs(d) < math.inf and abs(r) < math.inf):
+        return math.nan, OVERFLOW
+    if d <= d_err:
+        if grazes:
+            return t, UNCERTAIN
+        return polish(t, d, r, r_err), CONVERGED
+    t_next = t + certified_step(d - d_err, r - r_err, curvature, jerk, eps, a)
+    if t_next == t:  # the root is within rounding of t: d <= d_err + |r|*ulp(t)
+        return polish(t, d, r, r_err), CONVERGED
+    return t_next, GOING_ON
+
+
+@jit
+def lower_bound_flight(phi, v, eps, t):
+    """(tau, evaluations, status) by certified lower-bound steps from t; phi reduced.
+
+    t: a time certified to lie before the first root: the step from the departure,
+    2*w0/(1 + |eps|), or a later point where d > 0 is known, as after a detachment
+    (``fastpath.dissipative.sticking``). With drag the same iteration runs in
+    ``fastpath.dissipative.drag_flight.lower_bound_drag_flight``.
+    """
     for k in range(1, ITERATION_LIMIT + 1):
-        d = gap(phi, v, eps, t)
-        r = gap_rate(phi, v, eps, t)
-        if not (abs(d) < math.inf and abs(r) < math.inf):
-            return math.nan, k, OVERFLOW
-        d_err = gap_error(phi, v, eps, t)
-        if d <= d_err:
-            if may_be_graze(phi, eps, t, r, d_err):
-                return t, k, UNCERTAIN
-            return polish(phi, v, eps, t, d, r), k, CONVERGED
-        # the models take the worst values within rounding: d, d' and d'' lowered by their bounds
-        theta = phi + t
-        curvature = -1.0 + eps * math.cos(theta) - 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
-        r_low = r - rate_error(phi, v, eps, t)
-        t_next = t + certified_step(d - d_err, r_low, curvature, -eps * math.sin(theta), eps, a)
-        if t_next == t:  # the root is within rounding of t: d <= d_err + |r|*ulp(t)
-            return polish(phi, v, eps, t, d, r), k, CONVERGED
-        t = t_next
+        bounds = elastic_gap_bounds(eps, phi, v, t)
+        grazes = bounds[0] <= bounds[2] and may_be_graze(eps, phi, t, bounds[1], bounds[2])
+        t, status = next_point(t, bounds, grazes)
+        if status != GOING_ON:
+            return t, k, status
     return t, ITERATION_LIMIT, MAX_ITERATIONS
 
 
 @jit
-def polish(phi, v, eps, t, d, r):
-    """One certified Newton correction t - d/r at a stop with |d| within rounding of zero."""
-    if not r < -rate_error(phi, v, eps, t):
+def polish(t, d, r, r_err):
+    """One certified Newton correction t - d/r at a stop with |d| within rounding of zero,
+    taken only where the slope r is negative beyond its rounding bound r_err."""
+    if not r < -r_err:
         return t
     return t - d / r

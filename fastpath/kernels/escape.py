@@ -1,113 +1,86 @@
-"""Ensemble kernels: many starts through the exact map, recording only histograms.
+"""Escape and transport ensembles: many starts through the map, recording only histograms.
 
-Escape and transport (the seed's Sections 3 and 4). Each particle runs ``collide`` from its
-start (n = 0, t = 0 is never tested against the holes) until
+Escape and transport (the paper's Sections 3 and 4). Each particle runs from its start (n = 0,
+t = 0 is never tested against the holes) until
 
 * collision n = 1, 2, ... lands at a phase phi_n (mod 2*pi) inside a hole j: it escapes through
   hole j with escape index N = n and escape time T = t_n = tau_0 + ... + tau_{n-1};
 * the horizon: the next collision would have index n > ``max_collisions`` or time
   t > ``max_time``: it is censored, and we know only N > n and T > t (the last known bound);
-* a flight that float64 cannot decide (status UNCERTAIN or MAX_ITERATIONS, only for |eps| > 1,
-  or NOT_DEPARTING at a graze): the particle is flagged with its state (phi, v, t, n) and
-  stops; the driver settles that collision with ``verify`` and resumes it here.
+* with restitution r < 1: its impacts accumulate where it can never leave the plate (stuck for
+  good, ``fastpath.dissipative.sticking``): counted in ``stuck_n`` / ``stuck_t`` by the index n
+  of the impact after which the tail was summed and by the accumulation time t_acc (censored
+  at (n, t_acc) if t_acc > max_time). Escapes + censored + stuck + flagged = particles;
+* a flight that float64 cannot decide (status UNCERTAIN or MAX_ITERATIONS, or NOT_DEPARTING at
+  a graze): the particle is flagged with its departure (phi, v, t, n) and stops; the driver
+  settles that collision with ``verify`` and resumes it here.
 
-A hole is the arc [lo, lo + width) mod 2*pi with lo in [0, 2*pi), so holes centred at 0 wrap:
-phi is inside iff ((phi - lo) mod 2*pi) < width.
+Holes, bins and blocks: ``fastpath.kernels.histogram``, ``fastpath.kernels.arrays``. With r < 1
+the collisions are the impacts: riding the plate through a hole's phases during a sticking
+episode is not a collision and does not escape; the impacts of a summed tail are collisions, so
+a tail whose phases would cross into a hole is not summed (``fastpath.dissipative.carried``).
+After a detachment the next collision is the first impact of the flight from the detachment
+state; flags and samples then refer to that departure (theta*, u(theta*)).
 
-Only counts are kept: for each hole the histograms of N and T in the caller's fixed bins
-(bin k holds values x with edges[k] <= x < edges[k+1], the last bin is open, values below
-edges[0] go to bin 0), and the histograms of the censoring bounds. The particles of a chunk are
-split into a fixed number of blocks, each with its own histogram rows; the caller sums them.
-Integer counts make the sum, hence the result, identical for any number of threads, and the
-memory is set by the chunk and the bins, not by the number of particles.
+One particle loop for every description (``fastpath.physics``), compiled per model. Each
+group of blocks keeps LANES particles in flight together; for the elastic map the flights of
+all lanes are computed first in one vectorised loop (``lane_collide``, ``fastpath.elastic.
+lockstep``), then the bookkeeping runs lane by lane, a finished particle's lane taking the next
+one. A lane the lockstep flight does not answer gets ``collide``, whose answer is the same
+function of the departure: every particle's collisions are those of ``fastpath.step`` whatever
+the lanes, blocks or threads. With dissipation each lane's collision is
+``fastpath.dissipative.carried.advance`` on its carried state (no vectorised part).
 
-Verification sample: particle i with ``sample_slot[i] = s >= 0`` stores, in ``samples[s]``, the
-pre-collision state and fast result (n, phi, v, phi1, v1, tau) of its collision
-n = min(``sample_target[i]``, last collision it made in this kernel).
+Verification sample (``arrays.Sample``): the pre-collision state and fast result (n, phi, v,
+phi1, v1, tau) of the picked collision, and with r < 1 the departure's carried entries
+(``fastpath.dissipative.carried.CARRIED``), from which ``fastpath.carried_step`` repeats it.
 """
-
 
 import numpy as np
 from numba import get_num_threads, prange
 
 from fastpath.arithmetic.jit import inline_jit, jit, parallel_jit
-from fastpath.arithmetic.phase import MODERATE_LIMIT, TWO_PI, centre_moderate, reduce_moderate
-from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, select, two_sum
+from fastpath.arithmetic.phase import MODERATE_LIMIT, centre_moderate, reduce_moderate
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, select
 from fastpath.arithmetic.sincos import sin_cos, sin_cos_error
+from fastpath.dissipative.carried import CARRIED, PHI, STATE_SIZE, STUCK, T, V, copy_carried
+from fastpath.dissipative.sticking import detachment
 from fastpath.elastic.collision import collide
-from fastpath.elastic.flight import GENERAL, departure_phase
+from fastpath.elastic.flight import AUTO, GENERAL, departure_phase
 from fastpath.elastic.holmes import holmes_collide
 from fastpath.elastic.lockstep import lockstep_collide
+from fastpath.kernels.arrays import SAMPLE_FIELDS, keeps_carried
+from fastpath.kernels.histogram import censor, escape, exit_hole, in_hole, stuck
+from fastpath.kernels.particle import advance, begin, departure_point
+from fastpath.physics import DISSIPATIVE, ELASTIC, model_of
 from fastpath.status import CONVERGED
 
-NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only
 LANES = 64  # particles in flight together in a group (a multiple of the vector width)
-SAMPLE_FIELDS = ("n", "phi", "v", "phi1", "v1", "tau")
-FLAG_FIELDS = ("phi", "v", "t", "n")
 
 
 @jit
-def exit_hole(phi, hole_lo, hole_width):
-    """Index of the hole containing the reduced phase phi in [0, 2*pi), or -1.
-
-    Hole j is the arc [hole_lo[j], hole_lo[j] + hole_width[j]) mod 2*pi: phi is in it when
-    d = (phi - lo) mod 2*pi < width. d is carried as an unevaluated sum d_hi + d_lo (two_sum),
-    so the comparison is exact to O(u**2) even where the hole wraps through 2*pi; rounding
-    (phi - lo) + 2*pi first misplaces phases up to ~14 ulps from the wrapped upper edge.
-    """
-    for j in range(len(hole_lo)):
-        if in_hole(phi, hole_lo[j], hole_width[j]):
-            return j
-    return -1
-
-
-@inline_jit
-def in_hole(phi, lo, width):
-    """phi in [0, 2*pi) lies in the arc [lo, lo + width) mod 2*pi (``exit_hole``), with selects
-    instead of branches (also used in the vectorised loop of the lanes)."""
-    d_hi, d_lo = two_sum(phi, -lo)
-    wrapped, carry = two_sum(d_hi, TWO_PI)
-    wraps = d_hi < 0.0
-    d_hi = select(wraps, wrapped, d_hi)
-    d_lo = select(wraps, d_lo + carry, d_lo)
-    return (d_hi - width) + d_lo < 0.0
+def store_sample(rows, s, n, departure, result):
+    """Row s of the sample: n, the departure (phi, v) and the result (phi1, v1, tau)."""
+    rows[s, 0] = n
+    rows[s, 1], rows[s, 2] = departure
+    rows[s, 3], rows[s, 4], rows[s, 5] = result
 
 
 @jit
-def bin_index(edges, x):
-    """k with edges[k] <= x < edges[k+1] (last bin open above, values below edges[0] -> 0)."""
-    k = np.searchsorted(edges, x, side="right") - 1
-    return max(k, 0)
+def store_carried(rows, s, carried):
+    """``carried`` into the columns after the six sample fields of row s."""
+    for j in range(len(carried)):
+        rows[s, len(SAMPLE_FIELDS) + j] = carried[j]
 
 
 @jit
-def _store_sample(samples, s, n, phi, v, phi1, v1, tau):
-    samples[s, 0] = n
-    samples[s, 1] = phi
-    samples[s, 2] = v
-    samples[s, 3] = phi1
-    samples[s, 4] = v1
-    samples[s, 5] = tau
-
-
-@jit
-def _flag(flags, flag_state, i, status, phi, v, t, n):
-    flags[i] = status
-    flag_state[i, 0] = phi
-    flag_state[i, 1] = v
-    flag_state[i, 2] = t
-    flag_state[i, 3] = n
-
-
-@jit
-def _load(i, lane, phi0, v0, t0, n0, sample_slot, sample_target, flags, idx, phi, centred,
-          phase_error, v, t, n, slot, target):
-    """Put particle i into a lane: its state and where its flight starts."""
-    idx[lane] = i
-    phi[lane], v[lane], t[lane], n[lane] = phi0[i], v0[i], t0[i], n0[i]
-    slot[lane], target[lane] = sample_slot[i], sample_target[i]
-    flags[i] = 0
-    centred[lane], phase_error[lane] = departure_phase(phi[lane])
+def flag(flags, i, status, phi, v, t, n):
+    """Particle i stopped at an undecided flight from (phi, v) at time t after n collisions."""
+    flags.status[i] = status
+    flags.state[i, 0] = phi
+    flags.state[i, 1] = v
+    flags.state[i, 2] = t
+    flags.state[i, 3] = n
 
 
 @inline_jit
@@ -130,134 +103,167 @@ def lane_collide(centred, v, eps, phase_error):
             answered and abs(x) < MODERATE_LIMIT)
 
 
-def escape_chunk(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max_time,
-                 n_edges, t_edges, record_n, record_t, sample_slot, sample_target,
-                 esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state, samples):
-    """Run the particles (phi0[i], v0[i]) at time t0[i] after n0[i] collisions to their exit.
+def escape_chunk(physics, starts, holes, horizon, bins, sample, counts, flags):
+    """Run the particles ``starts`` (``arrays.Starts``) to their exit (module docstring).
 
-    Outputs (added to; the caller zeroes them): ``esc_n[b, j, k]`` / ``esc_t[b, j, k]`` escapes
-    through hole j with N / T in bin k, ``cens_n[b, k]`` / ``cens_t[b, k]`` censoring bounds,
-    ``collisions[b]`` collisions simulated, for block b = 0 .. len(collisions)-1;
-    ``flags[i]`` the status of an undecided flight (0 if none) with ``flag_state[i]`` =
-    (phi, v, t, n) before it; ``samples`` as in the module docstring.
-
-    Each block keeps LANES particles in flight together: the flights of all lanes in one
-    vectorised loop (``fastpath.lockstep``), then the bookkeeping lane by lane, a finished
-    particle's lane taking the block's next one. A lane the lockstep flight does not answer
-    gets ``collide``, whose answer is the same function of the departure: every particle's
-    collisions are those of ``fastpath.step`` whatever the lanes, blocks or threads.
+    physics: an Elastic or Dissipative description. Outputs are added to (the caller zeroes
+    them): ``counts`` (``arrays.EscapeCounts``, one row per block: len(counts.collisions)
+    blocks of consecutive particles), ``flags`` (``arrays.Flags``), ``sample.rows``.
 
     Groups of whole blocks share lanes, one group per thread: a group ends with its last
     long-lived particles in half-empty lanes, so the fewer groups the less of that (16 groups
-    of the 2^16 starts of a seed's chunk cost 7% more per collision than one, on one thread).
+    of the 2^16 starts of a paper chunk cost 7% more per collision than one, on one thread).
     A particle counts into its own block's row, so the grouping, like the threads, changes no
     number: it only spreads the work.
     """
-    _escape_groups(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max_time,
-                   n_edges, t_edges, record_n, record_t, sample_slot, sample_target, esc_n,
-                   esc_t, cens_n, cens_t, collisions, flags, flag_state, samples,
-                   get_num_threads())
+    _escape_groups(physics, starts, holes, horizon, bins, sample, counts, flags,
+                   detachment(physics), get_num_threads())
 
 
 @parallel_jit
-def _escape_groups(phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max_time,
-                   n_edges, t_edges, record_n, record_t, sample_slot, sample_target, esc_n,
-                   esc_t, cens_n, cens_t, collisions, flags, flag_state, samples, groups):
+def _escape_groups(physics, starts, holes, horizon, bins, sample, counts, flags, detach,
+                   groups):
     """``escape_chunk`` in ``groups`` groups of blocks (at least 1, at most one per block)."""
-    m = len(phi0)
-    blocks = len(collisions)
+    m = len(starts.phi)
+    blocks = len(counts.collisions)
     per_block = (m + blocks - 1) // blocks
     groups = max(1, min(blocks, groups))
     per_group = (blocks + groups - 1) // groups
     for g in prange(groups):
-        _escape_lanes(
-            per_block, min(m, g * per_group * per_block), min(m, (g + 1) * per_group * per_block),
-            phi0, v0, t0, n0, eps, hole_lo, hole_width, max_collisions, max_time, n_edges,
-            t_edges, record_n, record_t, sample_slot, sample_target, esc_n, esc_t, cens_n,
-            cens_t, collisions, flags, flag_state, samples)
+        span = (per_block, min(m, g * per_group * per_block),
+                min(m, (g + 1) * per_group * per_block))
+        _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, flags,
+                      detach)
 
 
 @jit
-def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_width,
-                  max_collisions, max_time, n_edges, t_edges, record_n, record_t, sample_slot,
-                  sample_target, esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state,
-                  samples):
-    """Particles first .. end-1 of ``escape_chunk`` (whole blocks of per_block) in lanes."""
-    idx = np.empty(LANES, np.int64)
-    phi, centred, phase_error = np.empty(LANES), np.empty(LANES), np.empty(LANES)
-    v, t, n = np.empty(LANES), np.empty(LANES), np.empty(LANES, np.int64)
+def _load(physics, lanes, lane, i, per_block, starts, sample, flags):
+    """Put particle i into a lane; False (the particle flagged) if it does not depart."""
+    idx, block, phi, v, t, n, slot, target, centred, phase_error, states = lanes
+    idx[lane], block[lane] = i, i // per_block
+    phi[lane], v[lane], t[lane], n[lane] = starts.phi[i], starts.v[i], starts.t[i], starts.n[i]
+    slot[lane], target[lane] = sample.slot[i], sample.target[i]
+    flags.status[i] = 0
+    if model_of(physics) == ELASTIC:
+        centred[lane], phase_error[lane] = departure_phase(phi[lane])
+        return True
+    state = states[lane]
+    status = begin(physics, state, phi[lane], v[lane], t[lane], True)
+    if status != CONVERGED:
+        flag(flags, i, status, phi[lane], v[lane], t[lane], n[lane])
+        return False
+    phi[lane], v[lane], t[lane] = departure_point(state)
+    return True
+
+
+@jit
+def _load_next(physics, lanes, lane, following, end, per_block, starts, sample, flags):
+    """Fill the lane with the next particle that departs: (loaded, the next index)."""
+    while following < end:
+        loaded = _load(physics, lanes, lane, following, per_block, starts, sample, flags)
+        following += 1
+        if loaded:
+            return True, following
+    return False, following
+
+
+@jit
+def _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, flags, detach):
+    """Particles first .. end-1 of ``escape_chunk`` (whole blocks of per_block) in lanes;
+    span = (per_block, first, end)."""
+    per_block, first, end = span
+    idx, block = np.empty(LANES, np.int64), np.empty(LANES, np.int64)
+    phi, v, t, n = np.empty(LANES), np.empty(LANES), np.empty(LANES), np.empty(LANES, np.int64)
     slot, target = np.empty(LANES, np.int64), np.empty(LANES, np.int64)
+    centred, phase_error = np.empty(LANES), np.empty(LANES)
     tau, phi1, v1 = np.empty(LANES), np.empty(LANES), np.empty(LANES)
     centred1, phase_error1 = np.empty(LANES), np.empty(LANES)
-    answered = np.empty(LANES, np.bool_)
-    hole, block = np.empty(LANES, np.int64), np.empty(LANES, np.int64)
-    active = max(min(LANES, end - first), 0)
-    for lane in range(active):
-        _load(first + lane, lane, phi0, v0, t0, n0, sample_slot, sample_target, flags, idx, phi,
-              centred, phase_error, v, t, n, slot, target)
-        block[lane] = (first + lane) // per_block
-    following = first + active
+    answered, hole = np.empty(LANES, np.bool_), np.empty(LANES, np.int64)
+    states, carried = np.empty((LANES, STATE_SIZE)), np.empty((LANES, len(CARRIED)))
+    lanes = (idx, block, phi, v, t, n, slot, target, centred, phase_error, states)
+    eps = physics.eps
+    hole_lo, hole_width = holes.lo, holes.width
+    max_collisions, max_time = horizon.max_collisions, horizon.max_time
+    dissipative = model_of(physics) == DISSIPATIVE
+    keep_carried = keeps_carried(sample.rows, physics.restitution)
+    active, following = 0, first
+    while active < LANES:
+        loaded, following = _load_next(physics, lanes, active, following, end, per_block,
+                                       starts, sample, flags)
+        if not loaded:
+            break
+        active += 1
     while active > 0:
-        for lane in range(active):  # vectorised: no calls, no branches but selects
-            tau[lane], phi1[lane], v1[lane], centred1[lane], phase_error1[lane], answered[lane] = (
-                lane_collide(centred[lane], v[lane], eps, phase_error[lane]))
-        for lane in range(active):
-            hole[lane] = -1
-        for h in range(len(hole_lo)):  # exit_hole of every lane, vectorised over the lanes
-            lo_h, width_h = hole_lo[h], hole_width[h]
+        if not dissipative:
+            for lane in range(active):  # vectorised: no calls, no branches but selects
+                (tau[lane], phi1[lane], v1[lane], centred1[lane], phase_error1[lane],
+                 answered[lane]) = lane_collide(centred[lane], v[lane], eps, phase_error[lane])
             for lane in range(active):
-                hole[lane] = select(hole[lane] < 0 and in_hole(phi1[lane], lo_h, width_h), h,
-                                     hole[lane])
+                hole[lane] = -1
+            for h in range(len(hole_lo)):  # exit_hole of every lane, vectorised over the lanes
+                lo_h, width_h = hole_lo[h], hole_width[h]
+                for lane in range(active):
+                    hole[lane] = select(hole[lane] < 0 and in_hole(phi1[lane], lo_h, width_h),
+                                        h, hole[lane])
         idle = False
         for lane in range(active):
             i = idx[lane]
             b = block[lane]
             finished = False
             if n[lane] >= max_collisions:
-                if record_n:
-                    cens_n[b, bin_index(n_edges, n[lane])] += 1
-                if record_t:
-                    cens_t[b, bin_index(t_edges, t[lane])] += 1
+                censor(counts, bins, b, n[lane], t[lane])
                 finished = True
             else:
-                if answered[lane]:
+                kind, t_start = 0, 0.0
+                if dissipative:
+                    state = states[lane]
+                    if keep_carried and slot[lane] >= 0 and n[lane] < target[lane]:
+                        copy_carried(state, carried[lane])
+                    status, _, tau_l, kind, t_start, _ = advance(
+                        physics, state, AUTO, True, detach, hole_lo)
+                    phi1_l, v1_l, t1 = state[PHI], state[V], state[T]
+                    answered[lane] = False
+                elif answered[lane]:
                     phi1_l, v1_l, tau_l, status = phi1[lane], v1[lane], tau[lane], CONVERGED
+                    t1 = t[lane] + tau_l
                 else:  # what the lanes do not answer: collide's general path, the same function
                     phi1_l, v1_l, tau_l, _, status = collide(phi[lane], v[lane], eps, GENERAL)
                     centred1[lane], phase_error1[lane] = departure_phase(phi1_l)
-                t1 = t[lane] + tau_l
+                    t1 = t[lane] + tau_l
                 if status != CONVERGED:
-                    _flag(flags, flag_state, i, status, phi[lane], v[lane], t[lane], n[lane])
+                    flag(flags, i, status, phi[lane], v[lane], t[lane], n[lane])
                     finished = True
                 elif t1 > max_time:
-                    if record_n:
-                        cens_n[b, bin_index(n_edges, n[lane])] += 1
-                    if record_t:
-                        cens_t[b, bin_index(t_edges, t1)] += 1
+                    censor(counts, bins, b, n[lane], t1)
                     finished = True
                 else:
                     n[lane] += 1
-                    collisions[b] += 1
+                    counts.collisions[b] += 1
                     if slot[lane] >= 0 and n[lane] <= target[lane]:
-                        _store_sample(samples, slot[lane], n[lane], phi[lane], v[lane], phi1_l,
-                                      v1_l, tau_l)
-                    phi[lane], v[lane], t[lane] = phi1_l, v1_l, t1
+                        store_sample(sample.rows, slot[lane], n[lane], (phi[lane], v[lane]),
+                                     (phi1_l, v1_l, tau_l))
+                        if dissipative and keep_carried:
+                            store_carried(sample.rows, slot[lane], carried[lane])
+                    if dissipative:
+                        phi[lane], v[lane], t[lane] = departure_point(states[lane])
+                    else:
+                        phi[lane], v[lane], t[lane] = phi1_l, v1_l, t1
                     j = hole[lane] if answered[lane] else exit_hole(phi1_l, hole_lo, hole_width)
                     if j >= 0:
-                        if record_n:
-                            esc_n[b, j, bin_index(n_edges, n[lane])] += 1
-                        if record_t:
-                            esc_t[b, j, bin_index(t_edges, t1)] += 1
+                        escape(counts, bins, b, j, n[lane], t1)
+                        finished = True
+                    elif kind == STUCK:
+                        if t_start <= max_time:
+                            stuck(counts, bins, b, n[lane], t_start)
+                        else:
+                            censor(counts, bins, b, n[lane], t_start)
                         finished = True
                     else:
                         centred[lane], phase_error[lane] = centred1[lane], phase_error1[lane]
             if finished:
-                if following < end:
-                    _load(following, lane, phi0, v0, t0, n0, sample_slot, sample_target,
-                          flags, idx, phi, centred, phase_error, v, t, n, slot, target)
-                    block[lane] = following // per_block
-                    following += 1
-                else:
+                loaded, following = _load_next(physics, lanes, lane, following, end, per_block,
+                                               starts, sample, flags)
+                if not loaded:
                     idx[lane] = -1
                     idle = True
         if idle:  # the block's last particles: move the lanes still in flight to the front
@@ -268,99 +274,49 @@ def _escape_lanes(per_block, first, end, phi0, v0, t0, n0, eps, hole_lo, hole_wi
                     phase_error[busy], v[busy], t[busy] = phase_error[lane], v[lane], t[lane]
                     n[busy], slot[busy], target[busy] = n[lane], slot[lane], target[lane]
                     block[busy] = block[lane]
+                    if dissipative:
+                        states[busy, :] = states[lane, :]
+                        carried[busy, :] = carried[lane, :]
                     busy += 1
             active = busy
 
 
 @parallel_jit
-def holmes_escape_chunk(phi0, v0, eps, hole_lo, hole_width, max_collisions, max_time,
-                        n_edges, t_edges, esc_n, esc_t, cens_n, cens_t, collisions):
+def holmes_escape_chunk(physics, starts, holes, horizon, bins, counts):
     """``escape_chunk`` with the Holmes map (flight time 2*v) instead of the exact map: the bare
-    loop the benchmark compares with (same starts, holes, horizon, bins and blocks; no
-    verification sample, no flags: the Holmes map has no undecidable flight)."""
-    m = len(phi0)
-    blocks = len(collisions)
+    loop the benchmark compares the exact map's lanes with (same starts, holes, horizon, bins
+    and blocks; no verification sample, no flags: the Holmes map has no undecidable flight;
+    starts at t = 0, n = 0)."""
+    m = len(starts.phi)
+    blocks = len(counts.collisions)
     per_block = (m + blocks - 1) // blocks
-    for b in prange(blocks):
-        done = 0
-        for i in range(b * per_block, min(m, (b + 1) * per_block)):
-            phi, v, t, n = phi0[i], v0[i], 0.0, 0
-            while True:
-                if n >= max_collisions:
-                    cens_n[b, bin_index(n_edges, n)] += 1
-                    cens_t[b, bin_index(t_edges, t)] += 1
-                    break
-                t1 = t + 2.0 * v
-                if t1 > max_time:
-                    cens_n[b, bin_index(n_edges, n)] += 1
-                    cens_t[b, bin_index(t_edges, t1)] += 1
-                    break
-                phi, v = holmes_collide(phi, v, eps)
-                t = t1
-                n += 1
-                done += 1
-                j = exit_hole(phi, hole_lo, hole_width)
-                if j >= 0:
-                    esc_n[b, j, bin_index(n_edges, n)] += 1
-                    esc_t[b, j, bin_index(t_edges, t)] += 1
-                    break
-        collisions[b] += done
+    for b in prange(blocks):  # (numba drops writes to a tuple's arrays made here directly)
+        _holmes_block(physics.eps, (b, b * per_block, min(m, (b + 1) * per_block)), starts,
+                      holes, horizon, bins, counts)
 
 
-@parallel_jit
-def portrait_chunk(phi0, v0, n0, eps, max_collisions, v_lo, v_hi, sample_slot, sample_target,
-                   counts, collisions, flags, flag_state, samples):
-    """Phase-space portrait: histogram the collision states (phi_n, v_n), n = 1..max_collisions.
-
-    ``counts[b, p, q]`` counts the states with phi in bin p of [0, 2*pi) and v in bin q of
-    [v_lo, v_hi) (uniform bins; states outside are not counted), for block b. Flags and samples
-    as for ``escape_chunk`` (flag_state[i, 2], the time, is not tracked and stays 0).
-    """
-    m = len(phi0)
-    blocks = len(collisions)
-    per_block = (m + blocks - 1) // blocks
-    n_phi, n_v = counts.shape[1], counts.shape[2]
-    for b in prange(blocks):
-        done = 0
-        for i in range(b * per_block, min(m, (b + 1) * per_block)):
-            phi, v, n = phi0[i], v0[i], n0[i]
-            slot, target = sample_slot[i], sample_target[i]
-            flags[i] = 0
-            while n < max_collisions:
-                phi1, v1, tau, _, status = collide(phi, v, eps)
-                if status != CONVERGED:
-                    _flag(flags, flag_state, i, status, phi, v, 0.0, n)
-                    break
-                n += 1
-                done += 1
-                if slot >= 0 and n <= target:
-                    _store_sample(samples, slot, n, phi, v, phi1, v1, tau)
-                phi, v = phi1, v1
-                if v_lo <= v < v_hi:
-                    p = min(int(phi / TWO_PI * n_phi), n_phi - 1)
-                    q = min(int((v - v_lo) / (v_hi - v_lo) * n_v), n_v - 1)
-                    counts[b, p, q] += 1
-        collisions[b] += done
-
-
-def log_edges(lo, decades, per_decade, integer=False):
-    """Lower bin edges lo*10**(k/per_decade), k = 0..decades*per_decade (rounded and
-    deduplicated when ``integer``), as float64."""
-    k = np.arange(decades * per_decade + 1)
-    edges = lo * 10.0 ** (k / per_decade)
-    if integer:
-        edges = np.unique(np.round(edges))
-    return edges.astype(np.float64)
-
-
-__all__ = [
-    "NO_LIMIT",
-    "SAMPLE_FIELDS",
-    "FLAG_FIELDS",
-    "bin_index",
-    "escape_chunk",
-    "exit_hole",
-    "holmes_escape_chunk",
-    "log_edges",
-    "portrait_chunk",
-]
+@jit
+def _holmes_block(eps, span, starts, holes, horizon, bins, counts):
+    """Particles first .. last-1 of ``holmes_escape_chunk`` into block b's row,
+    span = (b, first, last)."""
+    b, first, last = span
+    done = 0
+    for i in range(first, last):
+        phi, v, t, n = starts.phi[i], starts.v[i], 0.0, 0
+        while True:
+            if n >= horizon.max_collisions:
+                censor(counts, bins, b, n, t)
+                break
+            t1 = t + 2.0 * v
+            if t1 > horizon.max_time:
+                censor(counts, bins, b, n, t1)
+                break
+            phi, v = holmes_collide(phi, v, eps)
+            t = t1
+            n += 1
+            done += 1
+            j = exit_hole(phi, holes.lo, holes.width)
+            if j >= 0:
+                escape(counts, bins, b, j, n, t)
+                break
+    counts.collisions[b] += done

@@ -1,7 +1,8 @@
-"""Velocity moments of many orbits (Fermi acceleration, velocity diffusion), exact or Holmes.
+"""Velocity moments of many particles (Fermi acceleration, velocity diffusion), any description.
 
-Each particle i runs from (phi0[i], v0[i]) through the exact map (``model`` EXACT) or the Holmes
-map (HOLMES, flight time 2*v). Only sums are kept, never the orbits:
+Each particle i runs from (phi0[i], v0[i]) through the map of the description (``fastpath.physics``:
+the exact map, the Holmes map with flight time 2*v, or drag and restitution with sticking). Only
+sums are kept, never the orbits:
 
 * at the collision indices ``n_grid`` (sorted, >= 0): sum of v_n, of v_n**2 and of
   (v_n - v_0)**2 over the particles that reached collision n;
@@ -11,107 +12,172 @@ map (HOLMES, flight time 2*v). Only sums are kept, never the orbits:
 A particle runs until it has passed both n_grid[-1] and t_grid[-1], or until ``max_collisions``
 (then the later time points miss it: ``count_t`` says how many particles each point holds). An
 exact flight float64 cannot decide (status UNCERTAIN or MAX_ITERATIONS, only for |eps| >= 1)
-stops the particle: it is flagged (``flags[i]`` = the status) and contributes only to the grid
-points it reached before; ``count_n`` records that.
+stops the particle: it is flagged (``arrays.Flags``) and contributes only to the grid points it
+reached before; ``count_n`` records that.
+
+With restitution r < 1 a particle stuck for good (the impacts accumulate where it can never
+leave, ``fastpath.dissipative.sticking``) after collision n is counted in ``stuck_n`` at every
+n_j > n and in ``stuck_t`` at every t_j >= t_acc, and not in ``count_n`` / ``count_t`` there: its
+velocity is the plate's. v(t) between collisions is the velocity of the last departure at or
+before t: an impact's outgoing velocity, or after a sticking episode the detachment velocity
+u(theta*) from t_detach on; during an episode (t_acc <= t < t_detach) it stays the last
+impact's (~ the plate's velocity at t_acc, where the relative velocity has gone to 0).
 
 The particles are split into ``len(count_n)`` fixed blocks of consecutive indices, each with its
 own row of sums, filled in particle order: the result is identical for any number of threads,
 and the spread over blocks gives the statistical uncertainty.
 """
 
-import math
-
 import numpy as np
 from numba import prange
 
-from fastpath.arithmetic.jit import parallel_jit
-from fastpath.arithmetic.phase import reduce_phase
-from fastpath.elastic.collision import collide_from
-from fastpath.elastic.flight import GENERAL
-from fastpath.elastic.holmes import holmes_collide
-from fastpath.inputs import count, float_inputs, physics
-from fastpath.kernels.dissipative_moments import dissipative_moments_kernel
+from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.dissipative.carried import (
+    CARRIED,
+    EPISODE,
+    PHI,
+    STATE_SIZE,
+    STUCK,
+    VK,
+    T,
+    V,
+    copy_carried,
+)
+from fastpath.dissipative.sticking import detachment
+from fastpath.elastic.flight import AUTO
+from fastpath.inputs import count, float_inputs, physics_options
+from fastpath.kernels.arrays import (
+    Flags,
+    MomentGrid,
+    MomentSums,
+    Sample,
+    Starts,
+    keeps_carried,
+)
+from fastpath.kernels.escape import flag, store_carried, store_sample
+from fastpath.kernels.particle import advance, begin, departure_point
+from fastpath.physics import describe, holmes
 from fastpath.status import CONVERGED
 
-EXACT = 0
-HOLMES = 1
-MODELS = {"exact": EXACT, "holmes": HOLMES}
+MODELS = ("exact", "holmes")
+
+
+def moments_chunk(physics, starts, grid, as_step, sample, sums, flags):
+    """Fill the block sums ``sums`` (``arrays.MomentSums``, added to; the caller zeroes them)
+    for the particles ``starts`` (module docstring). as_step: each collision is
+    ``fastpath.step``'s (the runs' velocity scenes, audited by ``step``) or, False, an orbit's
+    (``fastpath.kernels.particle``). Flags and sample as ``fastpath.kernels.escape``; a resumed
+    particle (n > 0) starts at the grid point of its n, which is filled here."""
+    _moments_blocks(physics, starts, grid, as_step, sample, sums, flags, detachment(physics))
 
 
 @parallel_jit
-def moments_kernel(phi0, v0, eps, model, n_grid, t_grid, max_collisions, count_n, sum_v_n,
-                   sum_v2_n, sum_dv2_n, count_t, sum_v_t, collisions, flags):
-    """Fill the block sums (added to; the caller zeroes them); see the module docstring.
-
-    Shapes: ``count_n``, ``sum_*_n`` (blocks, len(n_grid)); ``count_t``, ``sum_v_t``
-    (blocks, len(t_grid)); ``collisions`` (blocks,); ``flags`` (particles,).
-    """
-    m = len(phi0)
-    blocks = len(collisions)
+def _moments_blocks(physics, starts, grid, as_step, sample, sums, flags, detach):
+    """``moments_chunk``, one block of particles per ``prange`` iteration."""
+    m = len(starts.phi)
+    blocks = len(sums.collisions)
     per_block = (m + blocks - 1) // blocks
+    for b in prange(blocks):  # (numba drops writes to a tuple's arrays made here directly)
+        _moments_block(physics, (b, b * per_block, min(m, (b + 1) * per_block), as_step),
+                       starts, grid, sample, sums, flags, detach)
+
+
+@jit
+def _add_n(sums, b, jn, n, v, start, n_grid):
+    """Add v = v_n to the grid points n_grid[jn], ... equal to n; return the next jn."""
+    while jn < len(n_grid) and n_grid[jn] == n:
+        sums.count_n[b, jn] += 1
+        sums.sum_v_n[b, jn] += v
+        sums.sum_v2_n[b, jn] += v * v
+        sums.sum_dv2_n[b, jn] += (v - start) * (v - start)
+        jn += 1
+    return jn
+
+
+@jit
+def _add_t(sums, b, jt, until, v, t_grid):
+    """Add v to the time points t_grid[jt], ... below ``until``; return the next jt."""
+    while jt < len(t_grid) and t_grid[jt] < until:
+        sums.count_t[b, jt] += 1
+        sums.sum_v_t[b, jt] += v
+        jt += 1
+    return jt
+
+
+@jit
+def _moments_block(physics, span, starts, grid, sample, sums, flags, detach):
+    """Particles first .. last-1 into block b's rows, span = (b, first, last, as_step)."""
+    b, first, last, as_step = span
+    n_grid, t_grid = grid.n, grid.t
     kn, kt = len(n_grid), len(t_grid)
     n_last = n_grid[kn - 1] if kn > 0 else 0
     t_last = t_grid[kt - 1] if kt > 0 else -1.0
-    for b in prange(blocks):
-        done = 0
-        for i in range(b * per_block, min(m, (b + 1) * per_block)):
-            phi = reduce_phase(phi0[i])
-            v = v0[i]
-            start = v
-            sin_phi, cos_phi = math.sin(phi), math.cos(phi)
-            t = 0.0
-            n = 0
-            jn = 0
-            jt = 0
-            flags[i] = 0
-            while True:
-                while jn < kn and n_grid[jn] == n:
-                    count_n[b, jn] += 1
-                    sum_v_n[b, jn] += v
-                    sum_v2_n[b, jn] += v * v
-                    sum_dv2_n[b, jn] += (v - start) * (v - start)
-                    jn += 1
-                if (n >= n_last and t > t_last) or n >= max_collisions:
-                    break
-                if model == HOLMES:
-                    phi1, v1 = holmes_collide(phi, v, eps)
-                    tau = 2.0 * v
-                else:
-                    # GENERAL as fastpath.orbit: the same collisions, bit for bit
-                    phi1, sin_phi, cos_phi, v1, tau, _, status = collide_from(
-                        phi, sin_phi, cos_phi, v, eps, GENERAL)
-                    if status != CONVERGED:
-                        flags[i] = status
-                        break
-                t1 = t + tau
-                while jt < kt and t_grid[jt] < t1:  # t <= t_grid[jt] < t1: v(t) = v
-                    count_t[b, jt] += 1
-                    sum_v_t[b, jt] += v
-                    jt += 1
-                phi, v, t = phi1, v1, t1
-                n += 1
-                done += 1
-        collisions[b] += done
+    state = np.empty(STATE_SIZE)
+    carried = np.empty(len(CARRIED))
+    keep_carried = keeps_carried(sample.rows, physics.restitution)
+    no_holes = np.empty(0)
+    done = 0
+    for i in range(first, last):
+        n, v, t = starts.n[i], starts.v[i], starts.t[i]
+        start = v
+        slot, target = sample.slot[i], sample.target[i]
+        flags.status[i] = 0
+        status = begin(physics, state, starts.phi[i], v, t, as_step)
+        if status != CONVERGED:
+            flag(flags, i, status, starts.phi[i], v, t, n)
+            continue
+        jn = _add_n(sums, b, np.searchsorted(n_grid, n), n, v, start, n_grid)
+        jt = np.searchsorted(t_grid, t)
+        while not ((n >= n_last and t > t_last) or n >= grid.max_collisions):
+            phi_d, v_d, t_d = departure_point(state)
+            if keep_carried and slot >= 0 and n < target:
+                copy_carried(state, carried)
+            status, _, tau, kind, t_start, t_end = advance(physics, state, AUTO, as_step, detach,
+                                                           no_holes)
+            if status != CONVERGED:
+                flag(flags, i, status, phi_d, v_d, t_d, n)
+                break
+            jt = _add_t(sums, b, jt, state[T], v, t_grid)  # t <= t_grid < t1: v(t) = v
+            v, t = state[V], state[T]
+            n += 1
+            done += 1
+            if slot >= 0 and n <= target:
+                store_sample(sample.rows, slot, n, (phi_d, v_d), (state[PHI], v, tau))
+                if keep_carried:
+                    store_carried(sample.rows, slot, carried)
+            jn = _add_n(sums, b, jn, n, v, start, n_grid)
+            if kind == STUCK:
+                jt = _add_t(sums, b, jt, t_start, v, t_grid)
+                for j in range(jn, kn):
+                    sums.stuck_n[b, j] += 1
+                for j in range(jt, kt):
+                    sums.stuck_t[b, j] += 1
+                break
+            if kind == EPISODE:  # riding: the last impact's velocity; then the detachment's
+                jt = _add_t(sums, b, jt, t_end, v, t_grid)
+                v, t = state[VK], t_end
+    sums.collisions[b] += done
 
 
 class Moments:
     """Block sums of ``moments`` with the grids; means and block-level views.
 
-    Attributes: ``n_grid``, ``t_grid``; block arrays ``count_n``, ``sum_v_n``, ``sum_v2_n``,
-    ``sum_dv2_n``, ``count_t``, ``sum_v_t`` (rows = blocks); ``collisions`` (total) and
-    ``flagged`` (particles stopped at an undecidable flight); ``stuck_n``, ``stuck_t`` (rows =
-    blocks): particles stuck for good before grid point n resp. time t, not in count_n/count_t
-    (``fastpath.dissipative_moments``; zeros for the elastic, drag-free physics).
+    Attributes: ``n_grid``, ``t_grid``; ``sums`` (``arrays.MomentSums``) and its block arrays
+    ``count_n``, ``sum_v_n``, ``sum_v2_n``, ``sum_dv2_n``, ``count_t``, ``sum_v_t``, ``stuck_n``,
+    ``stuck_t`` (rows = blocks; stuck: particles stuck for good before grid point n resp. time
+    t, not in count_n/count_t, zeros without restitution < 1); ``collisions`` (total),
+    ``flagged`` (particles stopped at an undecidable flight), ``model``, ``eps``.
     """
 
-    def __init__(self, n_grid, t_grid, count_n, sum_v_n, sum_v2_n, sum_dv2_n, count_t,
-                 sum_v_t, collisions, flagged, model, eps, stuck_n=None, stuck_t=None):
-        self.n_grid, self.t_grid = n_grid, t_grid
-        self.count_n, self.sum_v_n, self.sum_v2_n = count_n, sum_v_n, sum_v2_n
-        self.sum_dv2_n, self.count_t, self.sum_v_t = sum_dv2_n, count_t, sum_v_t
-        self.collisions, self.flagged, self.model, self.eps = collisions, flagged, model, eps
-        self.stuck_n = np.zeros_like(count_n) if stuck_n is None else stuck_n
-        self.stuck_t = np.zeros_like(count_t) if stuck_t is None else stuck_t
+    def __init__(self, n_grid, t_grid, sums, flagged, model, eps):
+        self.n_grid, self.t_grid, self.sums = n_grid, t_grid, sums
+        self.collisions = int(sums.collisions.sum())
+        self.flagged, self.model, self.eps = flagged, model, eps
+
+    def __getattr__(self, name):
+        if name in MomentSums._fields:
+            return getattr(self.sums, name)
+        raise AttributeError(name)
 
     @property
     def particles_n(self):
@@ -154,14 +220,13 @@ def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_coll
     ``max_collisions`` caps each orbit (default: 100 * n_grid[-1] + 10**6 when a time grid is
     given, else n_grid[-1]).
 
-    drag, drag_law, restitution: as for ``fastpath.orbit`` (model "exact" only); the defaults
-    run ``moments_kernel`` unchanged, any other physics ``fastpath.dissipative_moments`` (with
-    ``stuck_n``, ``stuck_t``).
+    drag, drag_law, restitution: as for ``fastpath.orbit`` (model "exact" only); with
+    restitution < 1 ``stuck_n``, ``stuck_t`` count the particles stuck for good.
 
     Raises ValueError for non-finite inputs, non-departing starts (v0 + eps*sin(phi0) <= 0),
     unsorted or negative grids, an unknown model, bad physics keywords.
     """
-    drag, law, restitution = physics(drag, drag_law, restitution)
+    drag, law, restitution = physics_options(drag, drag_law, restitution)
     dissipative = drag != 0.0 or restitution != 1.0
     if dissipative and model != "exact":
         raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
@@ -192,23 +257,14 @@ def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_coll
         n_last = int(n_grid[-1]) if len(n_grid) else 0
         max_collisions = 100 * n_last + 10**6 if len(t_grid) else n_last
     max_collisions = count("max_collisions", max_collisions)
-    kn, kt = len(n_grid), len(t_grid)
-    count_n = np.zeros((blocks, kn), np.int64)
-    sums_n = [np.zeros((blocks, kn)) for _ in range(3)]
-    count_t, sum_v_t = np.zeros((blocks, kt), np.int64), np.zeros((blocks, kt))
-    collisions = np.zeros(blocks, np.int64)
-    flags = np.zeros(len(phi_a), np.int8)
-    if not dissipative:
-        moments_kernel(phi_a, v_a, eps, MODELS[model], n_grid, t_grid, max_collisions, count_n,
-                       *sums_n, count_t, sum_v_t, collisions, flags)
-        return Moments(n_grid, t_grid, count_n, *sums_n, count_t, sum_v_t,
-                       int(collisions.sum()), int(np.count_nonzero(flags)), model, eps)
-    stuck_n, stuck_t = np.zeros_like(count_n), np.zeros_like(count_t)
-    dissipative_moments_kernel(phi_a, v_a, eps, drag, law, restitution, n_grid, t_grid,
-                               max_collisions, count_n, *sums_n, count_t, sum_v_t, stuck_n,
-                               stuck_t, collisions, flags)
-    return Moments(n_grid, t_grid, count_n, *sums_n, count_t, sum_v_t, int(collisions.sum()),
-                   int(np.count_nonzero(flags)), model, eps, stuck_n, stuck_t)
+    described = holmes(eps) if model == "holmes" else describe(eps, drag, law, restitution)
+    m = len(phi_a)
+    sums = MomentSums.zeros(blocks, len(n_grid), len(t_grid))
+    flags = Flags.zeros(m)
+    moments_chunk(described, Starts(phi=phi_a, v=v_a, t=np.zeros(m), n=np.zeros(m, np.int64)),
+                  MomentGrid(n=n_grid, t=t_grid, max_collisions=max_collisions), False,
+                  Sample.none(m), sums, flags)
+    return Moments(n_grid, t_grid, sums, int(np.count_nonzero(flags.status)), model, eps)
 
 
-__all__ = ["EXACT", "HOLMES", "Moments", "moments", "moments_kernel"]
+__all__ = ["Moments", "moments", "moments_chunk"]

@@ -36,8 +36,8 @@ from mpmath import mp
 import fastpath
 from fastpath.physics import LINEAR, QUADRATIC
 from fastpath.dissipative.drag import gap_state
-from fastpath.dissipative.drag_short_flight import drag_short_window, particle_offset
-from fastpath.dissipative.drag_sticking import DETACHES, NEVER, UNDECIDED, detach_kind, detachment_frame, drag_accumulation_tail, drag_detachment, drag_detachment_phase
+from fastpath.dissipative.short_flight import drag_short_window, particle_offset
+from fastpath.dissipative.sticking import DETACHES, NEVER, UNDECIDED, detach_kind, detachment_frame, drag_accumulation_tail, drag_detachment, drag_detachment_phase
 from fastpath.elastic.gap import departure
 from fastpath.arithmetic.phase import centre_phase
 from fastpath.dissipative.sticking import detachment_phase

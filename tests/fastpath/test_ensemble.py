@@ -7,7 +7,9 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.kernels.escape import NO_LIMIT, bin_index, escape_chunk, exit_hole, log_edges
+from fastpath.kernels.arrays import NO_LIMIT
+from fastpath.kernels.histogram import bin_index, exit_hole, log_edges
+from fastpath.kernels.escape import escape_chunk
 
 TWO_PI = 2 * math.pi
 EPS = 0.6

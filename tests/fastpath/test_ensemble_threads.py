@@ -14,7 +14,9 @@ import numpy as np
 import pytest
 from numba import prange
 
-from fastpath.kernels.escape import escape_chunk, log_edges, portrait_chunk
+from fastpath.kernels.escape import escape_chunk
+from fastpath.kernels.histogram import log_edges
+from fastpath.kernels.portrait import portrait_chunk
 
 TWO_PI = 2 * math.pi
 N_EDGES = log_edges(1.0, 8, 20, integer=True)

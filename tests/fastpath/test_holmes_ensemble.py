@@ -5,7 +5,8 @@ import math
 import numpy as np
 
 import fastpath
-from fastpath.kernels.escape import bin_index, exit_hole, holmes_escape_chunk, log_edges
+from fastpath.kernels.histogram import bin_index, exit_hole, log_edges
+from fastpath.kernels.escape import holmes_escape_chunk
 
 
 def test_holmes_ensemble_matches_a_replay_with_holmes_step():

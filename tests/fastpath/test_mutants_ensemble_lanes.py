@@ -281,7 +281,8 @@ def test_escape_chunk_counts_each_particle_into_its_own_block():
     2, 1), no hole (width 0), each censored at exactly 5 collisions, give 10, 10, 10, 5 (a block
     size (m + blocks + 1)//blocks = 3 would give 15, 15, 5, 0; a first lane's block
     (first - lane)//per_block, wrapped as a negative index, 5, 10, 10, 10)."""
-    from fastpath.kernels.escape import escape_chunk, log_edges
+    from fastpath.kernels.escape import escape_chunk
+    from fastpath.kernels.histogram import log_edges
 
     m, blocks, max_n = 7, 4, 5
     rng = np.random.default_rng(3)
@@ -305,7 +306,8 @@ def test_overlapping_holes_count_into_the_first_listed():
     returns the first j): with two identical holes every escape is in hole 0, in the lanes'
     vectorised hole test too (``hole[lane] < 0`` keeps the first; ``<= 0`` would let hole 1
     overwrite hole 0)."""
-    from fastpath.kernels.escape import escape_chunk, log_edges
+    from fastpath.kernels.escape import escape_chunk
+    from fastpath.kernels.histogram import log_edges
 
     m, blocks, max_n = 50, 2, 2000
     rng = np.random.default_rng(4)

@@ -40,8 +40,8 @@ import fastpath
 import verify
 from fastpath.physics import LINEAR, QUADRATIC
 from fastpath.dissipative.drag import gap_state
-from fastpath.dissipative.drag_short_flight import drag_short_window
-from fastpath.dissipative.drag_sticking import drag_detachment_phase
+from fastpath.dissipative.short_flight import drag_short_window
+from fastpath.dissipative.sticking import drag_detachment_phase
 from fastpath.elastic.gap import departure
 from fastpath.arithmetic.phase import centre_phase
 from verify.drag_sticking import can_detach, drag_accumulation, riding

@@ -19,7 +19,8 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.kernels.escape import bin_index, escape_chunk
+from fastpath.kernels.histogram import bin_index
+from fastpath.kernels.escape import escape_chunk
 from fastpath.arithmetic.phase import TWO_PI
 from reports.runs import chunk
 from reports.runs.plan import chunk_starts, make_plan

@@ -23,7 +23,8 @@ from hypothesis import strategies as st
 
 import fastpath
 import verify
-from fastpath.kernels.escape import bin_index, escape_chunk, exit_hole
+from fastpath.kernels.histogram import bin_index, exit_hole
+from fastpath.kernels.escape import escape_chunk
 from fastpath.arithmetic.phase import TWO_PI
 from reports.runs import chunk
 from reports.runs.plan import chunk_starts, make_plan

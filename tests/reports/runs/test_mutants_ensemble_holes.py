@@ -12,7 +12,9 @@ from fractions import Fraction
 
 import numpy as np
 
-from fastpath.kernels.escape import NO_LIMIT, escape_chunk, exit_hole
+from fastpath.kernels.arrays import NO_LIMIT
+from fastpath.kernels.escape import escape_chunk
+from fastpath.kernels.histogram import exit_hole
 from fastpath.arithmetic.phase import TWO_PI
 
 LO = 5.0

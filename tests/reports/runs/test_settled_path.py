@@ -24,7 +24,7 @@ import pytest
 
 import fastpath
 import verify
-from fastpath.kernels.escape import bin_index
+from fastpath.kernels.histogram import bin_index
 from fastpath.arithmetic.phase import TWO_PI
 from reports.runs import chunk
 from reports.runs.plan import chunk_starts, make_plan
