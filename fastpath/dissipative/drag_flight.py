@@ -16,14 +16,14 @@ lower-bound steps take a(t_k) at each iterate: past the top of a fast flight wit
 a(t) is ~1 + |eps| instead of 1 + k*v**2 + |eps|.
 
 Lower-bound steps (the iteration ``next_point`` of ``fastpath.elastic.lower_bound``, with the gap
-and bounds of ``drag_gap_bounds`` and the graze test ``may_be_drag_graze``): from t_k with d_k > 0 and slope
-r_k the paper's step with a(t_k), and the local step of
+and bounds of ``drag_gap_bounds`` and the graze test ``may_be_drag_graze``): from t_k with d_k > 0
+and slope r_k the paper's step with a(t_k), and the local step of
 ``fastpath.elastic.lower_bound.certified_step`` with
 c_k = min(p(t_k), 0) + eps*cos(phi + t_k) (the particle's part frozen at its lower bound, the
 plate's part with its Taylor remainder), all lowered by their rounding bounds
-(``fastpath.dissipative.drag.gap_state``); the same stop, polish, graze test and statuses. In the graze test
-the largest curvature after t is b = |eps| + max(p(t), 0) (p <= 0 and increasing, or p > 0 and
-decreasing; |eps| - 1 without drag) and the third derivative is bounded by |eps| + |p'|,
+(``fastpath.dissipative.drag.gap_state``); the same stop, polish, graze test and statuses. In the
+graze test the largest curvature after t is b = |eps| + max(p(t), 0) (p <= 0 and increasing, or
+p > 0 and decreasing; |eps| - 1 without drag) and the third derivative is bounded by |eps| + |p'|,
 with |p'| = eta'(V)*|p| <= k*|p(t)| (linear) or 2*k*max(|V(t)|, 1/sqrt(k))*|p(t)|
 (quadratic: V stays between V(t) and the terminal velocity).
 
@@ -31,8 +31,8 @@ Concave flights (Halley in a bracket, as ``fastpath.elastic.concave``). If 1 + e
 increasing, so on [0, t] d'' <= p(t) + |eps| = -m(t). A point t with m(t) > 0 certifies the gap
 concave on [0, t]: with d(0) = 0 < d'(0) there is at most one root in (0, t], so d(t) > E puts t
 before the first root and d(t) < -E after it (E the gap's rounding bound). Halley steps in the
-bracket [lo, hi] start, as in ``fastpath.elastic.concave``, for long flights (2*w0 >= 1 + |eps|) at the
-particle's own landing time to first order in the drag, 2*v*(1 - k*v/3) (linear) or 2*v*(1 -
+bracket [lo, hi] start, as in ``fastpath.elastic.concave``, for long flights (2*w0 >= 1 + |eps|) at
+the particle's own landing time to first order in the drag, 2*v*(1 - k*v/3) (linear) or 2*v*(1 -
 k*v**2/4) (quadratic; Y(2v) = -k*v**3*2/3 resp. -k*v**4/2 to first order, divided by |Y'(2v)| =
 v), when that correction is below a half; else at the root of w0*t - (1 + eta(v) -
 eps*cos(phi))*t**2/2 (the departure curvature frozen); while hi is not yet known (no point after
@@ -40,8 +40,8 @@ the root), a step that would go backwards is replaced by the root of the local q
 + d'*s + d''*s**2/2 (forward, d'' < 0). The first point where m(t) <= 0 (drag so strong or a
 fall so long that the particle nears its terminal velocity: even |eps| < 1 then allows a convex
 gap and several roots) hands the flight to the lower-bound steps, which go on from the bracket's
-lower end with the iterations left. The end is as in ``fastpath.elastic.concave``: a Newton correction
-clamped into the bracket; UNCERTAIN at a flat zero.
+lower end with the iterations left. The end is as in ``fastpath.elastic.concave``: a Newton
+correction clamped into the bracket; UNCERTAIN at a flat zero.
 """
 
 import math

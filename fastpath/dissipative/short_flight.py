@@ -4,8 +4,8 @@ without or with drag.
 The elastic solvers take the absolute velocity v and form w0 = v + eps*sin(phi) themselves, with
 an absolute error ~u*(|v| + |eps|): harmless for an ordinary flight, but a chattering impact has
 w0 ~ 1e-10 and would keep only six digits. Here the relative velocity w (particle minus plate) is
-the state, carried from impact to impact (``fastpath.dissipative.sticking.inelastic_impact``), and the gap is
-written so that every term is proportional to w*t or smaller:
+the state, carried from impact to impact (``fastpath.dissipative.sticking.inelastic_impact``), and
+the gap is written so that every term is proportional to w*t or smaller:
 
     d(t)  = w*t + A*t**2/2 + eps*(cos(phi)*C4(t) - sin(phi)*S3(t)),     A = -1 + eps*cos(phi),
     d'(t) = w + A*t - eps*(cos(phi)*S3(t) + sin(phi)*V2(t)),
@@ -36,7 +36,8 @@ gap is proportional to w*t or smaller (no v*t formed and subtracted):
     d(t)  = w*t + (Y(t) - v*t) + eps*(cos(phi)*2*sin(t/2)**2 - sin(phi)*S3(t)),
     d'(t) = w + (V(t) - v) + eps*(cos(phi)*sin(t) - sin(phi)*2*sin(t/2)**2),
 
-with the particle's offsets from uniform motion (``fastpath.dissipative.drag`` closed forms, rewritten):
+with the particle's offsets from uniform motion (the closed forms of
+``fastpath.dissipative.drag``, rewritten):
 
 linear, z = -k*t:  Y - v*t = -(1 + k*v)*t**2*phi2(z),   V - v = -(1 + k*v)*t*phi1(z);
 quadratic, s = sqrt(k), x = s*t, L(y) = (log1p(y) - y)/y**2 (series for |y| < 1/2):
@@ -263,4 +264,13 @@ def short_flight(physics, sin_phi, cos_phi, w, v, upper):
         if not t_next < t:
             return t, r, k
         t = t_next
-    return t, relative_gap_and_rate(physics, sin_phi, cos_phi, w, v, t)[1], ITERATION_LIMIT
+    return t, incoming_rate(physics, sin_phi, cos_phi, w, v, t), ITERATION_LIMIT
+
+
+@jit
+def incoming_rate(physics, sin_phi, cos_phi, w, v, t):
+    """d'(t) alone (``relative_gap_and_rate``)."""
+    if physics.drag != 0.0:
+        return drag_relative_gap(sin_phi, cos_phi, w, v, physics.eps, physics.drag, physics.law,
+                                 t)[1]
+    return relative_rate(sin_phi, cos_phi, w, physics.eps, -1.0 + physics.eps * cos_phi, t)

@@ -1,4 +1,4 @@
-"""Inelastic impacts, chattering and sticking (restitution r < 1; DESIGN fact 12), with or without drag.
+"""Inelastic impacts, chattering and sticking (restitution r < 1), with or without drag.
 
 Without drag.
 
@@ -22,8 +22,8 @@ independent of r at this order once written in T0. The remainder R is of second 
 eps in {0.5, 1.01, 1.5, 3}, r in [0.01, 0.99] and phases from a = 0.06 to 2.5 the 60-digit
 reference gives 0.04 <= C <= 0.21 (we bound it by 1/2 with room). The tail is summed as soon
 as q <= u (``TAIL_Q``), so |R| <= u*T0/2: below half an ulp of the tail itself. Before that the
-impacts are computed one by one (``fastpath.dissipative.short_flight``), a relative error of a few u in w
-per impact; an error delta in w moves t_acc by 2*delta/(a*(1 - r)) (T0's conditioning), and the
+impacts are computed one by one (``fastpath.dissipative.short_flight``), a relative error of a few u
+in w per impact; an error delta in w moves t_acc by 2*delta/(a*(1 - r)) (T0's conditioning), and the
 errors of the impacts shrink with the w they are relative to, so the summed flights carry an
 error of a few u times the chattering sequence's duration (measured in the tests).
 
@@ -99,8 +99,8 @@ free particle V = u + x, x' = d'' = -a(theta* + t) + (eta(u) - eta(u + x)). At a
 of x to 0 at t0 in (0, t_c) (x > 0 before, just after 0 x ~ J*t**2/2 > 0, J = -a'(theta*) > 0)
 x'(t0) = -a(theta* + t0) > 0, a contradiction: so x > 0 on (0, t_c) for every increasing eta,
 and the gap d > 0 on (0, t_c]. The flight starts its certified lower-bound steps at t_c
-(``fastpath.dissipative.drag_flight.lower_bound_drag_flight``) once d(t_c) exceeds its rounding bound (the
-float state (theta*, u(theta*)) stands for the exact one, as without drag).
+(``fastpath.dissipative.drag_flight.lower_bound_drag_flight``) once d(t_c) exceeds its rounding
+bound (the float state (theta*, u(theta*)) stands for the exact one, as without drag).
 
 Accumulation tail with drag. Near accumulation at phase theta the relative motion x obeys
 x'' = A + J*t - c*x' + (second order), with A = -a(theta), J = dA/dt = c*eps*cos(theta) -

@@ -20,8 +20,8 @@ CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rota
 def collide(phi, v, eps, method=AUTO):
     """Return (phi1, v1, tau, iterations, status) for one flight and impact.
 
-    The sine and cosine are computed here from the centred phase by ``fastpath.arithmetic.sincos`` (the
-    ensembles' lanes do the same): its error beyond libm's and the centring's are added.
+    The sine and cosine are computed here from the centred phase by ``fastpath.arithmetic.sincos``
+    (the ensembles' lanes do the same): its error beyond libm's and the centring's are added.
     """
     centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)

@@ -1,8 +1,8 @@
 """Fast flight solver for |eps| <= 1 (exactly 1 included), where the gap is concave (DESIGN fact 2).
 
 With d'' = -1 + eps*cos(phi + t) <= -1 + |eps| <= 0 the gap has exactly one positive root, so a
-point t where the computed gap exceeds its rounding bound E (``fastpath.elastic.gap.gap_error``) lies
-before it and a point with d < -E after it: every such evaluation narrows a certified bracket
+point t where the computed gap exceeds its rounding bound E (``fastpath.elastic.gap.gap_error``)
+lies before it and a point with d < -E after it: every such evaluation narrows a certified bracket
 [lo, hi]. It starts from the bounds of fact 2 and, since d <= 2|eps| + t*v - t**2/2,
 
     2*w0/(1 + |eps|)  <=  tau  <=  min(2*w0/(1 - |eps|),  v + sqrt(v**2 + 4|eps|)),
@@ -27,9 +27,9 @@ there is either flat (UNCERTAIN although float64 could decide) or far from the r
 correction's second-order error |d''|*(d/d')**2/(2|d'|) dominates (2.29 kappa*u at x = 3e-5).
 So when the loop stops flat, or where that second-order term may exceed u*t/2
 (``_newton_inexact``; never on ordinary flights, where d/d' ~ u*t), the iteration goes on with
-``fastpath.elastic.tight_gap``: fresh half-angle sines and a bound E, R from the sizes of the terms, proved
-there. Its points narrow the same certified bracket by the same rules, so every answer stays in
-it. Only short flights need this: a concave gap with d(0) = d(tau) = 0 lies between 0 and its
+``fastpath.elastic.tight_gap``: fresh half-angle sines and a bound E, R from the sizes of the terms,
+proved there. Its points narrow the same certified bracket by the same rules, so every answer stays
+in it. Only short flights need this: a concave gap with d(0) = d(tau) = 0 lies between 0 and its
 tangent at tau, 0 <= d <= |d'(tau)|*tau on [0, tau], so a small d'(tau) needs d'' ~ 0 over the
 whole flight, i.e. eps ~ 1 and phi + t ~ 0 (mod 2*pi): impossible over the Holmes start's flights
 (tau >= 2*w0/(1 + |eps|) >= 1).

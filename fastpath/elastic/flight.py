@@ -34,8 +34,9 @@ METHODS = {"auto": AUTO, "lower_bound": LOWER_BOUND, "seed": LOWER_BOUND}
 
 @jit
 def phase_error_of(phi_given, phi_centred):
-    """Bound on the error of the centred phase: 0 if unchanged, else one ulp (``fastpath.arithmetic.phase``), and
-    for |phi| >= 2**20 (Payne-Hanek) the absolute PAYNE_HANEK_ERROR besides."""
+    """Bound on the error of the centred phase: 0 if unchanged, else one ulp
+    (``fastpath.arithmetic.phase``), and for |phi| >= 2**20 (Payne-Hanek) the absolute
+    PAYNE_HANEK_ERROR besides."""
     if phi_centred == phi_given:
         return 0.0
     error = 2.0 * UNIT_ROUNDOFF * abs(phi_centred)
@@ -45,7 +46,8 @@ def phase_error_of(phi_given, phi_centred):
 @jit
 def departure_phase(phi):
     """(centred phase, bound on its error) of a departure at any real phi, with its sine taken
-    from ``fastpath.arithmetic.sincos``: the centring's error plus what ``sin_cos`` adds beyond libm."""
+    from ``fastpath.arithmetic.sincos``: the centring's error plus what ``sin_cos`` adds beyond
+    libm."""
     centred = centre_phase(phi)
     return centred, phase_error_of(phi, centred) + sin_cos_error(centred)
 

@@ -11,9 +11,10 @@ bracket, the classification of each evaluation with its error bounds, Halley ste
 bisection guard, the clamped Newton correction at the root), with three changes that keep it
 branch-free:
 
-* sines and cosines come from ``fastpath.arithmetic.sincos.sin_cos`` (no call; error <= 4u instead of
-  libm's ulp, within the gap's error bound: for t >= 1 ``gap_error`` allows >= 16u*|eps| for the
-  plate term and ``rate_error`` >= 8u*|eps|), also for the rotations of later iterates;
+* sines and cosines come from ``fastpath.arithmetic.sincos.sin_cos`` (no call; error <= 4u
+  instead of libm's ulp, within the gap's error bound: for t >= 1 ``gap_error`` allows
+  >= 16u*|eps| for the plate term and ``rate_error`` >= 8u*|eps|), also for the rotations of
+  later iterates;
 * exactly ``LOCKSTEP_EVALUATIONS`` evaluations, a lane's answer frozen at its first root;
 * one division per evaluation (Newton's and Halley's steps from one reciprocal) and the
   arithmetic midpoint as the bisection guard (no square roots);
@@ -24,8 +25,8 @@ branch-free:
   escape ensemble (measured in the benchmark's report).
 
 Final step: as ``concave_flight``, the Newton correction is taken at a point where |d| is within
-its rounding bound, or where it is provably as good (``fastpath.elastic.concave.newton_is_final``): one
-evaluation fewer in most flights.
+its rounding bound, or where it is provably as good (``fastpath.elastic.concave.newton_is_final``):
+one evaluation fewer in most flights.
 
 The answer is a pure function of the inputs, so ``concave_flight`` (one flight) and the
 ensemble (a batch) return the same bits for the same departure.
@@ -51,8 +52,8 @@ LOCKSTEP_EVALUATIONS = 4
 
 @inline_jit
 def moderate_bracket(v, w0, w0_error, eps):
-    """``fastpath.elastic.concave.bracket`` for 1e-150 < |v| < 1e150 (v**2 neither under- nor overflows),
-    without the branch to hypot."""
+    """``fastpath.elastic.concave.bracket`` for 1e-150 < |v| < 1e150 (v**2 neither under- nor
+    overflows), without the branch to hypot."""
     return bracket_from_root(v, w0, w0_error, eps, math.sqrt(v * v + 4.0 * abs(eps)))
 
 
@@ -147,9 +148,9 @@ def _answer(state):
 def lockstep_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
     """(tau, sin(phi + tau), cos(phi + tau), evaluations, done) for |eps| <= 1, phi in [-pi, pi).
 
-    As ``fastpath.elastic.concave.concave_flight`` (same arguments, a certain departure w0 > w0_error),
-    for the flights described in the module docstring; done False: no answer, use that.
-    Straight-line code for the ensemble's loops over lanes.
+    As ``fastpath.elastic.concave.concave_flight`` (same arguments, a certain departure
+    w0 > w0_error), for the flights described in the module docstring; done False: no answer,
+    use that. Straight-line code for the ensemble's loops over lanes.
     """
     state, two_v = _start(phi, sin_phi, v, eps, w0_error)
     state = _evaluation(state, phi, cos_phi, v, eps, two_v, 1)

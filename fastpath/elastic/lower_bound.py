@@ -82,8 +82,9 @@ def certified_step(d, r, c, j, eps, a):
     """Largest step from a point with d > 0 that the module docstring's lower models certify.
 
     a > 0 bounds -d2 from above for the rest of the flight (1 + |eps| here; with drag
-    ``fastpath.dissipative.drag_flight`` passes its own bound), c is a lower bound on d2 at the point where
-    only the plate's part still varies (third derivative j, Taylor remainder |eps|*s**2/2).
+    ``fastpath.dissipative.drag_flight`` passes its own bound), c is a lower bound on d2 at the
+    point where only the plate's part still varies (third derivative j, Taylor remainder
+    |eps|*s**2/2).
     """
     best = lower_bound_step(d, r, a)
     h = best

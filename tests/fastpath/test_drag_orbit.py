@@ -26,9 +26,9 @@ from fastpath_tolerances import phase_rounding
 from mpmath import mp
 
 import fastpath
-from fastpath.physics import LAWS
-from fastpath.dissipative.drag import gap_state, particle
 from fastpath.arithmetic.phase import centre_phase
+from fastpath.dissipative.drag import gap_state, particle
+from fastpath.physics import LAWS
 
 U = 2.0**-53
 # (phi0, v0, eps, drag, law): eps below and above 1, both laws, weak to strong drag

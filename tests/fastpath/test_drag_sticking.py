@@ -34,13 +34,22 @@ from fastpath_figures import record
 from mpmath import mp
 
 import fastpath
-from fastpath.physics import LINEAR, QUADRATIC
+from fastpath.arithmetic.phase import centre_phase
 from fastpath.dissipative.drag import gap_state
 from fastpath.dissipative.short_flight import drag_short_window, particle_offset
-from fastpath.dissipative.sticking import DETACHES, NEVER, UNDECIDED, detach_kind, detachment_frame, drag_accumulation_tail, drag_detachment, drag_detachment_phase
+from fastpath.dissipative.sticking import (
+    DETACHES,
+    NEVER,
+    UNDECIDED,
+    detach_kind,
+    detachment_frame,
+    detachment_phase,
+    drag_accumulation_tail,
+    drag_detachment,
+    drag_detachment_phase,
+)
 from fastpath.elastic.gap import departure
-from fastpath.arithmetic.phase import centre_phase
-from fastpath.dissipative.sticking import detachment_phase
+from fastpath.physics import LINEAR, QUADRATIC, dissipative
 
 U = 2.0**-53
 LAW = {"linear": LINEAR, "quadratic": QUADRATIC}
@@ -266,7 +275,8 @@ def test_w0_zero_departure_from_drag_detachment(law, eps, k):
     (the module's argument x > 0, sampled at 100 digits), and fastpath's first root after t_c
     within drag_reference.tau_tolerance (the solver's own gap bound) of the 60-digit first root
     of the float state's gap, searched from t_c."""
-    tau, iterations, status, theta_star, v_star, kind = drag_detachment(eps, k, LAW[law])
+    tau, iterations, status, theta_star, v_star, kind = drag_detachment(
+        dissipative(eps, k, LAW[law], 0.5))
     assert kind == DETACHES and status == fastpath.FlightStatus.CONVERGED
     _, t_c = detachment_frame(eps, k, LAW[law])
     with mp.workdps(ref.DPS):

@@ -7,7 +7,14 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 from mpmath import mp
 
-from fastpath.arithmetic.phase import TWO_PI_HI, TWO_PI_LO, TWO_PI_MID, _inverse_two_pi_fixed, centre_phase, reduce_phase
+from fastpath.arithmetic.phase import (
+    TWO_PI_HI,
+    TWO_PI_LO,
+    TWO_PI_MID,
+    _inverse_two_pi_fixed,
+    centre_phase,
+    reduce_phase,
+)
 
 TWO_PI = 2.0 * math.pi
 

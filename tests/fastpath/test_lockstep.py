@@ -12,11 +12,16 @@ import numpy as np
 
 import fastpath
 import verify
-from fastpath.elastic.concave import bracket, concave_flight
-from fastpath.elastic.gap import departure, gap_error, rate_error
-from fastpath.elastic.lockstep import LOCKSTEP_EVALUATIONS, lockstep_flight, lockstep_flight_one, moderate_bracket
 from fastpath.arithmetic.phase import centre_moderate, centre_phase, reduce_moderate, reduce_phase
 from fastpath.arithmetic.sincos import sin_cos
+from fastpath.elastic.concave import bracket, concave_flight
+from fastpath.elastic.gap import departure, gap_error, rate_error
+from fastpath.elastic.lockstep import (
+    LOCKSTEP_EVALUATIONS,
+    lockstep_flight,
+    lockstep_flight_one,
+    moderate_bracket,
+)
 
 U = 2.0**-53
 

@@ -39,10 +39,9 @@ from fastpath_tolerances import U, kappa
 from mpmath import mp
 
 import fastpath.elastic.concave as concave
-from fastpath.status import ITERATION_LIMIT
 from fastpath.elastic.concave import bracket
 from fastpath.elastic.gap import departure
-from fastpath.status import FlightStatus
+from fastpath.status import ITERATION_LIMIT, FlightStatus
 
 DPS = 40
 CONVERGED = int(FlightStatus.CONVERGED)

@@ -7,11 +7,13 @@ where its moderate phase reduction is the one ``collide`` uses (|phi + tau| < 2*
 
 import numpy as np
 
+from fastpath.arithmetic.phase import centre_phase
 from fastpath.elastic.collision import collide
-from fastpath.kernels.escape import lane_collide
 from fastpath.elastic.flight import GENERAL, departure_phase
 from fastpath.elastic.lockstep import COS, DELTA, DONE, FAILED, HI, LO, SIN, T
-from fastpath.arithmetic.phase import centre_phase
+from fastpath.kernels.arrays import Bins, EscapeCounts, Flags, Holes, Horizon, Sample, Starts
+from fastpath.kernels.escape import lane_collide
+from fastpath.physics import elastic
 
 
 def _states(n, seed=5):
@@ -69,9 +71,9 @@ def test_lockstep_step_is_halley_from_the_holmes_start():
     each: 8u*|step|, plus u*t for the subtraction), checked in mpmath from the same floats."""
     import mpmath
 
+    from fastpath.arithmetic.sincos import sin_cos
     from fastpath.elastic.gap import departure
     from fastpath.elastic.lockstep import _evaluation, _start
-    from fastpath.arithmetic.sincos import sin_cos
 
     u = 2.0**-53
     phi, v, eps = _states(300, seed=11)
@@ -101,9 +103,9 @@ def test_lockstep_iterates_stay_inside_the_bracket():
     """Every evaluation that neither answers nor gives up moves to a point strictly inside the
     updated bracket; where Halley's step leaves it (short flights, v < 1, eps near +-1) the
     guard takes the bracket's midpoint."""
+    from fastpath.arithmetic.sincos import sin_cos
     from fastpath.elastic.gap import departure
     from fastpath.elastic.lockstep import _evaluation, _start
-    from fastpath.arithmetic.sincos import sin_cos
 
     rng = np.random.default_rng(0)
     guarded = 0
@@ -130,10 +132,10 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
     """_start: t = 2v, the certified bracket of this departure (``fastpath.concave.bracket`` of
     w0 = v + eps*sin(phi)), no answer yet, and the lane eligible exactly when
     2*w0 >= 1 + |eps| (the other conditions hold for these states)."""
+    from fastpath.arithmetic.sincos import sin_cos
     from fastpath.elastic.concave import bracket
     from fastpath.elastic.gap import departure
     from fastpath.elastic.lockstep import _start
-    from fastpath.arithmetic.sincos import sin_cos
 
     phi, v, eps = _states(300, seed=2)
     for p, w, e in zip(phi, v * 0.1, eps, strict=True):
@@ -160,8 +162,8 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
 
 def test_lockstep_collide_answers_eps_one():
     """|eps| = 1 is concave (DESIGN fact 11): the lanes answer such flights too (eps = 1)."""
-    from fastpath.elastic.lockstep import lockstep_collide
     from fastpath.arithmetic.sincos import sin_cos
+    from fastpath.elastic.lockstep import lockstep_collide
 
     centred, error = departure_phase(0.3)
     s, c = sin_cos(centred)
@@ -291,12 +293,14 @@ def test_escape_chunk_counts_each_particle_into_its_own_block():
     nb, tb = len(n_edges), len(t_edges)
     collisions = np.zeros(blocks, np.int64)
     cens_n = np.zeros((blocks, nb), np.int64)
-    escape_chunk(rng.uniform(-np.pi, np.pi, m), rng.uniform(1.0, 5.0, m), np.zeros(m),
-                 np.zeros(m, np.int64), 0.6, np.array([1.0]), np.array([0.0]), max_n, np.inf,
-                 n_edges, t_edges, True, True, np.full(m, -1, np.int64),
-                 np.zeros(m, np.int64), np.zeros((blocks, 1, nb), np.int64),
-                 np.zeros((blocks, 1, tb), np.int64), cens_n, np.zeros((blocks, tb), np.int64),
-                 collisions, np.zeros(m, np.int8), np.zeros((m, 4)), np.zeros((0, 6)))
+    counts = EscapeCounts.zeros(blocks, 1, nb, tb)._replace(cens_n=cens_n, collisions=collisions)
+    escape_chunk(elastic(0.6), Starts(phi=rng.uniform(-np.pi, np.pi, m),
+                                      v=rng.uniform(1.0, 5.0, m), t=np.zeros(m),
+                                      n=np.zeros(m, np.int64)),
+                 Holes(lo=np.array([1.0]), width=np.array([0.0])),
+                 Horizon(max_collisions=max_n, max_time=np.inf),
+                 Bins(n_edges=n_edges, t_edges=t_edges, record_n=True, record_t=True),
+                 Sample.none(m), counts, Flags.zeros(m))
     assert cens_n.sum(axis=1).tolist() == [2, 2, 2, 1]  # every particle censored, none flagged
     assert collisions.tolist() == [2 * max_n, 2 * max_n, 2 * max_n, max_n]
 
@@ -317,12 +321,14 @@ def test_overlapping_holes_count_into_the_first_listed():
     esc_n = np.zeros((blocks, 2, nb), np.int64)
     cens_n = np.zeros((blocks, nb), np.int64)
     flags = np.zeros(m, np.int8)
-    escape_chunk(rng.uniform(-np.pi, np.pi, m), rng.uniform(1.0, 5.0, m), np.zeros(m),
-                 np.zeros(m, np.int64), 0.6, np.array([1.0, 1.0]), np.array([0.5, 0.5]), max_n,
-                 np.inf, n_edges, t_edges, True, True, np.full(m, -1, np.int64),
-                 np.zeros(m, np.int64), esc_n, np.zeros((blocks, 2, tb), np.int64), cens_n,
-                 np.zeros((blocks, tb), np.int64), np.zeros(blocks, np.int64), flags,
-                 np.zeros((m, 4)), np.zeros((0, 6)))
+    counts = EscapeCounts.zeros(blocks, 2, nb, tb)._replace(esc_n=esc_n, cens_n=cens_n)
+    escape_chunk(elastic(0.6), Starts(phi=rng.uniform(-np.pi, np.pi, m),
+                                      v=rng.uniform(1.0, 5.0, m), t=np.zeros(m),
+                                      n=np.zeros(m, np.int64)),
+                 Holes(lo=np.array([1.0, 1.0]), width=np.array([0.5, 0.5])),
+                 Horizon(max_collisions=max_n, max_time=np.inf),
+                 Bins(n_edges=n_edges, t_edges=t_edges, record_n=True, record_t=True),
+                 Sample.none(m), counts, Flags(status=flags, state=np.zeros((m, 4))))
     assert not flags.any()
     assert esc_n[:, 0].sum() > m // 2  # most escape (hole 0.5 wide, 2000 collisions)
     assert esc_n[:, 1].sum() == 0

@@ -67,8 +67,8 @@ def test_reductions_next_to_a_whole_turn():
     [0, 2*pi), which may round 2*pi - 1e-17 to 0; 2u*|r| for the centred result) plus
     PAYNE_HANEK_ERROR, measured as a distance on the circle against mpmath at 1500 bits; and
     ``phase_error_of`` bounds the centred error."""
-    from fastpath.elastic.flight import phase_error_of
     from fastpath.arithmetic.phase import PAYNE_HANEK_ERROR, PI, TWO_PI, centre_phase, reduce_phase
+    from fastpath.elastic.flight import phase_error_of
 
     xs = _near_turns()
     assert len(xs) > 40
@@ -115,7 +115,8 @@ def test_payne_hanek_at_two_to_the_twenty():
     result is exact up to its rounding plus PAYNE_HANEK_ERROR, |r - exact| <= ulp(r)/2 +
     PAYNE_HANEK_ERROR; Cody-Waite ("a few ulps") is one ulp off there (0x1.58e8ec12c0aa9p-2 for
     an exact 0.33682602753121184659...). Reference: mpmath at 200 bits."""
-    from fastpath.arithmetic.phase import MODERATE_LIMIT as CODY_WAITE_LIMIT, PAYNE_HANEK_ERROR, centre_phase, reduce_phase
+    from fastpath.arithmetic.phase import MODERATE_LIMIT as CODY_WAITE_LIMIT
+    from fastpath.arithmetic.phase import PAYNE_HANEK_ERROR, centre_phase, reduce_phase
 
     assert CODY_WAITE_LIMIT == 2.0**20
     with mp.workprec(200):

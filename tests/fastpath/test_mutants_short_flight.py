@@ -13,7 +13,9 @@ import pytest
 from mpmath import mp
 
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF as U
-from fastpath.dissipative.short_flight import c4, departure_deceleration, s3, short_window
+from fastpath.dissipative.short_flight import c4, departure_deceleration, s3
+from fastpath.dissipative.short_flight import elastic_short_window as short_window
+from fastpath.physics import NONE, dissipative
 
 DPS = 50
 
@@ -143,7 +145,15 @@ def _count_gap_evaluations(monkeypatch, gap=None, rate=None):
     monkeypatch.setattr(module, "relative_gap", counted_gap)
     if rate is not None:
         monkeypatch.setattr(module, "relative_rate", rate)
-    return getattr(module.short_flight, "py_func", module.short_flight), calls
+    for name in ("relative_gap_and_rate", "incoming_rate"):  # their bodies call the two above
+        kernel = getattr(module, name)
+        monkeypatch.setattr(module, name, getattr(kernel, "py_func", kernel))
+    short_flight = getattr(module.short_flight, "py_func", module.short_flight)
+
+    def solve(sin_phi, cos_phi, w, eps, upper):  # without drag the absolute v is not read
+        return short_flight(dissipative(eps, 0.0, NONE, 0.5), sin_phi, cos_phi, w, 0.0, upper)
+
+    return solve, calls
 
 
 def test_reported_iterations_are_the_gap_evaluations(monkeypatch):

@@ -18,11 +18,10 @@ from fastpath_tolerances import K, U, kappa
 from mpmath import mp
 
 from fastpath.elastic.collision import CARRIED_SINE_ERROR
-from fastpath.status import ITERATION_LIMIT
 from fastpath.elastic.concave import concave_flight
 from fastpath.elastic.flight import GENERAL, flight_from
 from fastpath.elastic.gap import departure
-from fastpath.status import FlightStatus
+from fastpath.status import ITERATION_LIMIT, FlightStatus
 
 DPS = 40
 CONVERGED = int(FlightStatus.CONVERGED)
@@ -176,7 +175,11 @@ def test_tight_bounds_are_the_documented_ones(sin_phi, cos_phi, v, eps, w0_error
 def test_classify_at_the_error_bounds():
     """A gap exactly at +-E (or a slope exactly at +-R) proves nothing: d > E is needed for
     "before", d < -E for "after", d' < -R for "at the root", d' > R for "before"; else flat."""
-    from fastpath.elastic.concave import AFTER as _AFTER, AT_ROOT as _AT_ROOT, BEFORE as _BEFORE, FLAT as _FLAT, classify
+    from fastpath.elastic.concave import AFTER as _AFTER
+    from fastpath.elastic.concave import AT_ROOT as _AT_ROOT
+    from fastpath.elastic.concave import BEFORE as _BEFORE
+    from fastpath.elastic.concave import FLAT as _FLAT
+    from fastpath.elastic.concave import classify
     from fastpath.elastic.gap import gap_error, rate_error
 
     phi, v, eps, t = 0.5, 1.0, 0.5, 1.0
@@ -195,7 +198,9 @@ def test_halley_steps_and_its_bisections():
     """The Halley step t - 2*d*d'/(2*d'**2 - d*d''); a step onto or beyond a bracket end is
     replaced by the arithmetic midpoint, or the geometric one where lo > 0 and hi > 4*lo (both
     strict: at lo = 0 the geometric mean is lo itself, a step that ends the flight at lo)."""
-    from fastpath.elastic.concave import AFTER as _AFTER, BEFORE as _BEFORE, halley
+    from fastpath.elastic.concave import AFTER as _AFTER
+    from fastpath.elastic.concave import BEFORE as _BEFORE
+    from fastpath.elastic.concave import halley
 
     # inside: the Halley point (d'' = -1: 1 + 0.25/0.75)
     t_next, lo, hi = halley(1.0, 0.25, -0.5, -1.0, _BEFORE, 0.5, 3.0)
@@ -346,8 +351,8 @@ def test_first_root_without_a_root_and_at_its_rounding_threshold():
 
 def test_phase_error_of_a_centred_phase():
     """0 for a phase used as given, one ulp-scale bound 2u*|centred| for a reduced one."""
-    from fastpath.elastic.flight import phase_error_of
     from fastpath.arithmetic.phase import centre_phase
+    from fastpath.elastic.flight import phase_error_of
 
     assert phase_error_of(1.0, 1.0) == 0.0
     centred = centre_phase(7.0)

@@ -15,13 +15,12 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from mpmath import mp
 
-from fastpath.elastic.collision import CARRIED_SINE_ERROR
-from fastpath.status import CONVERGED
-from fastpath.elastic.flight import flight_from
-from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.arithmetic.phase import centre_phase
 from fastpath.arithmetic.rotation import SMALL_ANGLE, rotate, sin_cos_of_sum, small_sin_cos
-from fastpath.arithmetic.rounding import two_sum
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, two_sum
+from fastpath.elastic.collision import CARRIED_SINE_ERROR
+from fastpath.elastic.flight import flight_from
+from fastpath.status import CONVERGED
 
 SUM_ERROR = 4.0 * UNIT_ROUNDOFF
 

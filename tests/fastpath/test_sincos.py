@@ -6,8 +6,8 @@ import mpmath
 import numpy as np
 import pytest
 
-from fastpath.arithmetic.sincos import SIN_COS_ERROR, sin_cos, sin_cos_error
 from fastpath.arithmetic.phase import MODERATE_LIMIT as SIN_COS_LIMIT
+from fastpath.arithmetic.sincos import SIN_COS_ERROR, sin_cos, sin_cos_error
 
 U = 2.0**-53
 

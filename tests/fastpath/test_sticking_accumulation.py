@@ -25,8 +25,9 @@ from fastpath_figures import record
 from mpmath import mp
 
 import fastpath
+from fastpath.dissipative.sticking import detachment_phase
+from fastpath.dissipative.sticking import elastic_accumulation_tail as accumulation_tail
 from fastpath.elastic.gap import departure
-from fastpath.dissipative.sticking import accumulation_tail, detachment_phase
 
 U = 2.0**-53
 

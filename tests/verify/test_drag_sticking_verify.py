@@ -38,12 +38,12 @@ from mpmath import mp
 
 import fastpath
 import verify
-from fastpath.physics import LINEAR, QUADRATIC
+from fastpath.arithmetic.phase import centre_phase
 from fastpath.dissipative.drag import gap_state
 from fastpath.dissipative.short_flight import drag_short_window
 from fastpath.dissipative.sticking import drag_detachment_phase
 from fastpath.elastic.gap import departure
-from fastpath.arithmetic.phase import centre_phase
+from fastpath.physics import LINEAR, QUADRATIC
 from verify.drag_sticking import can_detach, drag_accumulation, riding
 
 U = 2.0**-53

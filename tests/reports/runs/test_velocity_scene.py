@@ -284,21 +284,19 @@ def test_flagged_particles_are_settled_by_verify_and_counted_once(monkeypatch):
     scene = _fresh(SMALL)
     plan = make_plan(scene)
     base, _ = chunk.simulate_velocity_chunk(plan, 0, 0)
-    real = chunk._velocity_kernel()
+    real = chunk.moments_chunk
     calls = []
 
-    def undecided_first(phi, v, t, n, *args):
-        calls.append(len(phi))
+    def undecided_first(physics, starts, grid, as_step, sample, sums, flags):
+        calls.append(len(starts.phi))
         if len(calls) > 1:
-            return real(phi, v, t, n, *args)
-        args = list(args)
-        args[5] = np.int64(0)  # max_collisions: record the start, make no collision
-        real(phi, v, t, n, *args)
-        flags, flag_state = args[-3], args[-2]
-        flags[:] = 1  # FlightStatus.UNCERTAIN
-        flag_state[:] = np.column_stack([phi, v, t, n])
+            return real(physics, starts, grid, as_step, sample, sums, flags)
+        # max_collisions 0: record the start, make no collision
+        real(physics, starts, grid._replace(max_collisions=0), as_step, sample, sums, flags)
+        flags.status[:] = 1  # FlightStatus.UNCERTAIN
+        flags.state[:] = np.column_stack(starts)
 
-    monkeypatch.setattr(chunk, "_velocity_kernel", lambda: undecided_first)
+    monkeypatch.setattr(chunk, "moments_chunk", undecided_first)
     settled, _ = chunk.simulate_velocity_chunk(plan, 0, 0)
     m = len(chunk_starts(plan, 0, 0)[0])
     assert settled.settled == m and len(calls) == 2
