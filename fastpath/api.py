@@ -11,6 +11,7 @@ from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.dissipative.carried import CARRIED, carried_collide
 from fastpath.elastic.collision import collide
 from fastpath.elastic.flight import METHODS, departure_of, solve_flight
+from fastpath.elastic.gap import departure_verdict
 from fastpath.elastic.holmes import holmes_collide
 from fastpath.inputs import count, float_inputs, physics_options, scalar_inputs
 from fastpath.kernels.arrays import OrbitArrays
@@ -22,7 +23,6 @@ from fastpath.status import (
     CONVERGED,
     NOT_DEPARTING,
     OVERFLOW,
-    UNCERTAIN,
     FlightStatus,
     UncertainCollision,
 )
@@ -95,14 +95,7 @@ def _holmes_steps(phi, v, eps, phi1, v1, status):
 @jit
 def departure_status(phi, v, eps):
     """CONVERGED for a certain departure, NOT_DEPARTING, UNCERTAIN (w0 within rounding of 0)."""
-    w0, bound = departure_of(phi, v, eps)
-    if not abs(w0) < np.inf:
-        return OVERFLOW
-    if not w0 > -bound:
-        return NOT_DEPARTING
-    if not w0 > bound:
-        return UNCERTAIN
-    return CONVERGED
+    return departure_verdict(*departure_of(phi, v, eps))
 
 
 def _shaped(shape, scalar, *arrays):
@@ -182,7 +175,8 @@ def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitu
     method: "auto" (bracketed Halley where the gap is concave, |eps| < 1; the seed's lower-bound
     steps otherwise) or "seed" (the seed's lower-bound steps everywhere).
     drag, drag_law: air drag eta(v) = drag*v ("linear") or drag*v*|v| ("quadratic") during the
-    flight (``fastpath.drag``); restitution (checked, in (0, 1]) does not change a flight.
+    flight (``fastpath.dissipative.drag``); restitution (checked, in (0, 1]) does not change a
+    flight.
     """
     code = _method(method)
     described = _flight_physics(drag, drag_law, restitution)
@@ -201,7 +195,7 @@ def flight_time(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELAST
     Scalars give a float, arrays broadcast. Raises ValueError for NaN/inf input or w0 <= 0, and
     UncertainCollision where float64 cannot decide a near-graze (eps > 1).
     With drag > 0 the particle's part tau*(v - tau/2) is its displacement under drag
-    (``fastpath.drag``); restitution (checked, in (0, 1]) does not change a flight.
+    (``fastpath.dissipative.drag``); restitution (checked, in (0, 1]) does not change a flight.
     """
     described = _flight_physics(drag, drag_law, restitution)
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
@@ -220,7 +214,7 @@ def step(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
     """One collision of the exact map: (phi1, v1, tau), phi1 reduced to [0, 2*pi).
 
     v1 = tau - v - 2*eps*sin(phi + tau). Errors as for ``flight_time``.
-    With drag or restitution r < 1 (``fastpath.impact``): the flight with drag, then
+    With drag or restitution r < 1 (``fastpath.dissipative.impact``): the flight with drag, then
     v1 = (1 + r)*u - r*v_in, u = -eps*sin(phi + tau) the plate's velocity, v_in the particle's.
     """
     described = None
@@ -278,7 +272,7 @@ def _check_carried(phi, v, eps, carried):
 def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
                  restitution=ELASTIC):
     """One collision of a chattering orbit (r < 1, any drag) from its carried state: (phi1, v1,
-    tau), the step an orbit or ensemble kernel made (``fastpath.advance``), bit for bit.
+    tau), the step an orbit or ensemble kernel made (``fastpath.dissipative.carried``), bit for bit.
 
     Such a step reads more than (phi, v): ``carried`` = (base_phase, s, sin, cos, w, detached),
     the phase of the impact being base_phase + (s + tau), sin and cos those of the last impact,
@@ -337,10 +331,10 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
     the orbit then sticks to the plate and detaches where eps*cos(t) rises through 1, or stops
     as "stuck" for |eps| <= 1 (``Orbit.sticking``, ``Orbit.stopped``; the arrays are shorter
     than n+1 then). drag >= 0 with drag_law "linear" or "quadratic": air drag during the flights
-    (``fastpath.drag_flight``); with restitution < 1 too the particle rides the plate while
-    eps*cos(t) - eta(u(t)) <= 1 and detaches where it rises through 1
-    (``fastpath.drag_sticking``: with linear drag iff |eps|*sqrt(1 + drag**2) > 1). The defaults
-    run the elastic kernel unchanged.
+    (``fastpath.dissipative.drag_flight``); with restitution < 1 too the particle rides the plate
+    while eps*cos(t) - eta(u(t)) <= 1 and detaches where it rises through 1
+    (``fastpath.dissipative.sticking``: with linear drag iff |eps|*sqrt(1 + drag**2) > 1). The
+    defaults run the elastic kernel unchanged.
     """
     code = _method(method)
     drag, law, restitution = physics_options(drag, drag_law, restitution)

@@ -91,7 +91,7 @@ def count(name, value, minimum=0):
 def physics_options(drag, drag_law, restitution):
     """Check the keyword-only physics options; return (drag, law code, restitution).
 
-    drag: a finite real number >= 0; drag_law: "linear" or "quadratic" (``fastpath.drag.LAWS``);
+    drag: a finite real number >= 0; drag_law: "linear" or "quadratic" (``fastpath.physics.LAWS``);
     restitution: a finite real number in (0, 1]. ValueError naming the bad value otherwise.
     """
     if (type(drag) is float and type(restitution) is float and type(drag_law) is str

@@ -15,7 +15,7 @@ Two groups of SHA-256 digests (16 hex digits each), printed one per line and wri
   (phi1, v1, tau) or the name of the exception raised; ``fastpath.flight`` (tau, iterations,
   status, both methods) on the same departures; ``carried_step``, ``holmes_step``; orbits
   (exact, Holmes, dissipative: phi, v, t, iterations, status, sticking episodes) and velocity
-  moments (``fastpath.moments.moments``).
+  moments (``fastpath.kernels.moments.moments``).
 
 Only public entry points are called, so the script runs unchanged across a reorganisation of the
 package's modules. Inputs are drawn from fixed random seeds.

@@ -198,7 +198,7 @@ def gap_state(phi, v, eps, k, law, t):
         d''(t) = -1 - eta(V(t)) + eps*cos(phi + t)
 
     d_error and d1_error bound the rounding errors of d and d': the particle's (``particle``),
-    the plate's as in ``fastpath.gap``, and the final sums.
+    the plate's as in ``fastpath.elastic.gap``, and the final sums.
     """
     y, vel, y_err, v_err = particle(v, k, law, t)
     theta = phi + t

@@ -53,14 +53,13 @@ from fastpath.arithmetic.sincos import sin_cos
 from fastpath.dissipative.drag import eta, gap_state
 from fastpath.elastic.concave import AFTER, AT_ROOT, BEFORE, halley
 from fastpath.elastic.flight import AUTO, departure_phase
-from fastpath.elastic.gap import departure
+from fastpath.elastic.gap import departure, departure_verdict
 from fastpath.elastic.lower_bound import GOING_ON, lower_bound_step, next_point
 from fastpath.physics import LINEAR, NONE, QUADRATIC
 from fastpath.status import (
     CONVERGED,
     ITERATION_LIMIT,
     MAX_ITERATIONS,
-    NOT_DEPARTING,
     OVERFLOW,
     UNCERTAIN,
 )
@@ -80,12 +79,9 @@ def drag_flight(physics, phi, sin_phi, cos_phi, v, w0_error, method=AUTO):
     """
     eps, drag, law = physics.eps, physics.drag, physics.law
     w0 = v + eps * sin_phi
-    if not abs(w0) < math.inf:
-        return math.nan, math.nan, math.nan, 0, OVERFLOW
-    if not w0 > -w0_error:
-        return math.nan, math.nan, math.nan, 0, NOT_DEPARTING
-    if not w0 > w0_error:
-        return math.nan, math.nan, math.nan, 0, UNCERTAIN
+    verdict = departure_verdict(w0, w0_error)
+    if verdict != CONVERGED:
+        return math.nan, math.nan, math.nan, 0, verdict
     a = curvature_bound(v, 0.0, eps, drag, law)
     lo = 2.0 * (w0 - w0_error) / a * (1.0 - 4.0 * _U)
     used = 0

@@ -26,7 +26,7 @@ small: d ~ x**4/24 at phi = -x, v = x, eps -> 1) it is 1e3-1e6 times the actual 
 there is either flat (UNCERTAIN although float64 could decide) or far from the root, and the Newton
 correction's second-order error |d''|*(d/d')**2/(2|d'|) dominates (2.29 kappa*u at x = 3e-5).
 So when the loop stops flat, or where that second-order term may exceed u*t/2
-(``_newton_inexact``; never on ordinary flights, where d/d' ~ u*t), the iteration goes on with
+(``newton_inexact``; never on ordinary flights, where d/d' ~ u*t), the iteration goes on with
 ``fastpath.elastic.tight_gap``: fresh half-angle sines and a bound E, R from the sizes of the terms,
 proved there. Its points narrow the same certified bracket by the same rules, so every answer stays
 in it. Only short flights need this: a concave gap with d(0) = d(tau) = 0 lies between 0 and its
@@ -43,7 +43,7 @@ iterates move the angles along by angle addition (``fastpath.arithmetic.rotation
   eps*sin(phi + t), d'' = -1 + eps*cos(phi + t), the sine and cosine at the start taken of the
   exact sum phi + 2*v (``sin_cos_of_sum``: TwoSum, libm, the remainder by angle addition) and
   rotated on by the steps in delta. Here t >= 1, so the plate
-  term's rounding error, ~|eps|*u, is within the gap's error bound (``fastpath.gap``).
+  term's rounding error, ~|eps|*u, is within the gap's error bound (``fastpath.elastic.gap``).
 - Otherwise start at the root of w0*t - (1 - eps*cos(phi))*t**2/2 (the plate's acceleration
   frozen at departure) and use the half angle t/2: d = 2*eps*sin(t/2)*sin(phi + t/2) +
   t*(v - t/2), free of cancellation at small t.
@@ -153,8 +153,8 @@ def concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
     if not hi < math.inf:
         return math.nan, math.nan, math.nan, 0, OVERFLOW
     if 2.0 * w0 >= 1.0 + abs(eps):
-        return _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi)
-    return _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
+        return flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi)
+    return flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
 
 
 @jit
@@ -174,7 +174,7 @@ def _finish(t, d, d1, s, c, phi, lo, hi, evaluations, where):
 
 
 @jit
-def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
+def flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
     two_v = 2.0 * v
     s, c = sin_cos_of_sum(phi, two_v)
     delta, t = 0.0, two_v
@@ -200,7 +200,7 @@ def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
 
 
 @jit
-def _newton_inexact(t, d, d1, d2, eps):
+def newton_inexact(t, d, d1, d2, eps):
     """Whether the correction -d/d1 from t may miss the root by more than u*t/2 in second order.
 
     With delta = d/d1 the Newton point misses by |d''(xi)|*delta**2/(2|d'|), and
@@ -217,7 +217,7 @@ def _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi, done):
 
     Each point is classified as by ``classify``, with E and R. From a point with |d| <= E and
     d' < -R (after the maximum, the root within rounding) the Newton point is the next iterate
-    while ``_newton_inexact``, up to _NEWTON_STALLS steps that fail to halve the previous one
+    while ``newton_inexact``, up to _NEWTON_STALLS steps that fail to halve the previous one
     (then rounding dominates: the computed gap is noise at the scale of the step); otherwise it
     is the answer (clamped into the certified bracket, ``_finish``). ``done``: evaluations
     so far. If the evaluations run out, the answer is the last such Newton point, or
@@ -242,7 +242,7 @@ def _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi, done):
             step = abs(t_next - t)
             if not step < 0.5 * last_step:
                 stalls += 1
-            if stalls > _NEWTON_STALLS or not _newton_inexact(t, d, d1, d2, eps):
+            if stalls > _NEWTON_STALLS or not newton_inexact(t, d, d1, d2, eps):
                 return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, AT_ROOT)
             last_step = step
         else:
@@ -254,7 +254,7 @@ def _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi, done):
 
 
 @jit
-def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error):
+def flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error):
     w0 = v + eps * sin_phi
     t = 2.0 * w0 / (1.0 - eps * cos_phi)  # the frozen-acceleration root
     if not lo < t < hi:
@@ -271,7 +271,7 @@ def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error):
             return math.nan, math.nan, math.nan, evaluations, OVERFLOW
         where = classify(phi, v, eps, t, d, d1)
         if where >= AT_ROOT:
-            if t >= SMALLEST_T and (where == FLAT or _newton_inexact(t, d, d1, -1.0 + eps * c,
+            if t >= SMALLEST_T and (where == FLAT or newton_inexact(t, d, d1, -1.0 + eps * c,
                                                                         eps)):
                 refined = _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi,
                                   evaluations)

@@ -20,10 +20,10 @@ from fastpath.arithmetic.rotation import sin_cos_of_sum
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.arithmetic.sincos import sin_cos, sin_cos_error
 from fastpath.elastic.concave import concave_flight
-from fastpath.elastic.gap import departure
+from fastpath.elastic.gap import departure, departure_verdict
 from fastpath.elastic.lockstep import lockstep_flight_one
 from fastpath.elastic.lower_bound import lower_bound_flight
-from fastpath.status import CONVERGED, NOT_DEPARTING, OVERFLOW, UNCERTAIN
+from fastpath.status import CONVERGED
 
 AUTO = 0  # bracketed Halley for |eps| <= 1 (fastpath.elastic.concave), lower-bound steps otherwise
 LOWER_BOUND = 1  # the paper's lower-bound steps for every eps
@@ -83,12 +83,9 @@ def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, phase_error=0.0):
     within its rounding bound of zero is UNCERTAIN.
     """
     w0, w0_error = departure(phi, sin_phi, v, eps, phase_error)
-    if not abs(w0) < math.inf:
-        return math.nan, math.nan, math.nan, 0, OVERFLOW
-    if not w0 > -w0_error:
-        return math.nan, math.nan, math.nan, 0, NOT_DEPARTING
-    if not w0 > w0_error:
-        return math.nan, math.nan, math.nan, 0, UNCERTAIN
+    verdict = departure_verdict(w0, w0_error)
+    if verdict != CONVERGED:
+        return math.nan, math.nan, math.nan, 0, verdict
     if abs(eps) <= 1.0 and method != LOWER_BOUND:
         if method == AUTO:
             tau, sin1, cos1, evaluations, done = lockstep_flight_one(phi, sin_phi, cos_phi, v,

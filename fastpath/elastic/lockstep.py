@@ -43,9 +43,9 @@ from fastpath.elastic.gap import departure, gap_error, rate_error
 
 LOCKSTEP_EVALUATIONS = 4
 
-# the entries of a lane's state tuple (``_start``, ``_evaluation``): the iterate t, t - 2v, its
-# sine and cosine, the step h they still have to be rotated by, the bracket, the answer, the
-# root point with its sine and cosine, the evaluations made, and the two flags
+# the entries of a lane's state tuple (``lane_start``, ``lane_evaluation``): the iterate t,
+# t - 2v, its sine and cosine, the step h they still have to be rotated by, the bracket, the
+# answer, the root point with its sine and cosine, the evaluations made, and the two flags
 (T, DELTA, SIN, COS, PENDING, LO, HI, TAU, T_ROOT, SIN_ROOT, COS_ROOT, EVALUATIONS, DONE,
  FAILED) = range(14)
 
@@ -58,7 +58,7 @@ def moderate_bracket(v, w0, w0_error, eps):
 
 
 @inline_jit
-def _rotate(s, c, h):
+def lane_rotate(s, c, h):
     """(sin, cos) of the angle moved on by h: first order below 1e-8, else angle addition."""
     sh, ch = sin_cos(h)
     tiny = abs(h) < 1e-8
@@ -68,7 +68,7 @@ def _rotate(s, c, h):
 
 
 @inline_jit
-def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
+def lane_evaluation(state, phi, cos_phi, v, eps, two_v, k):
     """Evaluation k of a lane that has neither answered nor given up; else unchanged.
 
     The iterate's sine and cosine are rotated on by the step the previous evaluation chose
@@ -82,7 +82,7 @@ def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
     if done or failed:
         return state
     if k > 1:
-        s, c = _rotate(s, c, h)
+        s, c = lane_rotate(s, c, h)
     d = eps * (cos_phi - c) - 0.5 * t * delta
     d1 = -v - delta + eps * s
     if not (abs(d) < math.inf and abs(d1) < math.inf):
@@ -121,7 +121,7 @@ def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
 
 
 @inline_jit
-def _start(phi, sin_phi, v, eps, w0_error):
+def lane_start(phi, sin_phi, v, eps, w0_error):
     """The lane's state before its first evaluation (Holmes start t = 2*v), and two_v."""
     w0 = v + eps * sin_phi
     two_v = 2.0 * v
@@ -137,10 +137,10 @@ def _start(phi, sin_phi, v, eps, w0_error):
 
 
 @inline_jit
-def _answer(state):
+def lane_answer(state):
     """(tau, sin(phi + tau), cos(phi + tau), evaluations, done) of a lane's final state."""
     _, _, _, _, _, _, _, tau, t_root, s_root, c_root, evaluations, done, failed = state
-    s1, c1 = _rotate(s_root, c_root, tau - t_root)
+    s1, c1 = lane_rotate(s_root, c_root, tau - t_root)
     return tau, s1, c1, evaluations, done and not failed
 
 
@@ -152,16 +152,16 @@ def lockstep_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
     w0 > w0_error), for the flights described in the module docstring; done False: no answer,
     use that. Straight-line code for the ensemble's loops over lanes.
     """
-    state, two_v = _start(phi, sin_phi, v, eps, w0_error)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 1)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 2)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 3)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 4)
-    return _answer(state)
+    state, two_v = lane_start(phi, sin_phi, v, eps, w0_error)
+    state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, 1)
+    state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, 2)
+    state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, 3)
+    state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, 4)
+    return lane_answer(state)
 
 
 @inline_jit
-def _running(state):
+def lane_running(state):
     """The lane has neither answered nor given up."""
     return not (state[DONE] or state[FAILED])
 
@@ -170,12 +170,12 @@ def _running(state):
 def lockstep_flight_one(phi, sin_phi, cos_phi, v, eps, w0_error):
     """``lockstep_flight`` for one flight: the same evaluations, the same bits, but it stops
     at the first answer (or give-up) instead of running all LOCKSTEP_EVALUATIONS."""
-    state, two_v = _start(phi, sin_phi, v, eps, w0_error)
+    state, two_v = lane_start(phi, sin_phi, v, eps, w0_error)
     for k in range(1, LOCKSTEP_EVALUATIONS + 1):
-        if not _running(state):
+        if not lane_running(state):
             break
-        state = _evaluation(state, phi, cos_phi, v, eps, two_v, k)
-    return _answer(state)
+        state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, k)
+    return lane_answer(state)
 
 
 @inline_jit

@@ -49,38 +49,14 @@ from fastpath.elastic.collision import collide
 from fastpath.elastic.flight import AUTO, GENERAL, departure_phase
 from fastpath.elastic.holmes import holmes_collide
 from fastpath.elastic.lockstep import lockstep_collide
-from fastpath.kernels.arrays import SAMPLE_FIELDS, keeps_carried
+from fastpath.kernels.arrays import keeps_carried
 from fastpath.kernels.histogram import censor, escape, exit_hole, in_hole, stuck
-from fastpath.kernels.particle import advance, begin, departure_point
+from fastpath.kernels.particle import advance, departure_point
+from fastpath.kernels.records import flag, start_particle, store_carried, store_sample
 from fastpath.physics import DISSIPATIVE, ELASTIC, model_of
 from fastpath.status import CONVERGED
 
 LANES = 64  # particles in flight together in a group (a multiple of the vector width)
-
-
-@jit
-def store_sample(rows, s, n, departure, result):
-    """Row s of the sample: n, the departure (phi, v) and the result (phi1, v1, tau)."""
-    rows[s, 0] = n
-    rows[s, 1], rows[s, 2] = departure
-    rows[s, 3], rows[s, 4], rows[s, 5] = result
-
-
-@jit
-def store_carried(rows, s, carried):
-    """``carried`` into the columns after the six sample fields of row s."""
-    for j in range(len(carried)):
-        rows[s, len(SAMPLE_FIELDS) + j] = carried[j]
-
-
-@jit
-def flag(flags, i, status, phi, v, t, n):
-    """Particle i stopped at an undecided flight from (phi, v) at time t after n collisions."""
-    flags.status[i] = status
-    flags.state[i, 0] = phi
-    flags.state[i, 1] = v
-    flags.state[i, 2] = t
-    flags.state[i, 3] = n
 
 
 @inline_jit
@@ -148,9 +124,7 @@ def _load(physics, lanes, lane, i, per_block, starts, sample, flags):
         centred[lane], phase_error[lane] = departure_phase(phi[lane])
         return True
     state = states[lane]
-    status = begin(physics, state, phi[lane], v[lane], t[lane], True)
-    if status != CONVERGED:
-        flag(flags, i, status, phi[lane], v[lane], t[lane], n[lane])
+    if not start_particle(physics, state, i, starts, flags, True):
         return False
     phi[lane], v[lane], t[lane] = departure_point(state)
     return True

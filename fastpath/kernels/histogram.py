@@ -57,27 +57,28 @@ def in_hole(phi, lo, width):
 
 
 @jit
+def record(bins, row_n, row_t, n, t):
+    """Count one particle with index n and time t into the histogram rows row_n, row_t (those
+    of its block, and hole), on the clocks that ``bins`` records."""
+    if bins.record_n:
+        row_n[bin_index(bins.n_edges, n)] += 1
+    if bins.record_t:
+        row_t[bin_index(bins.t_edges, t)] += 1
+
+
+@jit
 def censor(counts, bins, b, n, t):
     """A particle censored with index bound n and time bound t, into block b's row."""
-    if bins.record_n:
-        counts.cens_n[b, bin_index(bins.n_edges, n)] += 1
-    if bins.record_t:
-        counts.cens_t[b, bin_index(bins.t_edges, t)] += 1
+    record(bins, counts.cens_n[b], counts.cens_t[b], n, t)
 
 
 @jit
 def escape(counts, bins, b, j, n, t):
     """A particle escaped through hole j at collision n, time t, into block b's row."""
-    if bins.record_n:
-        counts.esc_n[b, j, bin_index(bins.n_edges, n)] += 1
-    if bins.record_t:
-        counts.esc_t[b, j, bin_index(bins.t_edges, t)] += 1
+    record(bins, counts.esc_n[b, j], counts.esc_t[b, j], n, t)
 
 
 @jit
 def stuck(counts, bins, b, n, t):
     """A particle stuck on the plate for good after collision n, from time t."""
-    if bins.record_n:
-        counts.stuck_n[b, bin_index(bins.n_edges, n)] += 1
-    if bins.record_t:
-        counts.stuck_t[b, bin_index(bins.t_edges, t)] += 1
+    record(bins, counts.stuck_n[b], counts.stuck_t[b], n, t)

@@ -32,30 +32,11 @@ import numpy as np
 from numba import prange
 
 from fastpath.arithmetic.jit import jit, parallel_jit
-from fastpath.dissipative.carried import (
-    CARRIED,
-    EPISODE,
-    PHI,
-    STATE_SIZE,
-    STUCK,
-    VK,
-    T,
-    V,
-    copy_carried,
-)
+from fastpath.dissipative.carried import EPISODE, STUCK, VK, T, V
 from fastpath.dissipative.sticking import detachment
-from fastpath.elastic.flight import AUTO
 from fastpath.inputs import count, float_inputs, physics_options
-from fastpath.kernels.arrays import (
-    Flags,
-    MomentGrid,
-    MomentSums,
-    Sample,
-    Starts,
-    keeps_carried,
-)
-from fastpath.kernels.escape import flag, store_carried, store_sample
-from fastpath.kernels.particle import advance, begin, departure_point
+from fastpath.kernels.arrays import Flags, MomentGrid, MomentSums, Sample, Starts
+from fastpath.kernels.records import particle_buffers, sampled_collision, start_particle
 from fastpath.physics import describe, holmes
 from fastpath.status import CONVERGED
 
@@ -112,39 +93,25 @@ def _moments_block(physics, span, starts, grid, sample, sums, flags, detach):
     kn, kt = len(n_grid), len(t_grid)
     n_last = n_grid[kn - 1] if kn > 0 else 0
     t_last = t_grid[kt - 1] if kt > 0 else -1.0
-    state = np.empty(STATE_SIZE)
-    carried = np.empty(len(CARRIED))
-    keep_carried = keeps_carried(sample.rows, physics.restitution)
-    no_holes = np.empty(0)
+    state, carried = particle_buffers()
+    motion = (as_step, detach, np.empty(0))
     done = 0
     for i in range(first, last):
+        if not start_particle(physics, state, i, starts, flags, as_step):
+            continue
         n, v, t = starts.n[i], starts.v[i], starts.t[i]
         start = v
-        slot, target = sample.slot[i], sample.target[i]
-        flags.status[i] = 0
-        status = begin(physics, state, starts.phi[i], v, t, as_step)
-        if status != CONVERGED:
-            flag(flags, i, status, starts.phi[i], v, t, n)
-            continue
         jn = _add_n(sums, b, np.searchsorted(n_grid, n), n, v, start, n_grid)
         jt = np.searchsorted(t_grid, t)
         while not ((n >= n_last and t > t_last) or n >= grid.max_collisions):
-            phi_d, v_d, t_d = departure_point(state)
-            if keep_carried and slot >= 0 and n < target:
-                copy_carried(state, carried)
-            status, _, tau, kind, t_start, t_end = advance(physics, state, AUTO, as_step, detach,
-                                                           no_holes)
+            status, _, kind, t_start, t_end = sampled_collision(physics, state, i, n, sample,
+                                                                flags, carried, motion)
             if status != CONVERGED:
-                flag(flags, i, status, phi_d, v_d, t_d, n)
                 break
             jt = _add_t(sums, b, jt, state[T], v, t_grid)  # t <= t_grid < t1: v(t) = v
             v, t = state[V], state[T]
             n += 1
             done += 1
-            if slot >= 0 and n <= target:
-                store_sample(sample.rows, slot, n, (phi_d, v_d), (state[PHI], v, tau))
-                if keep_carried:
-                    store_carried(sample.rows, slot, carried)
             jn = _add_n(sums, b, jn, n, v, start, n_grid)
             if kind == STUCK:
                 jt = _add_t(sums, b, jt, t_start, v, t_grid)

@@ -24,7 +24,6 @@ each loop is compiled once per model and the elastic one carries no dissipative 
 import math
 
 from fastpath.arithmetic.jit import jit
-from fastpath.arithmetic.phase import reduce_phase
 from fastpath.dissipative import carried
 from fastpath.dissipative.carried import COS, NO_STICKING, PHI, SIN, T, V
 from fastpath.dissipative.drag_flight import solve_drag_flight
@@ -98,8 +97,3 @@ def departure_point(state):
     """(phi, v, t) of the next flight's departure (``fastpath.dissipative.carried``)."""
     return carried.departure_point(state)
 
-
-@jit
-def start_phase(phi0):
-    """The phase a loop records for a start phi0: its reduction to [0, 2*pi)."""
-    return reduce_phase(phi0)

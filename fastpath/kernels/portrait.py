@@ -14,12 +14,9 @@ from numba import prange
 
 from fastpath.arithmetic.jit import jit, parallel_jit
 from fastpath.arithmetic.phase import TWO_PI
-from fastpath.dissipative.carried import CARRIED, PHI, STATE_SIZE, STUCK, V, copy_carried
+from fastpath.dissipative.carried import PHI, STUCK, V
 from fastpath.dissipative.sticking import detachment
-from fastpath.elastic.flight import AUTO
-from fastpath.kernels.arrays import keeps_carried
-from fastpath.kernels.escape import flag, store_carried, store_sample
-from fastpath.kernels.particle import advance, begin, departure_point
+from fastpath.kernels.records import particle_buffers, sampled_collision, start_particle
 from fastpath.status import CONVERGED
 
 
@@ -45,36 +42,23 @@ def _portrait_blocks(physics, starts, max_collisions, sample, portrait, flags, d
 def _portrait_block(physics, span, starts, max_collisions, sample, portrait, flags, detach):
     """Particles first .. last-1 into block b's row, span = (b, first, last)."""
     b, first, last = span
+    done = 0
+    state, carried = particle_buffers()
+    motion = (True, detach, np.empty(0))
     counts = portrait.counts
     n_phi, n_v = counts.shape[1], counts.shape[2]
-    state = np.empty(STATE_SIZE)
-    carried = np.empty(len(CARRIED))
-    keep_carried = keeps_carried(sample.rows, physics.restitution)
-    no_holes = np.empty(0)
-    done = 0
     for i in range(first, last):
-        n = starts.n[i]
-        slot, target = sample.slot[i], sample.target[i]
-        flags.status[i] = 0
-        status = begin(physics, state, starts.phi[i], starts.v[i], starts.t[i], True)
-        if status != CONVERGED:
-            flag(flags, i, status, starts.phi[i], starts.v[i], starts.t[i], n)
+        if not start_particle(physics, state, i, starts, flags, True):
             continue
+        n = starts.n[i]
         while n < max_collisions:
-            phi, v, t = departure_point(state)
-            if keep_carried and slot >= 0 and n < target:
-                copy_carried(state, carried)
-            status, _, tau, kind, _, _ = advance(physics, state, AUTO, True, detach, no_holes)
+            status, _, kind, _, _ = sampled_collision(physics, state, i, n, sample, flags,
+                                                      carried, motion)
             if status != CONVERGED:
-                flag(flags, i, status, phi, v, t, n)
                 break
             n += 1
             done += 1
             phi1, v1 = state[PHI], state[V]
-            if slot >= 0 and n <= target:
-                store_sample(sample.rows, slot, n, (phi, v), (phi1, v1, tau))
-                if keep_carried:
-                    store_carried(sample.rows, slot, carried)
             if portrait.v_lo <= v1 < portrait.v_hi:
                 p = min(int(phi1 / TWO_PI * n_phi), n_phi - 1)
                 q = min(int((v1 - portrait.v_lo) / (portrait.v_hi - portrait.v_lo) * n_v),

@@ -9,7 +9,7 @@ impact v1 = 2*u - V(tau), u = -eps*sin(phi_k + tau). Tolerances (u = 2**-53):
   of (phi + tau) mod 2*pi (``fastpath_tolerances.phase_rounding``).
 - v1 = 2*u(phi + tau) - V(tau): a tau error dt moves it by at most (2*|eps| + |1 + eta(V)|)*dt
   (|u'| <= |eps|, |V'| = |1 + eta(V)|); the phase rounding moves u by |eps| times it; V's own
-  rounding is ``fastpath.drag.particle``'s bound (held to the 60-digit forms in
+  rounding is ``fastpath.dissipative.drag.particle``'s bound (held to the 60-digit forms in
   test_drag_reference); the impact formula rounds <= 4u*(2|u| + |V|) with room.
 
 Also: the orbit is the chain of ``fastpath.step`` calls (the same kernel), bit for bit; the

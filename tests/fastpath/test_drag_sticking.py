@@ -1,5 +1,5 @@
 """Chattering and sticking with drag (restitution r < 1): detachment condition and phase,
-accumulation tail, orbits (``fastpath.drag_sticking``), against a 100-digit mpmath reference.
+accumulation tail, orbits (``fastpath.dissipative.sticking``), against a 100-digit mpmath reference.
 
 Tolerances (u = 2**-53):
 
@@ -19,7 +19,7 @@ Tolerances (u = 2**-53):
 - Accumulation time of an orbit from a start: as without drag (test_sticking_accumulation):
   8u*t_acc/(1 - r) for the short flights' roundings (relative to w) plus, for the start and
   for every ordinary (long) flight, which forms w from the absolute state, that departure's w
-  bound B (``fastpath.gap.departure``: absolute, ~u*(|v| + |eps|)) weighted by T0's
+  bound B (``fastpath.elastic.gap.departure``: absolute, ~u*(|v| + |eps|)) weighted by T0's
   conditioning 2/(a*(1 - r)), a the riding force at the accumulation phase.
 """
 
@@ -302,8 +302,8 @@ def test_w0_zero_departure_from_drag_detachment(law, eps, k):
 
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 def test_moments_with_drag_and_restitution_count_every_particle(law):
-    """fastpath.moments with drag and r < 1 (eps = 0.6, k = 0.1: never detaches): at every n of
-    the grid, moving + stuck + flagged = particles, and particles do get stuck."""
+    """fastpath.kernels.moments with drag and r < 1 (eps = 0.6, k = 0.1: never detaches): at every
+    n of the grid, moving + stuck + flagged = particles, and particles do get stuck."""
     from fastpath.kernels.moments import moments
 
     n = 64

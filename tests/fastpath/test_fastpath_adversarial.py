@@ -86,9 +86,10 @@ def test_triple_root_family(log_x, gap):
 
 def tight_backward_error_ok(phi, v, eps, tau):
     """|d(tau)| (exact) <= 2*E(tau) + 2*|d'(tau)|*ulp(tau), E the tight bound of the concave
-    refinement (``fastpath.tight_gap``, phi in [-pi, pi)): the refinement stops at |d| <= E with
-    d' certain, and its Newton point moves the exact gap to within E (the computed gap's error)
-    plus E*R/|d'| < E, plus the second-order term (< u*tau*|d'|/2) and the rounding of tau."""
+    refinement (``fastpath.elastic.tight_gap``, phi in [-pi, pi)): the refinement stops at
+    |d| <= E with d' certain, and its Newton point moves the exact gap to within E (the computed
+    gap's error) plus E*R/|d'| < E, plus the second-order term (< u*tau*|d'|/2) and the rounding of
+    tau."""
     from fastpath.elastic.gap import departure
     from fastpath.elastic.tight_gap import tight_gap
 

@@ -1,4 +1,4 @@
-"""fastpath.phase.reduce_phase against mpmath (x mod 2*pi at 50 digits)."""
+"""fastpath.arithmetic.phase.reduce_phase against mpmath (x mod 2*pi at 50 digits)."""
 
 import math
 

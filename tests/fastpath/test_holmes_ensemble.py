@@ -1,4 +1,5 @@
-"""fastpath.ensemble.holmes_escape_chunk: the benchmark's Holmes-map ensemble, replayed by hand."""
+"""holmes_escape_chunk (fastpath.kernels.escape): the benchmark's Holmes-map ensemble, replayed by
+hand."""
 
 import math
 

@@ -1,4 +1,4 @@
-"""fastpath.lockstep: the straight-line flight of the ensembles' lanes.
+"""fastpath.elastic.lockstep: the straight-line flight of the ensembles' lanes.
 
 It must be the function ``fastpath.step`` computes (one flight and a batch of lanes give the same
 bits), answer only inside the certified bracket, agree with the general concave solver to the

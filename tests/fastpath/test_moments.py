@@ -1,4 +1,5 @@
-"""fastpath.moments: block sums of velocity moments, against fastpath.orbit, for any threads."""
+"""fastpath.kernels.moments: block sums of velocity moments, against fastpath.orbit, for any
+thread count."""
 
 import math
 

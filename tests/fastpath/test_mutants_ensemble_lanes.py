@@ -73,7 +73,7 @@ def test_lockstep_step_is_halley_from_the_holmes_start():
 
     from fastpath.arithmetic.sincos import sin_cos
     from fastpath.elastic.gap import departure
-    from fastpath.elastic.lockstep import _evaluation, _start
+    from fastpath.elastic.lockstep import lane_evaluation, lane_start
 
     u = 2.0**-53
     phi, v, eps = _states(300, seed=11)
@@ -81,15 +81,15 @@ def test_lockstep_step_is_halley_from_the_holmes_start():
     for p, w, e in zip(phi, v, eps, strict=True):
         s, c = sin_cos(p)
         _, w0_error = departure(p, s, w, e, 0.0)
-        state, two_v = _start(p, s, w, e, w0_error)
+        state, two_v = lane_start(p, s, w, e, w0_error)
         if state[FAILED]:  # not eligible
             continue
         t, delta, s0, c0, lo, hi = (state[T], state[DELTA], state[SIN], state[COS],
                                     state[LO], state[HI])
-        after = _evaluation(state, p, c, w, e, two_v, 1)
+        after = lane_evaluation(state, p, c, w, e, two_v, 1)
         if after[DONE] or after[FAILED] or after[T] == 0.5 * (lo + hi):  # answered, gave up, halved
             continue
-        d = e * (c - c0) - 0.5 * t * delta  # as _evaluation computes them, from the same floats
+        d = e * (c - c0) - 0.5 * t * delta  # as lane_evaluation computes them, from the same floats
         d1 = -w - delta + e * s0
         with mpmath.workdps(40):
             d, d1, d2 = mpmath.mpf(d), mpmath.mpf(d1), -1 + mpmath.mpf(e) * mpmath.mpf(c0)
@@ -105,7 +105,7 @@ def test_lockstep_iterates_stay_inside_the_bracket():
     guard takes the bracket's midpoint."""
     from fastpath.arithmetic.sincos import sin_cos
     from fastpath.elastic.gap import departure
-    from fastpath.elastic.lockstep import _evaluation, _start
+    from fastpath.elastic.lockstep import lane_evaluation, lane_start
 
     rng = np.random.default_rng(0)
     guarded = 0
@@ -116,11 +116,11 @@ def test_lockstep_iterates_stay_inside_the_bracket():
         w0, w0_error = departure(p, s, w, e, 0.0)
         if not w0 > w0_error:
             continue
-        state, two_v = _start(p, s, w, e, w0_error)
+        state, two_v = lane_start(p, s, w, e, w0_error)
         for k in range(1, 5):
             if state[DONE] or state[FAILED]:
                 break
-            state = _evaluation(state, p, c, w, e, two_v, k)
+            state = lane_evaluation(state, p, c, w, e, two_v, k)
             t, lo, hi = state[T], state[LO], state[HI]
             if not (state[DONE] or state[FAILED]):
                 assert lo < t < hi
@@ -129,13 +129,13 @@ def test_lockstep_iterates_stay_inside_the_bracket():
 
 
 def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
-    """_start: t = 2v, the certified bracket of this departure (``fastpath.concave.bracket`` of
-    w0 = v + eps*sin(phi)), no answer yet, and the lane eligible exactly when
-    2*w0 >= 1 + |eps| (the other conditions hold for these states)."""
+    """lane_start: t = 2v, the certified bracket of this departure
+    (``fastpath.elastic.concave.bracket`` of w0 = v + eps*sin(phi)), no answer yet, and the lane
+    eligible exactly when 2*w0 >= 1 + |eps| (the other conditions hold for these states)."""
     from fastpath.arithmetic.sincos import sin_cos
     from fastpath.elastic.concave import bracket
     from fastpath.elastic.gap import departure
-    from fastpath.elastic.lockstep import _start
+    from fastpath.elastic.lockstep import lane_start
 
     phi, v, eps = _states(300, seed=2)
     for p, w, e in zip(phi, v * 0.1, eps, strict=True):
@@ -143,21 +143,21 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
         w0, w0_error = departure(p, s, w, e, 0.0)
         if not w0 > w0_error:
             continue
-        state, two_v = _start(p, s, w, e, w0_error)
+        state, two_v = lane_start(p, s, w, e, w0_error)
         assert two_v == state[T] == 2 * w and state[DELTA] == 0.0
         assert (state[LO], state[HI]) == bracket(w, w + e * s, w0_error, e)
         assert state[FAILED] == (not 2 * (w + e * s) >= 1 + abs(e))
     for w, e in ((0.5, 0.0), (0.75, 0.5), (1.0, 1.0)):  # phi = 0: 2*w0 = 1 + |eps| exactly
-        assert not _start(0.0, 0.0, w, e, 0.0)[0][FAILED]
-        assert _start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][FAILED]
+        assert not lane_start(0.0, 0.0, w, e, 0.0)[0][FAILED]
+        assert lane_start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][FAILED]
     # |v| > 1e-150 (v**2 must not underflow): eps = 1, phi = pi/2 makes 2*w0 = 2 >= 1 + |eps|
     s, _ = sin_cos(np.pi / 2)
     assert s == 1.0
-    assert _start(np.pi / 2, s, 1e-150, 1.0, 0.0)[0][FAILED]
-    assert not _start(np.pi / 2, s, np.nextafter(1e-150, 1.0), 1.0, 0.0)[0][FAILED]
+    assert lane_start(np.pi / 2, s, 1e-150, 1.0, 0.0)[0][FAILED]
+    assert not lane_start(np.pi / 2, s, np.nextafter(1e-150, 1.0), 1.0, 0.0)[0][FAILED]
     # the Holmes phase phi + 2v must be inside sin_cos's range |x| < 2**20
-    assert _start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][FAILED]
-    assert not _start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][FAILED]
+    assert lane_start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][FAILED]
+    assert not lane_start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][FAILED]
 
 
 def test_lockstep_collide_answers_eps_one():
@@ -172,7 +172,7 @@ def test_lockstep_collide_answers_eps_one():
     assert tau == collide(0.3, 2.0, 1.0)[2]
 
 
-# Crafted lane states for the comparisons at exact equality in ``_evaluation``. With eps = 0
+# Crafted lane states for the comparisons at exact equality in ``lane_evaluation``. With eps = 0
 # the plate term and its error bounds vanish: d = -t*delta/2, d' = -v - delta, and (t = 1)
 # d_err = d1_err = 4u*(|v| + 1), all exact in float64 for the dyadic values below, so d and d'
 # can be put exactly on their error bounds. delta is read from the state (not t - 2v), so it is
@@ -198,7 +198,7 @@ def test_lockstep_root_test_includes_a_gap_on_its_error_bound():
     correction is far from final (|d'| only 2*d1_err): the lane answers at t + newton (inside
     the bracket here). As ``abs(d) < d_err`` it would give up as a flat top."""
     from fastpath.elastic.concave import newton_is_final
-    from fastpath.elastic.lockstep import TAU, _evaluation
+    from fastpath.elastic.lockstep import TAU, lane_evaluation
 
     v = 16 * _U
     d_err, d1_err = _bounds(v)
@@ -207,7 +207,7 @@ def test_lockstep_root_test_includes_a_gap_on_its_error_bound():
     d, d1 = -0.5 * delta, -v - delta
     assert d == d_err and -16 * d1_err < d1 < -d1_err
     assert not newton_is_final(-d / d1, d_err, d1_err, 0.0)
-    after = _evaluation(state, *args)
+    after = lane_evaluation(state, *args)
     assert after[DONE] and not after[FAILED]
     assert abs(after[TAU] - (1.0 - d / d1)) <= 8 * _U  # the Newton point t - d/d' ~ 1.5
 
@@ -215,28 +215,28 @@ def test_lockstep_root_test_includes_a_gap_on_its_error_bound():
 def test_lockstep_root_test_needs_a_rate_below_its_error_bound():
     """d' == -d1_err exactly (with |d| < d_err) is not a certain descent: no answer; the lane
     gives up as a flat top (``not d1 > d1_err``). As ``d1 <= -d1_err`` it would answer."""
-    from fastpath.elastic.lockstep import _evaluation
+    from fastpath.elastic.lockstep import lane_evaluation
 
     v = 2.0**-50
     d_err, d1_err = _bounds(v)
     delta = d1_err - v  # d' = -v - delta = -d1_err
     state, args = _crafted(v, delta)
     assert -v - delta == -d1_err and abs(-0.5 * delta) < d_err
-    after = _evaluation(state, *args)
+    after = lane_evaluation(state, *args)
     assert after[FAILED] and not after[DONE]
 
 
 def test_lockstep_flat_top_includes_a_rate_on_its_error_bound():
     """d' == d1_err exactly with |d| < d_err is a flat top (the rise is not certain): the
     lane gives up. As ``not d1 >= d1_err`` it would raise lo to t and step on."""
-    from fastpath.elastic.lockstep import _evaluation
+    from fastpath.elastic.lockstep import lane_evaluation
 
     v = 2.0**-52
     d_err, d1_err = _bounds(v)
     delta = -v - d1_err  # d' = d1_err
     state, args = _crafted(v, delta)
     assert -v - delta == d1_err and abs(-0.5 * delta) < d_err
-    after = _evaluation(state, *args)
+    after = lane_evaluation(state, *args)
     assert after[FAILED] and not after[DONE]
 
 
@@ -244,7 +244,7 @@ def test_lockstep_bracket_moves_only_on_a_gap_beyond_its_error_bound():
     """d == +-d_err exactly with |d'| <= d1_err: the sign of the gap is not certain, so neither
     bracket end moves and the lane gives up as a flat top. As ``d >= d_err`` (``d <= -d_err``)
     it would move lo (hi) to t and step on."""
-    from fastpath.elastic.lockstep import _evaluation
+    from fastpath.elastic.lockstep import lane_evaluation
 
     for v in (2.0**-50, -(2.0**-50)):  # d = +d_err, then d = -d_err
         d_err, d1_err = _bounds(v)
@@ -252,7 +252,7 @@ def test_lockstep_bracket_moves_only_on_a_gap_beyond_its_error_bound():
         state, args = _crafted(v, delta)
         d, d1 = -0.5 * delta, -v - delta
         assert abs(d) == d_err and abs(d1) <= d1_err
-        after = _evaluation(state, *args)
+        after = lane_evaluation(state, *args)
         assert after[FAILED] and not after[DONE]
         assert (after[LO], after[HI]) == (0.25, 4.0)
 
@@ -261,18 +261,18 @@ def test_lockstep_halley_step_onto_a_bracket_end_is_bisected():
     """A Halley step that lands exactly on a bracket end is not inside the bracket: the guard
     bisects (``lo < t_next < hi``). As ``<=`` the lane would stop there (bracket closed) and
     give up. The step is first taken in a wide bracket; that end is then put on it."""
-    from fastpath.elastic.lockstep import _evaluation
+    from fastpath.elastic.lockstep import lane_evaluation
 
     # d = 0.5 > d_err, d' = -1: lo moves to t = 1 and Halley steps right (to 1.4);
     # d = -0.5 < -d_err, d' = -1.5: hi moves to t = 1 and Halley steps left (to 0.625)
     for v, delta, end in ((2.0, -1.0, HI), (0.5, 1.0, LO)):
         state, args = _crafted(v, delta)
-        wide = _evaluation(state, *args)
+        wide = lane_evaluation(state, *args)
         t_next = wide[T]
         assert not (wide[DONE] or wide[FAILED]) and 0.25 < t_next < 4.0 and t_next != 1.0
         lo, hi = (1.0, t_next) if end == HI else (t_next, 1.0)
         state, args = _crafted(v, delta, *((0.25, t_next) if end == HI else (t_next, 4.0)))
-        after = _evaluation(state, *args)
+        after = lane_evaluation(state, *args)
         assert not (after[DONE] or after[FAILED])
         assert (after[LO], after[HI]) == (lo, hi) and after[T] == 0.5 * (lo + hi)
 

@@ -2,12 +2,13 @@
 driver's ``solver`` group, ``scripts/mutation/ensemble.py --group solver``).
 
 The solver behind ``fastpath.flight`` answers most |eps| <= 1 flights in the lockstep lanes
-(``fastpath.lockstep``); ``fastpath.concave`` is reached from orbits, the ensembles' fallback and
-the flights the lanes give up. These tests call ``concave_flight`` (and ``flight_from`` with
-GENERAL) directly, and hold every answer to plain facts: CONVERGED, inside the certified bracket
-of DESIGN fact 2 (exact, mpmath), within K*kappa*u of the root (``fastpath_tolerances``), the
+(``fastpath.elastic.lockstep``); ``fastpath.elastic.concave`` is reached from orbits, the ensembles'
+fallback and the flights the lanes give up. These tests call ``concave_flight`` (and ``flight_from``
+with GENERAL) directly, and hold every answer to plain facts: CONVERGED, inside the certified
+bracket of DESIGN fact 2 (exact, mpmath), within K*kappa*u of the root (``fastpath_tolerances``),
+the
 returned sine and cosine of phi + tau within the carried-sine bound the collision assumes
-(``fastpath.collision.CARRIED_SINE_ERROR``), and eps = 0 exactly tau = 2v (DESIGN fact 9).
+(``fastpath.elastic.collision.CARRIED_SINE_ERROR``), and eps = 0 exactly tau = 2v (DESIGN fact 9).
 """
 
 import math
@@ -289,13 +290,13 @@ def test_an_infinite_bracket_is_an_overflow_before_any_evaluation():
 def test_holmes_start_at_equality():
     """The Holmes start is taken unless the lower bound 2*w0/(1 + |eps|) is below 1 (module
     docstring): at 2*w0 = 1 + |eps| exactly (phi = 0, w0 = v) it is the Holmes start's answer."""
-    from fastpath.elastic.concave import _flight_from_holmes, bracket
+    from fastpath.elastic.concave import bracket, flight_from_holmes
 
     for v, eps in ((0.75, 0.5), (1.0, 1.0), (0.5, 0.0), (0.625, -0.25)):
         w0, w0_error = departure(0.0, 0.0, v, eps, 0.0)
         assert 2.0 * w0 == 1.0 + abs(eps)
         lo, hi = bracket(v, w0, w0_error, eps)
-        assert _solve(0.0, v, eps) == _flight_from_holmes(0.0, 0.0, 1.0, v, eps, lo, hi)
+        assert _solve(0.0, v, eps) == flight_from_holmes(0.0, 0.0, 1.0, v, eps, lo, hi)
 
 
 @pytest.mark.parametrize("phi, v", [(-2.0, 0.75), (0.4, 0.75), (1.3, 0.75), (-2.0, 1.0),

@@ -1,6 +1,7 @@
 """The sine and cosine that a flight returns are those of the exact angle phi + tau.
 
-``fastpath.rotation.sin_cos_of_sum`` takes libm at a = fl(x + y) and adds the TwoSum remainder
+``fastpath.arithmetic.rotation.sin_cos_of_sum`` takes libm at a = fl(x + y) and adds the TwoSum
+remainder
 e = x + y - a by angle addition. Its error bound, from the precision: libm's sine and cosine are
 within 1 ulp (<= 2u for values below 1), the two products and the sum add 1.5u, the Taylor
 polynomials' truncation is below u/40: 4u in all (u = 2**-53). libm at fl(x + y) alone is off by

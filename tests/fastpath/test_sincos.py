@@ -1,4 +1,4 @@
-"""fastpath.sincos: sine and cosine in straight-line code, against mpmath."""
+"""fastpath.arithmetic.sincos: sine and cosine in straight-line code, against mpmath."""
 
 import math
 

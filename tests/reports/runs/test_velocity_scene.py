@@ -76,9 +76,10 @@ def test_run_outputs_and_invariants(small_run):
 
 
 def test_means_agree_with_fastpath_moments_on_the_same_starts():
-    """r < 1: the kernel and ``fastpath.moments`` make the same collisions (fastpath.advance),
-    so the means differ only by the rounding of the float sums: each sum of m terms of one sign
-    is within (m - 1)*u*sum|v| of exact, and the chunk's blocks differ from moments' blocks."""
+    """r < 1: the kernel and ``fastpath.kernels.moments`` make the same collisions
+    (fastpath.dissipative.carried), so the means differ only by the rounding of the float sums: each
+    sum of m terms of one sign is within (m - 1)*u*sum|v| of exact, and the chunk's blocks differ
+    from moments' blocks."""
     scene = _fresh(SMALL)
     plan = make_plan(scene)
     for e, r in enumerate(scene.restitutions):
@@ -100,8 +101,8 @@ def test_means_agree_with_fastpath_moments_on_the_same_starts():
 def test_elastic_curve_is_fastpath_step_iterated():
     """r = 1: each collision is ``fastpath.step`` (what the sample audit re-derives), so the
     means are those of step iterated from the same starts, to the same summation bound.
-    (``fastpath.moments`` carries sines across an orbit, ``fastpath.orbit``'s arithmetic: its
-    chaotic orbits part from step's after a few collisions at eps = 2.)"""
+    (``fastpath.kernels.moments`` carries sines across an orbit, ``fastpath.orbit``'s arithmetic:
+    its chaotic orbits part from step's after a few collisions at eps = 2.)"""
     scene = _fresh(SMALL)
     plan = make_plan(scene)
     result = run_chunk(scene, plan.seed, 0, 1)
