@@ -5,26 +5,27 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import prange
 
-from fastpath._jit import jit, parallel_jit
-from fastpath._validate import count, float_inputs, physics, scalar_inputs
-from fastpath.advance import CARRIED, carried_collide
-from fastpath.collision import collide
-from fastpath.drag_flight import solve_drag_flight
-from fastpath.flight import (
+from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.arithmetic.phase import reduce_phase
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.dissipative.carried import CARRIED, carried_collide
+from fastpath.elastic.collision import collide
+from fastpath.elastic.flight import METHODS, departure_of, solve_flight
+from fastpath.elastic.gap import departure_verdict
+from fastpath.elastic.holmes import holmes_collide
+from fastpath.inputs import count, float_inputs, physics_options, scalar_inputs
+from fastpath.kernels.arrays import OrbitArrays
+from fastpath.kernels.orbit import orbit_loop
+from fastpath.kernels.particle import flight as flight_of
+from fastpath.kernels.particle import step as step_of
+from fastpath.physics import describe, dissipative, elastic, holmes, with_eps
+from fastpath.status import (
     CONVERGED,
-    METHODS,
     NOT_DEPARTING,
     OVERFLOW,
-    UNCERTAIN,
-    departure_of,
-    solve_flight,
+    FlightStatus,
+    UncertainCollision,
 )
-from fastpath.gap import UNIT_ROUNDOFF
-from fastpath.holmes import holmes_collide
-from fastpath.impact import dissipative_collide
-from fastpath.orbit import dissipative_orbit, exact_orbit, holmes_orbit
-from fastpath.phase import reduce_phase
-from fastpath.status import FlightStatus, UncertainCollision
 
 # The defaults of the physics keywords: the elastic call passes these very objects, which
 # ``_elastic`` recognises by identity before any validation (the elastic path pays ~50 ns).
@@ -69,35 +70,23 @@ class Orbit:
 
 
 @parallel_jit
-def _flights(phi, v, eps, method, tau, iterations, status):
+def _flights(physics, phi, v, eps, method, tau, iterations, status):
+    """(tau, iterations, status)[i] of the flight from (phi[i], v[i]) at eps[i]."""
     for i in prange(len(phi)):
-        tau[i], iterations[i], status[i] = solve_flight(phi[i], v[i], eps[i], method)
+        tau[i], iterations[i], status[i] = flight_of(with_eps(physics, eps[i]), phi[i], v[i],
+                                                     method)
 
 
 @parallel_jit
-def _steps(phi, v, eps, phi1, v1, tau, status):
+def _steps(physics, phi, v, eps, phi1, v1, tau, status):
+    """(phi1, v1, tau, status)[i] of one collision from (phi[i], v[i]) at eps[i]."""
     for i in prange(len(phi)):
-        phi1[i], v1[i], tau[i], _, status[i] = collide(phi[i], v[i], eps[i])
-
-
-@parallel_jit
-def _drag_flights(phi, v, eps, drag, law, method, tau, iterations, status):
-    for i in prange(len(phi)):
-        tau[i], iterations[i], status[i] = solve_drag_flight(
-            phi[i], v[i], eps[i], drag, law, method
-        )
-
-
-@parallel_jit
-def _dissipative_steps(phi, v, eps, drag, law, restitution, phi1, v1, tau, status):
-    for i in prange(len(phi)):
-        phi1[i], v1[i], tau[i], _, status[i] = dissipative_collide(
-            phi[i], v[i], eps[i], drag, law, restitution
-        )
+        phi1[i], v1[i], tau[i], _, status[i] = step_of(with_eps(physics, eps[i]), phi[i], v[i])
 
 
 @parallel_jit
 def _holmes_steps(phi, v, eps, phi1, v1, status):
+    """(phi1, v1, status)[i] of the Holmes map from (phi[i], v[i]) at eps[i]."""
     for i in prange(len(phi)):
         status[i] = departure_status(phi[i], v[i], eps[i])
         phi1[i], v1[i] = holmes_collide(phi[i], v[i], eps[i])
@@ -106,14 +95,7 @@ def _holmes_steps(phi, v, eps, phi1, v1, status):
 @jit
 def departure_status(phi, v, eps):
     """CONVERGED for a certain departure, NOT_DEPARTING, UNCERTAIN (w0 within rounding of 0)."""
-    w0, bound = departure_of(phi, v, eps)
-    if not abs(w0) < np.inf:
-        return OVERFLOW
-    if not w0 > -bound:
-        return NOT_DEPARTING
-    if not w0 > bound:
-        return UNCERTAIN
-    return CONVERGED
+    return departure_verdict(*departure_of(phi, v, eps))
 
 
 def _shaped(shape, scalar, *arrays):
@@ -162,22 +144,28 @@ def _method(method):
     return METHODS[method]
 
 
-def _flight_arrays(phi, v, eps, code, drag, law):
+def _flight_arrays(phi, v, eps, code, described):
     """(tau, iterations, status, inputs, shape, scalar) of the flights, elastic or with drag."""
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
-    tau, iterations, status = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8)
-    if drag == 0.0:
-        _flights(phi_a, v_a, eps_a, code, tau, iterations, status)
-    else:
-        _drag_flights(phi_a, v_a, eps_a, drag, law, code, tau, iterations, status)
-    return tau, iterations, status, (phi_a, v_a, eps_a), shape, scalar
+    out = (np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8))
+    _flights(described, phi_a, v_a, eps_a, code, *out)
+    return (*out, (phi_a, v_a, eps_a), shape, scalar)
 
 
-def _scalar_flight(scalars, code, drag, law):
-    if drag == 0.0:
+def _scalar_flight(scalars, code, described):
+    if described is None:
         return solve_flight(*scalars, code)
-    return solve_drag_flight(*scalars, drag, law, code)
+    return flight_of(with_eps(described, scalars[2]), scalars[0], scalars[1], code)
+
+
+def _flight_physics(drag, drag_law, restitution):
+    """The description a flight needs (restitution does not change a flight), None for the
+    elastic defaults (their scalar path calls the elastic solver directly)."""
+    if _elastic(drag, drag_law, restitution):
+        return None
+    drag, law, _ = physics_options(drag, drag_law, restitution)
+    return None if drag == 0.0 else dissipative(0.0, drag, law, 1.0)
 
 
 def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
@@ -187,17 +175,17 @@ def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitu
     method: "auto" (bracketed Halley where the gap is concave, |eps| < 1; the seed's lower-bound
     steps otherwise) or "seed" (the seed's lower-bound steps everywhere).
     drag, drag_law: air drag eta(v) = drag*v ("linear") or drag*v*|v| ("quadratic") during the
-    flight (``fastpath.drag``); restitution (checked, in (0, 1]) does not change a flight.
+    flight (``fastpath.dissipative.drag``); restitution (checked, in (0, 1]) does not change a
+    flight.
     """
     code = _method(method)
-    drag, law, _ = (0.0, 0, 1.0) if _elastic(drag, drag_law, restitution) else physics(
-        drag, drag_law, restitution
-    )
+    described = _flight_physics(drag, drag_law, restitution)
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
-        tau, iterations, status = _scalar_flight(scalars, code, drag, law)
+        tau, iterations, status = _scalar_flight(scalars, code, described)
         return FlightResult(tau, iterations, status)
-    tau, iterations, status, _, shape, scalar = _flight_arrays(phi, v, eps, code, drag, law)
+    tau, iterations, status, _, shape, scalar = _flight_arrays(
+        phi, v, eps, code, elastic(0.0) if described is None else described)
     return FlightResult(*_shaped(shape, scalar, tau, iterations, status))
 
 
@@ -207,20 +195,17 @@ def flight_time(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELAST
     Scalars give a float, arrays broadcast. Raises ValueError for NaN/inf input or w0 <= 0, and
     UncertainCollision where float64 cannot decide a near-graze (eps > 1).
     With drag > 0 the particle's part tau*(v - tau/2) is its displacement under drag
-    (``fastpath.drag``); restitution (checked, in (0, 1]) does not change a flight.
+    (``fastpath.dissipative.drag``); restitution (checked, in (0, 1]) does not change a flight.
     """
-    drag, law, _ = (0.0, 0, 1.0) if _elastic(drag, drag_law, restitution) else physics(
-        drag, drag_law, restitution
-    )
+    described = _flight_physics(drag, drag_law, restitution)
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
-        tau, _, status = _scalar_flight(scalars, METHODS["auto"], drag, law)
+        tau, _, status = _scalar_flight(scalars, METHODS["auto"], described)
         if status != CONVERGED:
             _raise_on_status(np.array([status]), *([x] for x in scalars))
         return tau
     tau, _, status, inputs, shape, scalar = _flight_arrays(
-        phi, v, eps, METHODS["auto"], drag, law
-    )
+        phi, v, eps, METHODS["auto"], elastic(0.0) if described is None else described)
     _raise_on_status(status, *inputs)
     return _shaped(shape, scalar, tau)[0]
 
@@ -229,31 +214,29 @@ def step(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
     """One collision of the exact map: (phi1, v1, tau), phi1 reduced to [0, 2*pi).
 
     v1 = tau - v - 2*eps*sin(phi + tau). Errors as for ``flight_time``.
-    With drag or restitution r < 1 (``fastpath.impact``): the flight with drag, then
+    With drag or restitution r < 1 (``fastpath.dissipative.impact``): the flight with drag, then
     v1 = (1 + r)*u - r*v_in, u = -eps*sin(phi + tau) the plate's velocity, v_in the particle's.
     """
-    elastic = _elastic(drag, drag_law, restitution)
-    if not elastic:
-        drag, law, restitution = physics(drag, drag_law, restitution)
-        elastic = drag == 0.0 and restitution == 1.0
+    described = None
+    if not _elastic(drag, drag_law, restitution):
+        drag, law, restitution = physics_options(drag, drag_law, restitution)
+        if drag != 0.0 or restitution != 1.0:
+            described = dissipative(0.0, drag, law, restitution)
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
-        if elastic:
+        if described is None:
             phi1, v1, tau, _, status = collide(*scalars)
         else:
-            phi1, v1, tau, _, status = dissipative_collide(*scalars, drag, law, restitution)
+            phi1, v1, tau, _, status = step_of(with_eps(described, scalars[2]), *scalars[:2])
         if status != CONVERGED:
             _raise_on_status(np.array([status]), *([x] for x in scalars))
         return phi1, v1, tau
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
-    phi1, v1, tau, status = np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8)
-    if elastic:
-        _steps(phi_a, v_a, eps_a, phi1, v1, tau, status)
-    else:
-        _dissipative_steps(phi_a, v_a, eps_a, drag, law, restitution, phi1, v1, tau, status)
-    _raise_on_status(status, phi_a, v_a, eps_a)
-    return _shaped(shape, scalar, phi1, v1, tau)
+    out = (np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8))
+    _steps(elastic(0.0) if described is None else described, phi_a, v_a, eps_a, *out)
+    _raise_on_status(out[3], phi_a, v_a, eps_a)
+    return _shaped(shape, scalar, *out[:3])
 
 
 CARRIED_NAMES = ("base_phase", "s", "sin", "cos", "w", "detached")  # ``advance.CARRIED``
@@ -289,7 +272,7 @@ def _check_carried(phi, v, eps, carried):
 def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
                  restitution=ELASTIC):
     """One collision of a chattering orbit (r < 1, any drag) from its carried state: (phi1, v1,
-    tau), the step an orbit or ensemble kernel made (``fastpath.advance``), bit for bit.
+    tau), the step an orbit or ensemble kernel made (``fastpath.dissipative.carried``), bit for bit.
 
     Such a step reads more than (phi, v): ``carried`` = (base_phase, s, sin, cos, w, detached),
     the phase of the impact being base_phase + (s + tau), sin and cos those of the last impact,
@@ -300,7 +283,7 @@ def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
     reduce to phi, and w equal v + eps*sin to the rounding of v = u + w. Flights float64 cannot
     decide raise ``UncertainCollision`` as for ``step``.
     """
-    drag, law, restitution = physics(drag, drag_law, restitution)
+    drag, law, restitution = physics_options(drag, drag_law, restitution)
     if restitution == 1.0:
         raise ValueError(f"carried_step needs restitution < 1 (otherwise a step reads (phi, v)"
                          f" only: use step), got restitution={restitution!r}")
@@ -309,7 +292,7 @@ def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
         raise ValueError("carried_step takes scalar phi, v and eps")
     phi, v, eps = scalars
     _check_carried(phi, v, eps, tuple(carried))
-    phi1, v1, tau, status = carried_collide(phi, v, eps, drag, law, restitution,
+    phi1, v1, tau, status = carried_collide(dissipative(eps, drag, law, restitution), phi, v,
                                             np.array(carried, dtype=float))
     if status != CONVERGED:
         _raise_on_status(np.array([status]), [phi], [v], [eps])
@@ -329,10 +312,10 @@ def holmes_step(phi, v, eps):
         return holmes_collide(*scalars)
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
-    phi1, v1, status = np.empty(n), np.empty(n), np.empty(n, np.int8)
-    _holmes_steps(phi_a, v_a, eps_a, phi1, v1, status)
-    _raise_on_status(status, phi_a, v_a, eps_a)
-    return _shaped(shape, scalar, phi1, v1)
+    out = (np.empty(n), np.empty(n), np.empty(n, np.int8))
+    _holmes_steps(phi_a, v_a, eps_a, *out)
+    _raise_on_status(out[2], phi_a, v_a, eps_a)
+    return _shaped(shape, scalar, *out[:2])
 
 
 def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", *,
@@ -348,13 +331,13 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
     the orbit then sticks to the plate and detaches where eps*cos(t) rises through 1, or stops
     as "stuck" for |eps| <= 1 (``Orbit.sticking``, ``Orbit.stopped``; the arrays are shorter
     than n+1 then). drag >= 0 with drag_law "linear" or "quadratic": air drag during the flights
-    (``fastpath.drag_flight``); with restitution < 1 too the particle rides the plate while
-    eps*cos(t) - eta(u(t)) <= 1 and detaches where it rises through 1
-    (``fastpath.drag_sticking``: with linear drag iff |eps|*sqrt(1 + drag**2) > 1). The defaults
-    run the elastic kernel unchanged.
+    (``fastpath.dissipative.drag_flight``); with restitution < 1 too the particle rides the plate
+    while eps*cos(t) - eta(u(t)) <= 1 and detaches where it rises through 1
+    (``fastpath.dissipative.sticking``: with linear drag iff |eps|*sqrt(1 + drag**2) > 1). The
+    defaults run the elastic kernel unchanged.
     """
     code = _method(method)
-    drag, law, restitution = physics(drag, drag_law, restitution)
+    drag, law, restitution = physics_options(drag, drag_law, restitution)
     if (drag != 0.0 or restitution != 1.0) and model != "exact":
         raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
     (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)
@@ -366,20 +349,20 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
     if on_uncertain not in ("raise", "stop"):
         raise ValueError(f"on_uncertain must be 'raise' or 'stop', got {on_uncertain!r}")
     phi0, v0, eps = float(phi_a[0]), float(v_a[0]), float(eps_a[0])
-    if drag != 0.0 or restitution != 1.0:
-        return _dissipative(phi0, v0, eps, drag, law, restitution, n, on_uncertain, code)
-    phi, v, t = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
     if model == "holmes":
         status = departure_status(phi0, v0, eps)
         if status != CONVERGED:
             _raise_on_status(np.array([status]), [phi0], [v0], [eps])
-        holmes_orbit(phi0, v0, eps, phi, v, t)
-        return Orbit(phi, v, t, None, FlightStatus.CONVERGED, model, eps)
-    iterations = np.zeros(n, np.int32)
-    done, status = exact_orbit(phi0, v0, eps, phi, v, t, iterations, code)
-    _raise_for_orbit(status, done, phi, v, eps, on_uncertain)
-    return Orbit(phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done],
-                 FlightStatus(status), model, eps)
+        described = holmes(eps)
+    else:
+        described = describe(eps, drag, law, restitution)
+    out = OrbitArrays.empty(n)
+    done, episodes, status, stuck = orbit_loop(described, phi0, v0, code, out)
+    _raise_for_orbit(status, done, out.phi, out.v, eps, on_uncertain)
+    iterations = None if model == "holmes" else out.iterations[:done]
+    return Orbit(out.phi[: done + 1], out.v[: done + 1], out.t[: done + 1], iterations,
+                 FlightStatus(status), model, eps, out.sticking[:episodes].copy(),
+                 "stuck" if stuck else "collisions")
 
 
 def _raise_for_orbit(status, done, phi, v, eps, on_uncertain):
@@ -392,17 +375,3 @@ def _raise_for_orbit(status, done, phi, v, eps, on_uncertain):
                          np.array([eps]))
     except (ValueError, UncertainCollision) as err:
         raise type(err)(f"collision {done} of the orbit: {err}") from None
-
-
-def _dissipative(phi0, v0, eps, drag, law, restitution, n, on_uncertain, code):
-    """The orbit with drag or restitution < 1 (``fastpath.orbit.dissipative_orbit``)."""
-    phi, v, t = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
-    iterations = np.zeros(n, np.int32)
-    sticking = np.empty((n + 1, 2))
-    done, episodes, status, stuck = dissipative_orbit(
-        phi0, v0, eps, drag, law, restitution, phi, v, t, iterations, sticking, code
-    )
-    _raise_for_orbit(status, done, phi, v, eps, on_uncertain)
-    return Orbit(phi[: done + 1], v[: done + 1], t[: done + 1], iterations[:done],
-                 FlightStatus(status), "exact", eps, sticking[:episodes].copy(),
-                 "stuck" if stuck else "collisions")

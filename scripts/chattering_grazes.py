@@ -24,7 +24,7 @@ working digits and boxes, and verify's time). "0+" and "0-" are the two float64 
 next to the exact tangency v* (v_- <= v* < v_+): the dip's minimum of the float inputs is then
 of order t_m*ulp(v) ~ 1e-17..1e-21, on either side of zero. The drag is written in its textbook
 closed forms here (as in tests/fastpath/drag_reference.py), independent of
-verify.dissipative.drag and fastpath.drag.
+verify.dissipative.drag and fastpath.dissipative.drag.
 """
 
 from __future__ import annotations

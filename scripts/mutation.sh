@@ -5,11 +5,12 @@
 #
 # verify, runs, kernel, integrity, certify: mutmut 3 on the pure-Python targets, configured by scripts/mutation/<group>.cfg
 #   (copied to setup.cfg in a scratch copy of the worktree, so the worktree is never mutated).
-# ensemble: fastpath/ensemble.py is numba-compiled, which mutmut's trampolines cannot be, so a
+# ensemble: fastpath/kernels/escape.py is numba-compiled, which mutmut's trampolines cannot be, so a
 #   small AST driver (scripts/mutation/ensemble.py) applies one operator swap at a time to a
 #   scratch copy and runs the ensemble tests with NUMBA_DISABLE_JIT=1.
-# solver: the same driver (--group solver) on the scalar flight solvers (fastpath/concave.py,
-#   tight_gap, flight, gap, short_flight, phase, collision); MUTATION_FILES=fastpath/concave.py,...
+# solver: the same driver (--group solver) on the scalar flight solvers (fastpath/elastic/concave.py,
+#   tight_gap, lower_bound, flight, gap, short_flight, phase, collision);
+#   MUTATION_FILES=fastpath/elastic/concave.py,...
 #   restricts it to some of them.
 #
 # One worker, under nice -n 19: the machine is shared. MUTATION_NAMES=FILE runs the globs in FILE

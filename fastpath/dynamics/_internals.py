@@ -4,12 +4,12 @@ The public ``fastpath.step`` validates its input and runs one flight per Python 
 iteration on F^p or a tangent-map loop over 10^6 collisions needs the scalar kernel itself.
 """
 
-from fastpath._jit import jit, parallel_jit
-from fastpath.collision import collide_from
-from fastpath.flight import CONVERGED, GENERAL, NOT_DEPARTING, UNCERTAIN
-from fastpath.gap import UNIT_ROUNDOFF
-from fastpath.phase import reduce_phase
-from fastpath.status import FlightStatus, UncertainCollision
+from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.arithmetic.phase import reduce_phase
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.elastic.collision import collide_from
+from fastpath.elastic.flight import GENERAL
+from fastpath.status import CONVERGED, NOT_DEPARTING, UNCERTAIN, FlightStatus, UncertainCollision
 
 __all__ = [
     "CONVERGED",

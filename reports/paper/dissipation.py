@@ -10,7 +10,7 @@ or stick, so there is no plateau to measure), starts uniform in the seed's escap
 * the stuck fraction at eps = 0.6 (|eps| <= 1: a particle whose impacts accumulate never
   leaves the plate) for a few r, from ``Moments.stuck_n``.
 
-<v_n> over the particles that reached collision n comes from ``fastpath.moments`` (64 blocks
+<v_n> over the particles that reached collision n comes from ``fastpath.kernels.moments`` (64 blocks
 of consecutive particles). The built-in scene ``dissipation-saturation`` (kind "velocity",
 ``reports.runs.velocity``) runs r = 1 and three of these r through the trusted run engine
 (verification sample, ``bouncer verify``), with the same convention: stuck particles are
@@ -63,7 +63,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import fastpath
-from fastpath.moments import moments
+from fastpath.kernels.moments import moments
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim
 from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit
 from reports.runs.chunk import check_sample

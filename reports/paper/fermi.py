@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fastpath.moments import moments
+from fastpath.kernels.moments import moments
 from reports.paper.check import Check, agree
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim
 from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit, verify_sample

@@ -6,7 +6,7 @@ Rows (quantity, measured +- uncertainty, expected, method, agrees?):
    3.85 < phi < 4.15, 2 < v < 4, no holes): <v_n> ~ n**(1/2) per collision and <v(t)> ~ t**(1/3)
    in continuous time (v(t) = the velocity after the last collision at or before t). Slopes of
    log<v> against log n (log t) over a window at large n (t), the uncertainty the standard
-   deviation over a bootstrap of the particle blocks of ``fastpath.moments``.
+   deviation over a bootstrap of the particle blocks of ``fastpath.kernels.moments``.
 2. The stretched-exponential exponent of the escape survival in continuous time (the seed argues
    P ~ exp(-c*sqrt(t)) where the hole blocks the islands): the slope of ln(-ln P) against ln t,
    and the exponent beta of the three-parameter fit ln P = ln a - c*t**beta (the raw slope is

@@ -8,8 +8,8 @@
    more than the other. Iterations per flight come from the same orbits.
 2. The ensemble workload users run, the seed's escape scene (``paper-escape``: eps = 0.6, starts
    at 2 < v < 4, six holes), P particles per curve, all cores, against a Holmes-map ensemble on
-   the same starts, holes, horizon and bins (``fastpath.ensemble.holmes_escape_chunk``, the bare
-   loop: no verification, no flags, starts drawn before the clock starts):
+   the same starts, holes, horizon and bins (``fastpath.kernels.escape.holmes_escape_chunk``,
+   the bare loop: no verification, no flags, starts drawn before the clock starts):
    * kernel only: ``escape_chunk`` over the same chunks of starts, no verification sample;
    * end to end: ``bouncer run`` into a temporary directory (start generation, the verification
      sample recomputed by verify, histograms, checkpoints, manifest), wall time.
@@ -36,7 +36,9 @@ import numba
 import numpy as np
 
 import fastpath
-from fastpath.ensemble import NO_LIMIT, holmes_escape_chunk
+from fastpath.kernels.arrays import NO_LIMIT, Bins, EscapeCounts, Holes, Horizon, Starts
+from fastpath.kernels.escape import holmes_escape_chunk
+from fastpath.physics import holmes
 from reports.runs.chunk import kernel
 from reports.runs.counts import Counts
 from reports.runs.driver import run
@@ -98,14 +100,15 @@ def _kernel_pass(plan, chunks, model):
         exp = plan.experiments[e]
         m, holes = len(phi), len(exp.hole_lo)
         if model == "holmes":
-            nb, tb = len(plan.n_edges), len(plan.t_edges)
-            collisions = np.zeros(BLOCKS, np.int64)
+            counts = EscapeCounts.zeros(BLOCKS, holes, len(plan.n_edges), len(plan.t_edges))
             holmes_escape_chunk(
-                phi, v, sc.eps, np.array(exp.hole_lo), np.array(exp.hole_width),
-                sc.max_collisions or NO_LIMIT, sc.max_time or np.inf, plan.n_edges, plan.t_edges,
-                np.zeros((BLOCKS, holes, nb), np.int64), np.zeros((BLOCKS, holes, tb), np.int64),
-                np.zeros((BLOCKS, nb), np.int64), np.zeros((BLOCKS, tb), np.int64), collisions)
-            total += int(collisions.sum())
+                holmes(sc.eps), Starts(phi=phi, v=v, t=np.zeros(m), n=np.zeros(m, np.int64)),
+                Holes(lo=np.array(exp.hole_lo), width=np.array(exp.hole_width)),
+                Horizon(max_collisions=sc.max_collisions or NO_LIMIT,
+                        max_time=sc.max_time or np.inf),
+                Bins(n_edges=plan.n_edges, t_edges=plan.t_edges, record_n=True, record_t=True),
+                counts)
+            total += int(counts.collisions.sum())
         else:
             out = Counts.zeros(plan, holes)
             kernel(plan, exp, (phi, v, np.zeros(m), np.zeros(m, np.int64)), np.full(m, -1),

@@ -238,7 +238,7 @@ def dissipative_case_markdown(rows: list[DissipativeRow]) -> str:
     lines += ["", "NOT_DEPARTING on the departures at rest is by design: `fastpath.flight` takes "
               "w0 > 0 only (DESIGN fact 1, w0 = 0 is not a departure for it); a particle leaving "
               "the plate from rest is started inside the sticking kernels from a certified "
-              "point (`fastpath.sticking`, `fastpath.drag_sticking`). UNCERTAIN is fastpath "
+              "point (`fastpath.dissipative.sticking`). UNCERTAIN is fastpath "
               "saying that float64 cannot decide (verify settles those); on the chattering "
               "grazes it comes where the dip's clearance is within a few of fastpath's gap "
               "rounding bounds of zero (the c=0+/0- neighbours of the tangency, and c=-1e-14 or "

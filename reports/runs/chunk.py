@@ -1,9 +1,9 @@
 """One chunk of a run, computed and verified: ``run_chunk``.
 
-Elastic scenes (no ``[physics]``) run ``fastpath.ensemble.escape_chunk`` unchanged; velocity
-scenes run ``simulate_velocity_chunk`` (the same settling and sample). Scenes with
-restitution < 1 or drag run ``fastpath.dissipative_ensemble.dissipative_escape_chunk`` (the
-same contract plus the histograms of particles stuck on the plate for good), and their flagged
+Escape and transport scenes run ``fastpath.kernels.escape.escape_chunk`` with the scene's physics
+description (``fastpath.physics``: elastic without ``[physics]``; with restitution < 1 it also
+counts the particles stuck on the plate for good); velocity scenes run
+``simulate_velocity_chunk`` (``fastpath.kernels.moments``, the same settling and sample). Flagged
 and sampled collisions are recomputed by ``verify.step`` with the same physics. With
 restitution < 1 a sample row also records the departure's carried state (``CARRIED_COLUMNS``),
 from which ``fastpath.carried_step`` repeats the kernel's step in ``bouncer verify``.
@@ -22,13 +22,24 @@ import mpmath
 import numpy as np
 
 import verify
-from fastpath.ensemble import (
+from fastpath.kernels.arrays import (
     NO_LIMIT,
-    bin_index,
-    escape_chunk,
-    exit_hole,
-    portrait_chunk,
+    Bins,
+    EscapeCounts,
+    Flags,
+    Holes,
+    Horizon,
+    MomentGrid,
+    MomentSums,
+    Portrait,
+    Sample,
+    Starts,
 )
+from fastpath.kernels.escape import escape_chunk
+from fastpath.kernels.histogram import bin_index, exit_hole
+from fastpath.kernels.moments import moments_chunk
+from fastpath.kernels.portrait import portrait_chunk
+from fastpath.physics import LAWS, describe
 from reports.runs.counts import Counts, exact_block_sums
 from reports.runs.plan import BLOCKS, PORTRAIT_BLOCKS, chunk_starts, make_plan
 from reports.runs.rundir import CARRIED_COLUMNS, RunFailed
@@ -68,17 +79,13 @@ _KERNEL_LOCK = threading.Lock()
 _VERIFY_LOCK = threading.Lock()
 
 
-def _dissipative_kernel():
-    """The dissipative ensemble kernel, imported only by scenes that use it."""
-    from fastpath.dissipative_ensemble import dissipative_escape_chunk
-
-    return dissipative_escape_chunk
-
-
-def _law_code(name):
-    from fastpath.drag import LAWS
-
-    return LAWS[name]
+def _physics(scene, physics=None):
+    """The description (``fastpath.physics``) of a scene's physics, or of one curve's
+    (``physics``: the keywords of ``Scene.curve_physics``)."""
+    if physics is None:
+        physics = scene.physics()
+    return describe(scene.eps, physics.get("drag", 0.0), LAWS[physics.get("drag_law", "linear")],
+                    physics.get("restitution", 1.0))
 
 
 def kernel(plan, exp, state, slot, target, samples, out):
@@ -86,48 +93,40 @@ def kernel(plan, exp, state, slot, target, samples, out):
     sc = plan.scene
     phi, v, t, n = state
     m = len(phi)
-    flags, flag_state = np.zeros(m, np.int8), np.zeros((m, 4))
+    starts = Starts(phi=phi, v=v, t=t, n=n)
+    sample = Sample(slot=slot, target=target, rows=samples)
+    flags = Flags.zeros(m)
     if sc.kind == "phase-space":
         blocks = min(PORTRAIT_BLOCKS, m)
-        counts = np.zeros((blocks, sc.phi_bins, sc.v_bins), np.int64)
-        collisions = np.zeros(blocks, np.int64)
+        portrait = Portrait(v_lo=sc.v_range[0], v_hi=sc.v_range[1],
+                            counts=np.zeros((blocks, sc.phi_bins, sc.v_bins), np.int64),
+                            collisions=np.zeros(blocks, np.int64))
         with _KERNEL_LOCK:
-            portrait_chunk(phi, v, n, sc.eps, sc.max_collisions, sc.v_range[0], sc.v_range[1],
-                           slot, target, counts, collisions, flags, flag_state, samples)
-        out.portrait += counts.sum(axis=0)
+            portrait_chunk(_physics(sc), starts, sc.max_collisions, sample, portrait, flags)
+        out.portrait += portrait.counts.sum(axis=0)
+        collisions = portrait.collisions
     else:
         blocks = min(BLOCKS, m)
-        holes, nb, tb = len(exp.hole_lo), len(plan.n_edges), len(plan.t_edges)
-        esc_n, esc_t = np.zeros((blocks, holes, nb), np.int64), np.zeros((blocks, holes, tb),
-                                                                         np.int64)
-        cens_n, cens_t = np.zeros((blocks, nb), np.int64), np.zeros((blocks, tb), np.int64)
-        collisions = np.zeros(blocks, np.int64)
-        if sc.elastic:
-            with _KERNEL_LOCK:
-                escape_chunk(phi, v, t, n, sc.eps, np.array(exp.hole_lo),
-                             np.array(exp.hole_width), sc.max_collisions or NO_LIMIT,
-                             sc.max_time or np.inf, plan.n_edges, plan.t_edges,
-                             "collisions" in sc.clocks, "time" in sc.clocks, slot, target,
-                             esc_n, esc_t, cens_n, cens_t, collisions, flags, flag_state,
-                             samples)
-        else:
-            stuck_n, stuck_t = np.zeros((blocks, nb), np.int64), np.zeros((blocks, tb), np.int64)
-            kernel = _dissipative_kernel()
-            with _KERNEL_LOCK:
-                kernel(phi, v, t, n, sc.eps, sc.drag, _law_code(sc.drag_law), sc.restitution,
-                       np.array(exp.hole_lo), np.array(exp.hole_width),
-                       sc.max_collisions or NO_LIMIT, sc.max_time or np.inf, plan.n_edges,
-                       plan.t_edges, "collisions" in sc.clocks, "time" in sc.clocks, slot,
-                       target, esc_n, esc_t, cens_n, cens_t, stuck_n, stuck_t, collisions,
-                       flags, flag_state, samples)
-            out.stuck_n += stuck_n.sum(axis=0)
-            out.stuck_t += stuck_t.sum(axis=0)
-        out.esc_n[:holes] += esc_n.sum(axis=0)
-        out.esc_t[:holes] += esc_t.sum(axis=0)
-        out.cens_n += cens_n.sum(axis=0)
-        out.cens_t += cens_t.sum(axis=0)
+        holes = len(exp.hole_lo)
+        counts = EscapeCounts.zeros(blocks, holes, len(plan.n_edges), len(plan.t_edges))
+        with _KERNEL_LOCK:
+            escape_chunk(_physics(sc), starts,
+                         Holes(lo=np.array(exp.hole_lo), width=np.array(exp.hole_width)),
+                         Horizon(max_collisions=sc.max_collisions or NO_LIMIT,
+                                 max_time=sc.max_time or np.inf),
+                         Bins(n_edges=plan.n_edges, t_edges=plan.t_edges,
+                              record_n="collisions" in sc.clocks, record_t="time" in sc.clocks),
+                         sample, counts, flags)
+        if not sc.elastic:
+            out.stuck_n += counts.stuck_n.sum(axis=0)
+            out.stuck_t += counts.stuck_t.sum(axis=0)
+        out.esc_n[:holes] += counts.esc_n.sum(axis=0)
+        out.esc_t[:holes] += counts.esc_t.sum(axis=0)
+        out.cens_n += counts.cens_n.sum(axis=0)
+        out.cens_t += counts.cens_t.sum(axis=0)
+        collisions = counts.collisions
     out.collisions += int(collisions.sum())
-    return flags, flag_state
+    return flags.status, flags.state
 
 
 def settle(phi, v, eps, physics=None):
@@ -204,41 +203,30 @@ def simulate_chunk(plan, e, k):
     return out, _sample_rows(e, k, picks, samples)
 
 
-def _velocity_kernel():
-    from fastpath.velocity_ensemble import velocity_chunk
-
-    return velocity_chunk
-
-
 def velocity_kernel(plan, e, state, slot, target, samples, out):
-    """``kernel`` for a velocity scene: one pass of ``fastpath.velocity_ensemble`` over the
+    """``kernel`` for a velocity scene: one pass of ``fastpath.kernels.moments`` over the
     particles in ``state`` = (phi, v, t, n) with curve e's physics, into ``out`` (exact block
     sums, ``reports.runs.counts``); returns (flags, flag_state)."""
     sc = plan.scene
     phi, v, t, n = state
     m, grid = len(phi), plan.n_grid
-    blocks = min(BLOCKS, m)
-    moving, stuck = np.zeros((blocks, len(grid)), np.int64), np.zeros((blocks, len(grid)),
-                                                                       np.int64)
-    sum_v, sum_v2 = np.zeros((blocks, len(grid))), np.zeros((blocks, len(grid)))
-    collisions = np.zeros(blocks, np.int64)
-    flags, flag_state = np.zeros(m, np.int8), np.zeros((m, 4))
-    physics = sc.curve_physics(e)
+    sums = MomentSums.zeros(min(BLOCKS, m), len(grid), 0)
+    flags = Flags.zeros(m)
+    grid = MomentGrid(n=grid, t=np.zeros(0), max_collisions=sc.max_collisions or NO_LIMIT)
     with _KERNEL_LOCK:
-        _velocity_kernel()(phi, v, t, n, sc.eps, sc.drag, _law_code(sc.drag_law),
-                  physics.get("restitution", 1.0), grid, sc.max_collisions or NO_LIMIT, slot,
-                  target, moving, sum_v, sum_v2, stuck, collisions, flags, flag_state, samples)
-    out.moving += moving.sum(axis=0)
-    out.stuck_at += stuck.sum(axis=0)
-    out.sum_v += exact_block_sums(sum_v)
-    out.sum_v2 += exact_block_sums(sum_v2)
-    out.collisions += int(collisions.sum())
-    return flags, flag_state
+        moments_chunk(_physics(sc, sc.curve_physics(e)), Starts(phi=phi, v=v, t=t, n=n), grid,
+                      True, Sample(slot=slot, target=target, rows=samples), sums, flags)
+    out.moving += sums.count_n.sum(axis=0)
+    out.stuck_at += sums.stuck_n.sum(axis=0)
+    out.sum_v += exact_block_sums(sums.sum_v_n)
+    out.sum_v2 += exact_block_sums(sums.sum_v2_n)
+    out.collisions += int(sums.collisions.sum())
+    return flags.status, flags.state
 
 
 def simulate_velocity_chunk(plan, e, k):
     """``simulate_chunk`` for a velocity scene (``reports.runs.velocity``): chunk k of curve e
-    through ``fastpath.velocity_ensemble``, flagged collisions settled by verify, the particle
+    through ``fastpath.kernels.moments``, flagged collisions settled by verify, the particle
     resuming from the state after it (the kernel fills its grid point)."""
     sc = plan.scene
     phi, v, slot, target, picks = chunk_starts(plan, e, k)
@@ -301,13 +289,13 @@ def _code_digest():
     results from workers that run other sources."""
     root = Path(__file__).resolve().parents[2]
     digest = hashlib.sha256()
-    files = [*sorted((root / "fastpath").glob("*.py")),
+    files = [*sorted((root / "fastpath").rglob("*.py")),
              *(path for name in _VERIFY_SOURCES
                for path in sorted((root / "verify").glob(name if name.endswith(".py")
                                                          else f"{name}/*.py"))),
              *sorted((root / "reports" / "runs").glob("*.py"))]
     for path in files:
-        digest.update(path.name.encode() + b"\0" + path.read_bytes())
+        digest.update(path.relative_to(root).as_posix().encode() + b"\0" + path.read_bytes())
     return digest.hexdigest()[:16]
 
 

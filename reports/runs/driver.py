@@ -1,4 +1,4 @@
-"""Trusted ensemble runs: the driver around ``fastpath.ensemble`` with ``verify`` checks.
+"""Trusted ensemble runs: the driver around ``fastpath.kernels.escape`` with ``verify`` checks.
 
 The run is a fixed sequence of chunks (experiment e, chunk k) of at most ``scene.chunk_size``
 starts.

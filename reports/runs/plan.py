@@ -21,9 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fastpath.ensemble import (
-    log_edges,
-)
+from fastpath.kernels.histogram import log_edges
 from reports.runs.scenes import Scene
 
 BLOCKS = 64  # histogram rows per chunk (not threads: results do not depend on threads)

@@ -29,7 +29,7 @@ from collections import defaultdict
 from dataclasses import dataclass
 
 import fastpath
-from fastpath.phase import reduce_phase
+from fastpath.arithmetic.phase import reduce_phase
 from reports.runs.chunk import settle
 from reports.runs.plan import chunk_starts
 

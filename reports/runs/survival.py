@@ -1,6 +1,6 @@
 """Empirical survival curves of a run (survival.csv) from its histograms, with binomial bands.
 
-Counts come in fixed bins (``fastpath.ensemble``): bin k holds clock values x with
+Counts come in fixed bins (``fastpath.kernels.escape``): bin k holds clock values x with
 e_k <= x < e_{k+1}. With N particles, escapes E_k through the hole(s) of a curve and C particles
 censored at the horizon (all known to outlive the range where the curve is reported):
 

@@ -1,7 +1,7 @@
 """Velocity scenes' results: <v_n> against the collision index n, one curve per restitution.
 
 A chunk (``reports.runs.chunk.simulate_velocity_chunk``) runs
-``fastpath.velocity_ensemble.velocity_chunk`` on its starts with its curve's physics
+``fastpath.kernels.moments.velocity_chunk`` on its starts with its curve's physics
 (``Scene.curve_physics``); flagged collisions are settled by ``verify.step`` and the particle
 resumes in the kernel; the sampled collisions are those of escape runs (the same picks, rows and
 carried state), so ``bouncer verify`` re-derives them the same way. This module turns the
@@ -14,7 +14,7 @@ Every particle ends at the horizon N = ``horizon.collisions`` or stuck on the pl
 
 A stuck particle rides the plate with the plate's velocity; it is NOT in the means: the means
 are over the particles still moving, and the stuck ones are reported in their own column, as
-the report's dissipation study (``fastpath.moments``, ``Moments.stuck_n``) does.
+the report's dissipation study (``fastpath.kernels.moments``, ``Moments.stuck_n``) does.
 
 velocity.csv, one row per curve and grid point:
 

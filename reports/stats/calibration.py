@@ -40,7 +40,7 @@ SIZES = (300, 10_000, 1_000_000, 100_000_000)
 
 
 def grid_edges(decades=6, per_decade=20):
-    """Integer log lower edges 1..10**decades (as ``fastpath.ensemble.log_edges``)."""
+    """Integer log lower edges 1..10**decades (as ``fastpath.kernels.escape.log_edges``)."""
     k = np.arange(decades * per_decade + 1)
     return np.unique(np.round(10.0 ** (k / per_decade)))
 

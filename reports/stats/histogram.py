@@ -22,7 +22,7 @@ O((h w)^2) instead of O(h w) for censoring at either edge.
 Run directories (``bouncer run``): ``manifest.json`` (per experiment ``particles_done``,
 ``censored``, ``escaped``; ``bins``) and ``counts.csv`` with header
 ``experiment,clock,outcome,lower_edge,count``. The bin grid is rebuilt from ``bins`` exactly as
-the runner built it (``fastpath.ensemble.log_edges``): collisions
+the runner built it (``fastpath.kernels.escape.log_edges``): collisions
 unique(round(10**(k/per_decade))), time [0] + first*10**(k/per_decade); the last bin is open.
 
 CSV histograms: header ``lower,upper,count``, rows counting lower <= X < upper, increasing and

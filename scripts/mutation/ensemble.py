@@ -4,10 +4,12 @@
         [FUNCTION,...]
     python scripts/mutation/ensemble.py --list [--group G] [--files F,...] ROOT [FUNCTION,...]
 
-``ensemble`` (the default): ``fastpath/ensemble.py`` and ``fastpath/lockstep.py``, the functions
-of ``TARGETS`` (the escape/censor accounting, the lanes and the lockstep flight). ``solver``: every
+``ensemble`` (the default): ``fastpath/kernels/`` and ``fastpath/elastic/lockstep.py``, the
+functions of ``TARGETS`` (the escape/censor accounting, the lanes and the lockstep flight).
+``solver``: every
 top-level function of the scalar flight solvers of ``SOLVER_TARGETS`` (``concave``, ``tight_gap``,
-``flight``, ``gap``, ``short_flight``, ``phase``, ``collision``), run against ``SOLVER_TESTS``.
+``lower_bound``, ``flight``, ``gap``, ``short_flight``, ``phase``, ``collision``), run against
+``SOLVER_TESTS``.
 ``--files`` restricts a group to some of its files, a comma-separated FUNCTION list to some
 functions; ``--list`` prints the mutants (index, function, line, operator) without running them.
 
@@ -40,10 +42,13 @@ import sys
 import time
 
 TARGETS = {
-    "fastpath/ensemble.py": ("exit_hole", "in_hole", "bin_index", "_escape_groups",
-                             "lane_collide", "_escape_lanes", "_load"),
-    "fastpath/lockstep.py": ("_evaluation", "_start", "_answer", "_running", "moderate_bracket",
-                             "lockstep_collide", "lockstep_flight_one"),
+    "fastpath/kernels/histogram.py": ("exit_hole", "in_hole", "bin_index", "censor", "escape",
+                                      "stuck"),
+    "fastpath/kernels/escape.py": ("_escape_groups", "lane_collide", "_escape_lanes", "_load",
+                                   "_load_next"),
+    "fastpath/elastic/lockstep.py": ("lane_evaluation", "lane_start", "lane_answer",
+                                     "lane_running", "moderate_bracket", "lockstep_collide",
+                                     "lockstep_flight_one"),
 }
 TIMEOUT = 300
 TESTS = [
@@ -60,9 +65,10 @@ DESELECT = [
 ]
 SOLVER_TARGETS = {
     path: None  # None: every top-level function of the file
-    for path in ("fastpath/concave.py", "fastpath/tight_gap.py", "fastpath/flight.py",
-                 "fastpath/gap.py", "fastpath/short_flight.py", "fastpath/phase.py",
-                 "fastpath/collision.py")
+    for path in ("fastpath/elastic/concave.py", "fastpath/elastic/tight_gap.py",
+                 "fastpath/elastic/lower_bound.py", "fastpath/elastic/flight.py",
+                 "fastpath/elastic/gap.py", "fastpath/dissipative/short_flight.py",
+                 "fastpath/arithmetic/phase.py", "fastpath/elastic/collision.py")
 }
 SOLVER_TIMEOUT = 240
 SOLVER_TESTS = [
@@ -238,7 +244,7 @@ if __name__ == "__main__":
     parser.add_argument("root")
     parser.add_argument("functions", nargs="?")
     parser.add_argument("--group", choices=sorted(GROUPS), default="ensemble")
-    parser.add_argument("--files", help="comma-separated paths, e.g. fastpath/concave.py")
+    parser.add_argument("--files", help="comma-separated paths, e.g. fastpath/elastic/concave.py")
     parser.add_argument("--list", action="store_true")
     args = parser.parse_args()
     only = None if args.functions is None else set(args.functions.split(","))

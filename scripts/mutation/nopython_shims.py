@@ -21,8 +21,8 @@ import types
 
 from hypothesis import HealthCheck, settings
 
-import fastpath.ensemble  # noqa: F401  (every kernel module imported before the swap)
-import fastpath.lockstep  # noqa: F401
+import fastpath.elastic.lockstep  # noqa: F401
+import fastpath.kernels.escape  # noqa: F401  (every kernel module imported before the swap)
 
 
 def _floor(x):

@@ -1,4 +1,5 @@
-"""A 60-digit reference for flights with drag, independent of ``fastpath.drag``'s formulas.
+"""A 60-digit reference for flights with drag, independent of the formulas of
+``fastpath.dissipative.drag``.
 
 The particle's motion is written in its textbook form (no stabilised rewriting: at 60 digits the
 cancellations of these forms cost at most ~25 digits for drag >= 1e-12, far above float64):

@@ -43,7 +43,7 @@ import math
 import mpmath
 from mpmath import mp
 
-from fastpath.gap import gap_error as _fast_gap_error
+from fastpath.elastic.gap import gap_error as _fast_gap_error
 
 U = 2.0**-53
 # Module docstring: 12 (gap_error/(|d'|*tau)) + 2 (one ulp of t) + 2 (final rounding, 1st order)
@@ -136,7 +136,7 @@ def exact_w0(phi, v, eps):
 
 def fast_gap_error(phi, v, eps, t):
     """fastpath's own bound on the rounding error of its gap (phi reduced as the solver does)."""
-    from fastpath.phase import reduce_phase
+    from fastpath.arithmetic.phase import reduce_phase
 
     return _fast_gap_error(reduce_phase(float(phi)), float(v), float(eps), float(t))
 

@@ -1,8 +1,8 @@
 """``fastpath.carried_step``: one step of a chattering orbit (r < 1) from its carried state.
 
-Ensemble kernels move particles with ``fastpath.advance.advance``, whose step reads more than the
-departure (phi, v): the run's base phase and time since it, the carried sine, cosine and
-relative velocity w, and whether the departure is a detachment. ``carried_step`` must repeat
+Ensemble kernels move particles with ``fastpath.dissipative.carried.advance``, whose step reads
+more than the departure (phi, v): the run's base phase and time since it, the carried sine, cosine
+and relative velocity w, and whether the departure is a detachment. ``carried_step`` must repeat
 every such step bit for bit from (phi, v) and those entries (that is what ``bouncer verify``
 relies on), and refuse a carried state that is not a departure from (phi, v).
 """
@@ -13,10 +13,11 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.advance import (
+from fastpath.dissipative.carried import (
     CARRIED,
     DETACHED,
     PHI,
+    STATE_SIZE,
     STUCK,
     S,
     V,
@@ -24,23 +25,24 @@ from fastpath.advance import (
     advance,
     begin,
     departure_point,
-    detachment,
-    new_state,
 )
-from fastpath.drag import LAWS, NONE
-from fastpath.flight import AUTO, CONVERGED
+from fastpath.dissipative.sticking import detachment
+from fastpath.elastic.flight import AUTO
+from fastpath.physics import LAWS, NONE, dissipative
+from fastpath.status import CONVERGED
 
 
 def steps_of(phi0, v0, eps, r, n, k=0.0, law=NONE):
     """[(phi, v, carried, (phi1, v1, tau))] of up to n advance steps from (phi0, v0)."""
-    state = new_state()
-    assert begin(state, phi0, v0, 0.0, eps, k, r) == CONVERGED
-    detach, no_holes = detachment(eps, k, law, r), np.empty(0)
+    state = np.zeros(STATE_SIZE)
+    physics = dissipative(eps, k, law, r)
+    assert begin(physics, state, phi0, v0, 0.0) == CONVERGED
+    detach, no_holes = detachment(physics), np.empty(0)
     out = []
     for _ in range(n):
         phi, v, _ = departure_point(state)
         carried = tuple(float(state[j]) for j in CARRIED)
-        status, _, tau, kind, _, _ = advance(state, eps, k, law, r, AUTO, detach, no_holes)
+        status, _, tau, kind, _, _ = advance(physics, state, AUTO, detach, no_holes)
         assert status == CONVERGED
         out.append((phi, v, carried, (state[PHI], state[V], tau)))
         if kind == STUCK:

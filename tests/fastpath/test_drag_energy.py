@@ -21,8 +21,9 @@ from fastpath_tolerances import phase_rounding
 from mpmath import mp
 
 import fastpath
-from fastpath.drag import LAWS, particle
-from fastpath.phase import centre_phase
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.dissipative.drag import particle
+from fastpath.physics import LAWS
 
 U = 2.0**-53
 

@@ -21,7 +21,8 @@ from fastpath_figures import record
 from mpmath import mp
 from test_drag_reference import judge
 
-from fastpath.drag import LAWS, gap_state
+from fastpath.dissipative.drag import gap_state
+from fastpath.physics import LAWS
 
 OFFSETS = [1e-3, 1e-7, 1e-11, 1e-14, 0.0, -1e-14, -1e-11, -1e-7, -1e-3]
 

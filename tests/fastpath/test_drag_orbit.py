@@ -9,7 +9,7 @@ impact v1 = 2*u - V(tau), u = -eps*sin(phi_k + tau). Tolerances (u = 2**-53):
   of (phi + tau) mod 2*pi (``fastpath_tolerances.phase_rounding``).
 - v1 = 2*u(phi + tau) - V(tau): a tau error dt moves it by at most (2*|eps| + |1 + eta(V)|)*dt
   (|u'| <= |eps|, |V'| = |1 + eta(V)|); the phase rounding moves u by |eps| times it; V's own
-  rounding is ``fastpath.drag.particle``'s bound (held to the 60-digit forms in
+  rounding is ``fastpath.dissipative.drag.particle``'s bound (held to the 60-digit forms in
   test_drag_reference); the impact formula rounds <= 4u*(2|u| + |V|) with room.
 
 Also: the orbit is the chain of ``fastpath.step`` calls (the same kernel), bit for bit; the
@@ -26,8 +26,9 @@ from fastpath_tolerances import phase_rounding
 from mpmath import mp
 
 import fastpath
-from fastpath.drag import LAWS, gap_state, particle
-from fastpath.phase import centre_phase
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.dissipative.drag import gap_state, particle
+from fastpath.physics import LAWS
 
 U = 2.0**-53
 # (phi0, v0, eps, drag, law): eps below and above 1, both laws, weak to strong drag

@@ -16,8 +16,9 @@ from fastpath_figures import record
 from mpmath import mp
 
 import fastpath
-from fastpath.drag import LAWS, gap_state
-from fastpath.phase import centre_phase
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.dissipative.drag import gap_state
+from fastpath.physics import LAWS
 
 REGIMES = {"eps<1": (0.0, 0.95), "eps>1": (1.05, 3.0)}
 CASES = 40

@@ -1,5 +1,5 @@
 """Chattering and sticking with drag (restitution r < 1): detachment condition and phase,
-accumulation tail, orbits (``fastpath.drag_sticking``), against a 100-digit mpmath reference.
+accumulation tail, orbits (``fastpath.dissipative.sticking``), against a 100-digit mpmath reference.
 
 Tolerances (u = 2**-53):
 
@@ -19,7 +19,7 @@ Tolerances (u = 2**-53):
 - Accumulation time of an orbit from a start: as without drag (test_sticking_accumulation):
   8u*t_acc/(1 - r) for the short flights' roundings (relative to w) plus, for the start and
   for every ordinary (long) flight, which forms w from the absolute state, that departure's w
-  bound B (``fastpath.gap.departure``: absolute, ~u*(|v| + |eps|)) weighted by T0's
+  bound B (``fastpath.elastic.gap.departure``: absolute, ~u*(|v| + |eps|)) weighted by T0's
   conditioning 2/(a*(1 - r)), a the riding force at the accumulation phase.
 """
 
@@ -34,21 +34,22 @@ from fastpath_figures import record
 from mpmath import mp
 
 import fastpath
-from fastpath.drag import LINEAR, QUADRATIC, gap_state
-from fastpath.drag_short_flight import drag_short_window, particle_offset
-from fastpath.drag_sticking import (
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.dissipative.drag import gap_state
+from fastpath.dissipative.short_flight import drag_short_window, particle_offset
+from fastpath.dissipative.sticking import (
     DETACHES,
     NEVER,
     UNDECIDED,
     detach_kind,
     detachment_frame,
+    detachment_phase,
     drag_accumulation_tail,
     drag_detachment,
     drag_detachment_phase,
 )
-from fastpath.gap import departure
-from fastpath.phase import centre_phase
-from fastpath.sticking import detachment_phase
+from fastpath.elastic.gap import departure
+from fastpath.physics import LINEAR, QUADRATIC, dissipative
 
 U = 2.0**-53
 LAW = {"linear": LINEAR, "quadratic": QUADRATIC}
@@ -274,7 +275,8 @@ def test_w0_zero_departure_from_drag_detachment(law, eps, k):
     (the module's argument x > 0, sampled at 100 digits), and fastpath's first root after t_c
     within drag_reference.tau_tolerance (the solver's own gap bound) of the 60-digit first root
     of the float state's gap, searched from t_c."""
-    tau, iterations, status, theta_star, v_star, kind = drag_detachment(eps, k, LAW[law])
+    tau, iterations, status, theta_star, v_star, kind = drag_detachment(
+        dissipative(eps, k, LAW[law], 0.5))
     assert kind == DETACHES and status == fastpath.FlightStatus.CONVERGED
     _, t_c = detachment_frame(eps, k, LAW[law])
     with mp.workdps(ref.DPS):
@@ -300,9 +302,9 @@ def test_w0_zero_departure_from_drag_detachment(law, eps, k):
 
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 def test_moments_with_drag_and_restitution_count_every_particle(law):
-    """fastpath.moments with drag and r < 1 (eps = 0.6, k = 0.1: never detaches): at every n of
-    the grid, moving + stuck + flagged = particles, and particles do get stuck."""
-    from fastpath.moments import moments
+    """fastpath.kernels.moments with drag and r < 1 (eps = 0.6, k = 0.1: never detaches): at every
+    n of the grid, moving + stuck + flagged = particles, and particles do get stuck."""
+    from fastpath.kernels.moments import moments
 
     n = 64
     m = moments(np.full(n, 4.0), np.linspace(2.0, 4.0, n), 0.6, [10, 100, 1000], drag=0.1,

@@ -7,7 +7,19 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.ensemble import NO_LIMIT, bin_index, escape_chunk, exit_hole, log_edges
+from fastpath.kernels.arrays import (
+    NO_LIMIT,
+    Bins,
+    EscapeCounts,
+    Flags,
+    Holes,
+    Horizon,
+    Sample,
+    Starts,
+)
+from fastpath.kernels.escape import escape_chunk
+from fastpath.kernels.histogram import bin_index, exit_hole, log_edges
+from fastpath.physics import elastic
 
 TWO_PI = 2 * math.pi
 EPS = 0.6
@@ -38,29 +50,17 @@ def run_kernel(
         target[:] = sample_target
         samples = np.zeros((m, 6))
     escape_chunk(
-        np.asarray(phi0, float),
-        np.asarray(v0, float),
-        np.zeros(m),
-        np.zeros(m, np.int64),
-        EPS,
-        np.asarray(hole_lo, float),
-        np.asarray(hole_width, float),
-        max_n,
-        max_t,
-        N_EDGES,
-        T_EDGES,
-        True,
-        True,
-        slot,
-        target,
-        out["esc_n"],
-        out["esc_t"],
-        out["cens_n"],
-        out["cens_t"],
-        out["collisions"],
-        out["flags"],
-        out["flag_state"],
-        samples,
+        elastic(EPS),
+        Starts(phi=np.asarray(phi0, float), v=np.asarray(v0, float), t=np.zeros(m),
+               n=np.zeros(m, np.int64)),
+        Holes(lo=np.asarray(hole_lo, float), width=np.asarray(hole_width, float)),
+        Horizon(max_collisions=max_n, max_time=max_t),
+        Bins(n_edges=N_EDGES, t_edges=T_EDGES, record_n=True, record_t=True),
+        Sample(slot=slot, target=target, rows=samples),
+        EscapeCounts(esc_n=out["esc_n"], esc_t=out["esc_t"], cens_n=out["cens_n"],
+                     cens_t=out["cens_t"], stuck_n=np.zeros((blocks, nb), np.int64),
+                     stuck_t=np.zeros((blocks, tb), np.int64), collisions=out["collisions"]),
+        Flags(status=out["flags"], state=out["flag_state"]),
     )
     out["samples"] = samples
     return out

@@ -14,7 +14,20 @@ import numpy as np
 import pytest
 from numba import prange
 
-from fastpath.ensemble import escape_chunk, log_edges, portrait_chunk
+from fastpath.kernels.arrays import (
+    Bins,
+    EscapeCounts,
+    Flags,
+    Holes,
+    Horizon,
+    Portrait,
+    Sample,
+    Starts,
+)
+from fastpath.kernels.escape import escape_chunk
+from fastpath.kernels.histogram import log_edges
+from fastpath.kernels.portrait import portrait_chunk
+from fastpath.physics import elastic
 
 TWO_PI = 2 * math.pi
 N_EDGES = log_edges(1.0, 8, 20, integer=True)
@@ -67,10 +80,17 @@ def escape_run(eps, max_n, max_t, m=6000, seed=7):
     target = rng.integers(1, 50, m)
 
     def run():
-        escape_chunk(phi0, v0, np.zeros(m), np.zeros(m, np.int64), eps, hole_lo, hole_width,
-                     max_n, max_t, N_EDGES, T_EDGES, True, True, slot, target, out["esc_n"],
-                     out["esc_t"], out["cens_n"], out["cens_t"], out["collisions"],
-                     out["flags"], out["flag_state"], out["samples"])
+        escape_chunk(elastic(eps),
+                     Starts(phi=phi0, v=v0, t=np.zeros(m), n=np.zeros(m, np.int64)),
+                     Holes(lo=hole_lo, width=hole_width),
+                     Horizon(max_collisions=max_n, max_time=max_t),
+                     Bins(n_edges=N_EDGES, t_edges=T_EDGES, record_n=True, record_t=True),
+                     Sample(slot=slot, target=target, rows=out["samples"]),
+                     EscapeCounts(esc_n=out["esc_n"], esc_t=out["esc_t"], cens_n=out["cens_n"],
+                                  cens_t=out["cens_t"], stuck_n=np.zeros((BLOCKS, nb), np.int64),
+                                  stuck_t=np.zeros((BLOCKS, tb), np.int64),
+                                  collisions=out["collisions"]),
+                     Flags(status=out["flags"], state=out["flag_state"]))
         return out
 
     return run
@@ -97,9 +117,11 @@ def test_portrait_counts_are_the_same_on_one_and_two_threads():
         counts = np.zeros((8, 90, 60), np.int64)
         collisions = np.zeros(8, np.int64)
         flags, flag_state = np.zeros(m, np.int8), np.zeros((m, 4))
-        portrait_chunk(phi0, v0, np.zeros(m, np.int64), 0.6, 200, 0.0, 12.0,
-                       np.full(m, -1, np.int64), np.zeros(m, np.int64), counts, collisions, flags,
-                       flag_state, np.zeros((0, 6)))
+        portrait_chunk(elastic(0.6),
+                       Starts(phi=phi0, v=v0, t=np.zeros(m), n=np.zeros(m, np.int64)), 200,
+                       Sample.none(m), Portrait(v_lo=0.0, v_hi=12.0, counts=counts,
+                                                collisions=collisions),
+                       Flags(status=flags, state=flag_state))
         return counts, collisions, flags
 
     one, two = on_threads(1, run), on_threads(2, run)

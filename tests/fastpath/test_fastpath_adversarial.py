@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 from mpmath import mp
 
 import fastpath
-from fastpath.flight import ITERATION_LIMIT
+from fastpath.status import ITERATION_LIMIT
 
 TWO_PI = 2.0 * math.pi
 GRAZE_UNITS = 2.0  # brief: converged grazes within 2*kappa*u after the polish
@@ -86,11 +86,12 @@ def test_triple_root_family(log_x, gap):
 
 def tight_backward_error_ok(phi, v, eps, tau):
     """|d(tau)| (exact) <= 2*E(tau) + 2*|d'(tau)|*ulp(tau), E the tight bound of the concave
-    refinement (``fastpath.tight_gap``, phi in [-pi, pi)): the refinement stops at |d| <= E with
-    d' certain, and its Newton point moves the exact gap to within E (the computed gap's error)
-    plus E*R/|d'| < E, plus the second-order term (< u*tau*|d'|/2) and the rounding of tau."""
-    from fastpath.gap import departure
-    from fastpath.tight_gap import tight_gap
+    refinement (``fastpath.elastic.tight_gap``, phi in [-pi, pi)): the refinement stops at
+    |d| <= E with d' certain, and its Newton point moves the exact gap to within E (the computed
+    gap's error) plus E*R/|d'| < E, plus the second-order term (< u*tau*|d'|/2) and the rounding of
+    tau."""
+    from fastpath.elastic.gap import departure
+    from fastpath.elastic.tight_gap import tight_gap
 
     sin_phi, cos_phi = math.sin(phi), math.cos(phi)
     _, w0_error = departure(phi, sin_phi, v, eps, 0.0)

@@ -25,8 +25,9 @@ from test_drag_reference import judge
 
 import fastpath
 import verify
-from fastpath.drag import LAWS, gap_state
-from fastpath.phase import centre_phase
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.dissipative.drag import gap_state
+from fastpath.physics import LAWS
 from scripts.chattering_grazes import WORK_DPS, tune
 from verify.hard_cases import CHATTERING_GRAZES
 

@@ -20,9 +20,9 @@ from fastpath_tolerances import K, U, phase_distance, phi1_tolerance, tau_tolera
 from mpmath import mp
 
 import fastpath
-from fastpath.collision import collide
-from fastpath.flight import solve_flight
-from fastpath.gap import gap, gap_error
+from fastpath.elastic.collision import collide
+from fastpath.elastic.flight import solve_flight
+from fastpath.elastic.gap import gap, gap_error
 
 N = 1_000_000
 TWO_PI = 2.0 * math.pi

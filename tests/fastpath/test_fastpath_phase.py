@@ -1,4 +1,4 @@
-"""fastpath.phase.reduce_phase against mpmath (x mod 2*pi at 50 digits)."""
+"""fastpath.arithmetic.phase.reduce_phase against mpmath (x mod 2*pi at 50 digits)."""
 
 import math
 
@@ -7,7 +7,7 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 from mpmath import mp
 
-from fastpath.phase import (
+from fastpath.arithmetic.phase import (
     TWO_PI_HI,
     TWO_PI_LO,
     TWO_PI_MID,

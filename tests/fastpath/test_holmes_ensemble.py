@@ -1,11 +1,15 @@
-"""fastpath.ensemble.holmes_escape_chunk: the benchmark's Holmes-map ensemble, replayed by hand."""
+"""holmes_escape_chunk (fastpath.kernels.escape): the benchmark's Holmes-map ensemble, replayed by
+hand."""
 
 import math
 
 import numpy as np
 
 import fastpath
-from fastpath.ensemble import bin_index, exit_hole, holmes_escape_chunk, log_edges
+from fastpath.kernels.arrays import Bins, EscapeCounts, Holes, Horizon, Starts
+from fastpath.kernels.escape import holmes_escape_chunk
+from fastpath.kernels.histogram import bin_index, exit_hole, log_edges
+from fastpath.physics import holmes
 
 
 def test_holmes_ensemble_matches_a_replay_with_holmes_step():
@@ -22,8 +26,12 @@ def test_holmes_ensemble_matches_a_replay_with_holmes_step():
     cens_n = np.zeros((blocks, len(n_edges)), np.int64)
     cens_t = np.zeros((blocks, len(t_edges)), np.int64)
     collisions = np.zeros(blocks, np.int64)
-    holmes_escape_chunk(phi0, v0, eps, lo, width, max_n, max_t, n_edges, t_edges, esc_n, esc_t,
-                        cens_n, cens_t, collisions)
+    holmes_escape_chunk(holmes(eps), Starts(phi=phi0, v=v0, t=np.zeros(m),
+                                            n=np.zeros(m, np.int64)),
+                        Holes(lo=lo, width=width), Horizon(max_collisions=max_n, max_time=max_t),
+                        Bins(n_edges=n_edges, t_edges=t_edges, record_n=True, record_t=True),
+                        EscapeCounts(esc_n, esc_t, cens_n, cens_t, np.zeros_like(cens_n),
+                                     np.zeros_like(cens_t), collisions))
     want_n, want_cens = np.zeros((2, len(n_edges)), np.int64), np.zeros(len(n_edges), np.int64)
     total = 0
     for p, v in zip(phi0, v0, strict=True):

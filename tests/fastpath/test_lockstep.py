@@ -1,4 +1,4 @@
-"""fastpath.lockstep: the straight-line flight of the ensembles' lanes.
+"""fastpath.elastic.lockstep: the straight-line flight of the ensembles' lanes.
 
 It must be the function ``fastpath.step`` computes (one flight and a batch of lanes give the same
 bits), answer only inside the certified bracket, agree with the general concave solver to the
@@ -12,16 +12,16 @@ import numpy as np
 
 import fastpath
 import verify
-from fastpath.concave import bracket, concave_flight
-from fastpath.gap import departure, gap_error, rate_error
-from fastpath.lockstep import (
+from fastpath.arithmetic.phase import centre_moderate, centre_phase, reduce_moderate, reduce_phase
+from fastpath.arithmetic.sincos import sin_cos
+from fastpath.elastic.concave import bracket, concave_flight
+from fastpath.elastic.gap import departure, gap_error, rate_error
+from fastpath.elastic.lockstep import (
     LOCKSTEP_EVALUATIONS,
     lockstep_flight,
     lockstep_flight_one,
     moderate_bracket,
 )
-from fastpath.phase import centre_moderate, centre_phase, reduce_moderate, reduce_phase
-from fastpath.sincos import sin_cos
 
 U = 2.0**-53
 

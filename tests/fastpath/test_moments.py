@@ -1,4 +1,5 @@
-"""fastpath.moments: block sums of velocity moments, against fastpath.orbit, for any threads."""
+"""fastpath.kernels.moments: block sums of velocity moments, against fastpath.orbit, for any
+thread count."""
 
 import math
 
@@ -7,7 +8,7 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.moments import moments
+from fastpath.kernels.moments import moments
 
 N_GRID = np.array([0, 1, 2, 7, 50, 300])
 T_GRID = np.array([0.0, 0.5, 3.0, 40.0, 700.0])

@@ -38,10 +38,10 @@ import pytest
 from fastpath_tolerances import U, kappa
 from mpmath import mp
 
-import fastpath.concave as concave
-from fastpath.concave import ITERATION_LIMIT, bracket
-from fastpath.gap import departure
-from fastpath.status import FlightStatus
+import fastpath.elastic.concave as concave
+from fastpath.elastic.concave import bracket
+from fastpath.elastic.gap import departure
+from fastpath.status import ITERATION_LIMIT, FlightStatus
 
 DPS = 40
 CONVERGED = int(FlightStatus.CONVERGED)
@@ -86,7 +86,7 @@ def _exact_gap(phi, v, eps, t):
 
 
 def test_half_angle_loop_makes_exactly_the_budget(evaluations):
-    """Mutants 86, 87, 96: ``_flight_half_angle``'s ``range(1, ITERATION_LIMIT + 1)`` with
+    """Mutants 86, 87, 96: ``flight_half_angle``'s ``range(1, ITERATION_LIMIT + 1)`` with
     start 2, ``ITERATION_LIMIT - 1`` or ``ITERATION_LIMIT + 2``.
 
     A flight that cannot converge within the budget, built so that this follows from the
@@ -105,7 +105,7 @@ def test_half_angle_loop_makes_exactly_the_budget(evaluations):
     lo = 2.0 * w0 / (1.0 - eps * cos_phi)  # the solver's first guess, computed as it does
     assert _exact_gap(phi, v, eps, lo) > 0  # before the (only) root: a sound lower end
     hi = 2.0**200
-    tau, _, _, reported, status = _python(concave._flight_half_angle)(
+    tau, _, _, reported, status = _python(concave.flight_half_angle)(
         phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
     assert evaluations[0][1] == 0.5 * (lo + hi)  # the start left the bracket: its midpoint
     assert len(evaluations) == reported == ITERATION_LIMIT
@@ -115,7 +115,7 @@ def test_half_angle_loop_makes_exactly_the_budget(evaluations):
 
 
 def test_holmes_loop_makes_exactly_the_budget(evaluations):
-    """Mutants 46, 51: ``_flight_from_holmes``'s ``range(1, ITERATION_LIMIT + 1)`` with
+    """Mutants 46, 51: ``flight_from_holmes``'s ``range(1, ITERATION_LIMIT + 1)`` with
     ``ITERATION_LIMIT - 1`` or ``ITERATION_LIMIT + 2``.
 
     A Holmes flight (2*w0 >= 1 + |eps|) given the loose but sound bracket [lo, 2**600]: phi =
@@ -131,7 +131,7 @@ def test_holmes_loop_makes_exactly_the_budget(evaluations):
     w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
     assert 2.0 * w0 >= 1.0 + abs(eps)  # the Holmes start
     lo, _ = bracket(v, w0, w0_error, eps)
-    tau, _, _, reported, status = _python(concave._flight_from_holmes)(
+    tau, _, _, reported, status = _python(concave.flight_from_holmes)(
         phi, sin_phi, cos_phi, v, eps, lo, 2.0**600)
     assert evaluations[0][1] == 2.0 * v and evaluations[0][3] > 0.1  # rising at the start
     assert 2.0**299 < evaluations[1][1] < 2.0**300  # the geometric mean
@@ -201,9 +201,9 @@ def test_the_second_point_is_halleys_step_from_the_first(evaluations, phi, v, ep
     w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
     lo, hi = bracket(v, w0, w0_error, eps)
     if 2.0 * w0 >= 1.0 + abs(eps):
-        answer = _python(concave._flight_from_holmes)(phi, sin_phi, cos_phi, v, eps, lo, hi)
+        answer = _python(concave.flight_from_holmes)(phi, sin_phi, cos_phi, v, eps, lo, hi)
     else:
-        answer = _python(concave._flight_half_angle)(phi, sin_phi, cos_phi, v, eps, lo, hi,
+        answer = _python(concave.flight_half_angle)(phi, sin_phi, cos_phi, v, eps, lo, hi,
                                                      w0_error)
     assert answer[4] == CONVERGED and len(evaluations) >= 2
     t1, t2 = evaluations[0][1], evaluations[1][1]
@@ -219,19 +219,19 @@ def test_the_second_point_is_halleys_step_from_the_first(evaluations, phi, v, ep
 
 
 def test_newton_inexact_at_its_threshold():
-    """Mutant 61: ``_newton_inexact``'s ``>`` -> ``>=``.
+    """Mutant 61: ``newton_inexact``'s ``>`` -> ``>=``.
 
     Whether the Newton point may miss the root by MORE than u*t/2 in second order
     (docstring): (|d''| + |eps*delta|)*delta**2 > u*t*|d'| with delta = d/d'. At equality it is
     not inexact (the answer is final). With eps = 0, d'' = -1, d' = -1, d = 2**-30 and
     t = 2**-7 both sides are exactly 2**-60."""
-    from fastpath.concave import _newton_inexact
+    from fastpath.elastic.concave import newton_inexact
 
     t, d, d1 = 2.0**-7, 2.0**-30, -1.0
     assert (abs(-1.0) + 0.0) * (d / d1) ** 2 == U * t * abs(d1) == 2.0**-60  # the tie, exact
-    assert not _newton_inexact(t, d, d1, -1.0, 0.0)
-    assert _newton_inexact(t, math.nextafter(d, 1.0), d1, -1.0, 0.0)
-    assert not _newton_inexact(t, math.nextafter(d, 0.0), d1, -1.0, 0.0)
+    assert not newton_inexact(t, d, d1, -1.0, 0.0)
+    assert newton_inexact(t, math.nextafter(d, 1.0), d1, -1.0, 0.0)
+    assert not newton_inexact(t, math.nextafter(d, 0.0), d1, -1.0, 0.0)
 
 
 # --- the refinement's classification at exact ties (crafted states, eps = 0) ---
@@ -241,7 +241,7 @@ def _w0_error_for(index, target, sin_phi, cos_phi, v, eps, t, least=0.0):
     """The smallest w0_error >= ``least`` at which ``tight_gap``'s output ``index`` (5: E,
     6: R) reaches ``target``, by bisection over the float64 bit patterns (E and R do not
     decrease as w0_error grows)."""
-    from fastpath.tight_gap import tight_gap
+    from fastpath.elastic.tight_gap import tight_gap
 
     def bits(x):
         return struct.unpack("<q", struct.pack("<d", x))[0]
@@ -276,7 +276,7 @@ def test_refinement_at_a_gap_exactly_on_its_bound_is_at_the_root(t, side):
     the Newton point t - d/d' = 2 + O(2**-59), i.e. exactly 2.0, after one evaluation
     (the correction is not inexact: (d/d')**2 ~ 2**-60 <= u*t*|d'| ~ 2**-52). The mutants
     take d = +E as "before" (d = -E as "after") and spend a Halley step: two evaluations."""
-    from fastpath.tight_gap import tight_gap
+    from fastpath.elastic.tight_gap import tight_gap
 
     sin_phi, cos_phi, v = math.sin(_PHI), math.cos(_PHI), 1.0
     d = t * (v - 0.5 * t)
@@ -297,7 +297,7 @@ def test_refinement_at_a_slope_exactly_minus_its_bound_is_flat():
     the slope's bound R is exactly 1 (asserted). |d| <= E, and d' = -R does not prove d' < 0
     (the exact slope may be 0): float64 cannot tell a root from a flat top there, and the
     refinement must say UNCERTAIN (at t, after one evaluation). The mutant calls it a root."""
-    from fastpath.tight_gap import tight_gap
+    from fastpath.elastic.tight_gap import tight_gap
 
     sin_phi, cos_phi, v, t = math.sin(_PHI), math.cos(_PHI), 1.0, 2.0
     w0_error = _w0_error_for(6, 1.0, sin_phi, cos_phi, v, 0.0, t)
@@ -320,7 +320,7 @@ def test_refinement_at_a_slope_exactly_its_bound_is_flat():
     found by a search over such flights; w0_error (above the departure's own bound, so still a
     valid bound) is chosen so that R is exactly the computed d' (asserted, with |d| <= E). The
     mutant takes the point as "before" and goes on."""
-    from fastpath.tight_gap import tight_gap
+    from fastpath.elastic.tight_gap import tight_gap
 
     phi, v, eps, t = 3.141592644557456, 9.032337222943266e-09, -1.0, 2.054437778516293e-10
     sin_phi, cos_phi = math.sin(phi), math.cos(phi)
@@ -345,7 +345,7 @@ def _replay_refinement(points, eps):
     (index of the evaluation where it must stop, why, stalls, continuations). Each point is
     classified by E and R; one with |d| <= E and d' < -R gives the Newton point t - d/d', the
     next iterate while the correction may miss by more than u*t/2 in second order
-    (``_newton_inexact``: (|d''| + |eps*delta|)*delta**2 > u*t*|d'|, delta = d/d'), except
+    (``newton_inexact``: (|d''| + |eps*delta|)*delta**2 > u*t*|d'|, delta = d/d'), except
     that a Newton step not shorter than half the previous one is a stall, and the third stall
     stops it (_NEWTON_STALLS = 2 may fail to halve)."""
     last_step, stalls, continuations = math.inf, 0, 0
@@ -397,7 +397,7 @@ def test_refinement_stops_where_its_rule_says(evaluations):
         w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
         lo, hi = bracket(v, w0, w0_error, eps)
         evaluations.clear()
-        tau, _, _, reported, status = _python(concave._flight_half_angle)(
+        tau, _, _, reported, status = _python(concave.flight_half_angle)(
             phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
         tight = [point for point in evaluations if point[0] == "tight"]
         stop, why, stalls, continuations = _replay_refinement(tight, eps)
@@ -430,7 +430,7 @@ def test_an_overflowing_gap_is_an_overflow():
     w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
     lo = 2.0 * w0 / (1.0 - eps * cos_phi)
     assert 2.0 * w0 < 1.0 + abs(eps) and _exact_gap(phi, v, eps, lo) > 0
-    tau, s, c, reported, status = concave._flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo,
+    tau, s, c, reported, status = concave.flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo,
                                                              2.0**1023, w0_error)
     assert status == overflow and reported == 1 and math.isnan(tau) and math.isnan(s)
 
@@ -439,7 +439,7 @@ def test_an_overflowing_gap_is_an_overflow():
     w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
     assert 2.0 * w0 >= 1.0 + abs(eps)
     lo, _ = bracket(v, w0, w0_error, eps)
-    tau, s, c, reported, status = concave._flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo,
+    tau, s, c, reported, status = concave.flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo,
                                                               2.0**1023)
     assert status == overflow and reported == 2 and math.isnan(tau) and math.isnan(c)
 
@@ -447,7 +447,7 @@ def test_an_overflowing_gap_is_an_overflow():
 @pytest.mark.parametrize("phi, v, eps, end", [(-1.5, 0.6, 0.5, "lo"), (1.5, 0.25, 0.5, "hi")])
 def test_a_first_guess_on_a_bracket_end_is_replaced_by_the_midpoint(evaluations, phi, v, eps,
                                                                      end):
-    """Mutants 84, 85: ``_flight_half_angle``'s ``not lo < t < hi`` with either ``<`` -> ``<=``.
+    """Mutants 84, 85: ``flight_half_angle``'s ``not lo < t < hi`` with either ``<`` -> ``<=``.
 
     The half-angle start is the root of the frozen-acceleration parabola,
     2*w0/(1 - eps*cos(phi)), if it lies strictly inside the bracket, else the bracket's midpoint
@@ -467,7 +467,7 @@ def test_a_first_guess_on_a_bracket_end_is_replaced_by_the_midpoint(evaluations,
     else:
         assert _exact_gap(phi, v, eps, guess) < 0
         lo, hi = natural_lo, guess
-    tau, _, _, _, status = _python(concave._flight_half_angle)(phi, sin_phi, cos_phi, v, eps, lo,
+    tau, _, _, _, status = _python(concave.flight_half_angle)(phi, sin_phi, cos_phi, v, eps, lo,
                                                                hi, w0_error)
     assert evaluations[0][1] == 0.5 * (lo + hi) != guess
     assert status == CONVERGED and lo <= tau <= hi
@@ -482,7 +482,7 @@ def test_a_first_guess_on_a_bracket_end_is_replaced_by_the_midpoint(evaluations,
     (-0.002435281146165613, 0.0024352801687179157, 1.0),
 ])
 def test_no_refinement_where_the_newton_correction_is_exact(evaluations, phi, v, eps):
-    """Mutant 107: the d'' passed to ``_newton_inexact`` from ``_flight_half_angle`` as
+    """Mutant 107: the d'' passed to ``newton_inexact`` from ``flight_half_angle`` as
     -1 - eps*cos(phi + t) instead of -1 + eps*cos(phi + t).
 
     Short near-triple flights (found by a search over such flights) whose loose loop stops at a
@@ -496,7 +496,7 @@ def test_no_refinement_where_the_newton_correction_is_exact(evaluations, phi, v,
     w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
     assert 2.0 * w0 < 1.0 + abs(eps)
     lo, hi = bracket(v, w0, w0_error, eps)
-    tau, _, _, reported, status = _python(concave._flight_half_angle)(
+    tau, _, _, reported, status = _python(concave.flight_half_angle)(
         phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
     assert status == CONVERGED and lo <= tau <= hi
     _, t, d, d1 = evaluations[-1]
@@ -509,7 +509,7 @@ def test_no_refinement_where_the_newton_correction_is_exact(evaluations, phi, v,
 
 
 def test_the_refinement_is_tried_at_the_smallest_t():
-    """Mutant 103: ``t >= SMALLEST_T`` -> ``>`` in ``_flight_half_angle``.
+    """Mutant 103: ``t >= SMALLEST_T`` -> ``>`` in ``flight_half_angle``.
 
     ``tight_gap`` is proved for t >= SMALLEST_T = 2**-1000 (t/2 exact, the underflow
     allowance), and a point the loose bound leaves flat at such a t goes to the refinement.
@@ -519,7 +519,7 @@ def test_the_refinement_is_tried_at_the_smallest_t():
     slope are below every rounding bound (both underflow): flat by the loose test, and the
     refinement must evaluate ``tight_gap`` there (it finds it flat too: UNCERTAIN after two
     evaluations). The mutant stops at the loose verdict without trying."""
-    from fastpath.tight_gap import SMALLEST_T
+    from fastpath.elastic.tight_gap import SMALLEST_T
 
     phi, v, eps = 0.0, 2.0**-1001, 0.5
     sin_phi, cos_phi = math.sin(phi), math.cos(phi)
@@ -540,7 +540,7 @@ def test_the_refinement_is_tried_at_the_smallest_t():
         patch.setattr(concave, "classify", counted_classify)
         patch.setattr(concave, "tight_gap", counted_tight_gap)
         patch.setattr(concave, "_refine", _python(concave._refine))
-        tau, _, _, reported, status = _python(concave._flight_half_angle)(
+        tau, _, _, reported, status = _python(concave.flight_half_angle)(
             phi, sin_phi, cos_phi, v, eps, 0.0, 2.0**-999, w0_error)
     assert points == [("loose", SMALLEST_T), ("tight", SMALLEST_T)]
     assert status == int(FlightStatus.UNCERTAIN) and tau == SMALLEST_T and reported == 2

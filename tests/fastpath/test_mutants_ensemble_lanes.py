@@ -7,11 +7,13 @@ where its moderate phase reduction is the one ``collide`` uses (|phi + tau| < 2*
 
 import numpy as np
 
-from fastpath.collision import collide
-from fastpath.ensemble import lane_collide
-from fastpath.flight import GENERAL, departure_phase
-from fastpath.lockstep import COS, DELTA, DONE, FAILED, HI, LO, SIN, T
-from fastpath.phase import centre_phase
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.elastic.collision import collide
+from fastpath.elastic.flight import GENERAL, departure_phase
+from fastpath.elastic.lockstep import COS, DELTA, DONE, FAILED, HI, LO, SIN, T
+from fastpath.kernels.arrays import Bins, EscapeCounts, Flags, Holes, Horizon, Sample, Starts
+from fastpath.kernels.escape import lane_collide
+from fastpath.physics import elastic
 
 
 def _states(n, seed=5):
@@ -69,9 +71,9 @@ def test_lockstep_step_is_halley_from_the_holmes_start():
     each: 8u*|step|, plus u*t for the subtraction), checked in mpmath from the same floats."""
     import mpmath
 
-    from fastpath.gap import departure
-    from fastpath.lockstep import _evaluation, _start
-    from fastpath.sincos import sin_cos
+    from fastpath.arithmetic.sincos import sin_cos
+    from fastpath.elastic.gap import departure
+    from fastpath.elastic.lockstep import lane_evaluation, lane_start
 
     u = 2.0**-53
     phi, v, eps = _states(300, seed=11)
@@ -79,15 +81,15 @@ def test_lockstep_step_is_halley_from_the_holmes_start():
     for p, w, e in zip(phi, v, eps, strict=True):
         s, c = sin_cos(p)
         _, w0_error = departure(p, s, w, e, 0.0)
-        state, two_v = _start(p, s, w, e, w0_error)
+        state, two_v = lane_start(p, s, w, e, w0_error)
         if state[FAILED]:  # not eligible
             continue
         t, delta, s0, c0, lo, hi = (state[T], state[DELTA], state[SIN], state[COS],
                                     state[LO], state[HI])
-        after = _evaluation(state, p, c, w, e, two_v, 1)
+        after = lane_evaluation(state, p, c, w, e, two_v, 1)
         if after[DONE] or after[FAILED] or after[T] == 0.5 * (lo + hi):  # answered, gave up, halved
             continue
-        d = e * (c - c0) - 0.5 * t * delta  # as _evaluation computes them, from the same floats
+        d = e * (c - c0) - 0.5 * t * delta  # as lane_evaluation computes them, from the same floats
         d1 = -w - delta + e * s0
         with mpmath.workdps(40):
             d, d1, d2 = mpmath.mpf(d), mpmath.mpf(d1), -1 + mpmath.mpf(e) * mpmath.mpf(c0)
@@ -101,9 +103,9 @@ def test_lockstep_iterates_stay_inside_the_bracket():
     """Every evaluation that neither answers nor gives up moves to a point strictly inside the
     updated bracket; where Halley's step leaves it (short flights, v < 1, eps near +-1) the
     guard takes the bracket's midpoint."""
-    from fastpath.gap import departure
-    from fastpath.lockstep import _evaluation, _start
-    from fastpath.sincos import sin_cos
+    from fastpath.arithmetic.sincos import sin_cos
+    from fastpath.elastic.gap import departure
+    from fastpath.elastic.lockstep import lane_evaluation, lane_start
 
     rng = np.random.default_rng(0)
     guarded = 0
@@ -114,11 +116,11 @@ def test_lockstep_iterates_stay_inside_the_bracket():
         w0, w0_error = departure(p, s, w, e, 0.0)
         if not w0 > w0_error:
             continue
-        state, two_v = _start(p, s, w, e, w0_error)
+        state, two_v = lane_start(p, s, w, e, w0_error)
         for k in range(1, 5):
             if state[DONE] or state[FAILED]:
                 break
-            state = _evaluation(state, p, c, w, e, two_v, k)
+            state = lane_evaluation(state, p, c, w, e, two_v, k)
             t, lo, hi = state[T], state[LO], state[HI]
             if not (state[DONE] or state[FAILED]):
                 assert lo < t < hi
@@ -127,13 +129,13 @@ def test_lockstep_iterates_stay_inside_the_bracket():
 
 
 def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
-    """_start: t = 2v, the certified bracket of this departure (``fastpath.concave.bracket`` of
-    w0 = v + eps*sin(phi)), no answer yet, and the lane eligible exactly when
-    2*w0 >= 1 + |eps| (the other conditions hold for these states)."""
-    from fastpath.concave import bracket
-    from fastpath.gap import departure
-    from fastpath.lockstep import _start
-    from fastpath.sincos import sin_cos
+    """lane_start: t = 2v, the certified bracket of this departure
+    (``fastpath.elastic.concave.bracket`` of w0 = v + eps*sin(phi)), no answer yet, and the lane
+    eligible exactly when 2*w0 >= 1 + |eps| (the other conditions hold for these states)."""
+    from fastpath.arithmetic.sincos import sin_cos
+    from fastpath.elastic.concave import bracket
+    from fastpath.elastic.gap import departure
+    from fastpath.elastic.lockstep import lane_start
 
     phi, v, eps = _states(300, seed=2)
     for p, w, e in zip(phi, v * 0.1, eps, strict=True):
@@ -141,27 +143,27 @@ def test_lockstep_start_is_the_holmes_time_in_the_certified_bracket():
         w0, w0_error = departure(p, s, w, e, 0.0)
         if not w0 > w0_error:
             continue
-        state, two_v = _start(p, s, w, e, w0_error)
+        state, two_v = lane_start(p, s, w, e, w0_error)
         assert two_v == state[T] == 2 * w and state[DELTA] == 0.0
         assert (state[LO], state[HI]) == bracket(w, w + e * s, w0_error, e)
         assert state[FAILED] == (not 2 * (w + e * s) >= 1 + abs(e))
     for w, e in ((0.5, 0.0), (0.75, 0.5), (1.0, 1.0)):  # phi = 0: 2*w0 = 1 + |eps| exactly
-        assert not _start(0.0, 0.0, w, e, 0.0)[0][FAILED]
-        assert _start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][FAILED]
+        assert not lane_start(0.0, 0.0, w, e, 0.0)[0][FAILED]
+        assert lane_start(0.0, 0.0, np.nextafter(w, 0.0), e, 0.0)[0][FAILED]
     # |v| > 1e-150 (v**2 must not underflow): eps = 1, phi = pi/2 makes 2*w0 = 2 >= 1 + |eps|
     s, _ = sin_cos(np.pi / 2)
     assert s == 1.0
-    assert _start(np.pi / 2, s, 1e-150, 1.0, 0.0)[0][FAILED]
-    assert not _start(np.pi / 2, s, np.nextafter(1e-150, 1.0), 1.0, 0.0)[0][FAILED]
+    assert lane_start(np.pi / 2, s, 1e-150, 1.0, 0.0)[0][FAILED]
+    assert not lane_start(np.pi / 2, s, np.nextafter(1e-150, 1.0), 1.0, 0.0)[0][FAILED]
     # the Holmes phase phi + 2v must be inside sin_cos's range |x| < 2**20
-    assert _start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][FAILED]
-    assert not _start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][FAILED]
+    assert lane_start(0.0, 0.0, 2.0**19, 0.6, 0.0)[0][FAILED]
+    assert not lane_start(0.0, 0.0, np.nextafter(2.0**19, 0.0), 0.6, 0.0)[0][FAILED]
 
 
 def test_lockstep_collide_answers_eps_one():
     """|eps| = 1 is concave (DESIGN fact 11): the lanes answer such flights too (eps = 1)."""
-    from fastpath.lockstep import lockstep_collide
-    from fastpath.sincos import sin_cos
+    from fastpath.arithmetic.sincos import sin_cos
+    from fastpath.elastic.lockstep import lockstep_collide
 
     centred, error = departure_phase(0.3)
     s, c = sin_cos(centred)
@@ -170,7 +172,7 @@ def test_lockstep_collide_answers_eps_one():
     assert tau == collide(0.3, 2.0, 1.0)[2]
 
 
-# Crafted lane states for the comparisons at exact equality in ``_evaluation``. With eps = 0
+# Crafted lane states for the comparisons at exact equality in ``lane_evaluation``. With eps = 0
 # the plate term and its error bounds vanish: d = -t*delta/2, d' = -v - delta, and (t = 1)
 # d_err = d1_err = 4u*(|v| + 1), all exact in float64 for the dyadic values below, so d and d'
 # can be put exactly on their error bounds. delta is read from the state (not t - 2v), so it is
@@ -186,7 +188,7 @@ def _crafted(v, delta, lo=0.25, hi=4.0):
 
 def _bounds(v):
     """(d_err, d1_err) at t = 1, eps = 0, as ``gap_error`` and ``rate_error`` give them."""
-    from fastpath.gap import gap_error, rate_error
+    from fastpath.elastic.gap import gap_error, rate_error
 
     return gap_error(0.0, v, 0.0, 1.0), rate_error(0.0, v, 0.0, 1.0)
 
@@ -195,8 +197,8 @@ def test_lockstep_root_test_includes_a_gap_on_its_error_bound():
     """|d| == d_err with d' < -d1_err is a root (``abs(d) <= d_err``), even where the Newton
     correction is far from final (|d'| only 2*d1_err): the lane answers at t + newton (inside
     the bracket here). As ``abs(d) < d_err`` it would give up as a flat top."""
-    from fastpath.concave import newton_is_final
-    from fastpath.lockstep import TAU, _evaluation
+    from fastpath.elastic.concave import newton_is_final
+    from fastpath.elastic.lockstep import TAU, lane_evaluation
 
     v = 16 * _U
     d_err, d1_err = _bounds(v)
@@ -205,7 +207,7 @@ def test_lockstep_root_test_includes_a_gap_on_its_error_bound():
     d, d1 = -0.5 * delta, -v - delta
     assert d == d_err and -16 * d1_err < d1 < -d1_err
     assert not newton_is_final(-d / d1, d_err, d1_err, 0.0)
-    after = _evaluation(state, *args)
+    after = lane_evaluation(state, *args)
     assert after[DONE] and not after[FAILED]
     assert abs(after[TAU] - (1.0 - d / d1)) <= 8 * _U  # the Newton point t - d/d' ~ 1.5
 
@@ -213,28 +215,28 @@ def test_lockstep_root_test_includes_a_gap_on_its_error_bound():
 def test_lockstep_root_test_needs_a_rate_below_its_error_bound():
     """d' == -d1_err exactly (with |d| < d_err) is not a certain descent: no answer; the lane
     gives up as a flat top (``not d1 > d1_err``). As ``d1 <= -d1_err`` it would answer."""
-    from fastpath.lockstep import _evaluation
+    from fastpath.elastic.lockstep import lane_evaluation
 
     v = 2.0**-50
     d_err, d1_err = _bounds(v)
     delta = d1_err - v  # d' = -v - delta = -d1_err
     state, args = _crafted(v, delta)
     assert -v - delta == -d1_err and abs(-0.5 * delta) < d_err
-    after = _evaluation(state, *args)
+    after = lane_evaluation(state, *args)
     assert after[FAILED] and not after[DONE]
 
 
 def test_lockstep_flat_top_includes_a_rate_on_its_error_bound():
     """d' == d1_err exactly with |d| < d_err is a flat top (the rise is not certain): the
     lane gives up. As ``not d1 >= d1_err`` it would raise lo to t and step on."""
-    from fastpath.lockstep import _evaluation
+    from fastpath.elastic.lockstep import lane_evaluation
 
     v = 2.0**-52
     d_err, d1_err = _bounds(v)
     delta = -v - d1_err  # d' = d1_err
     state, args = _crafted(v, delta)
     assert -v - delta == d1_err and abs(-0.5 * delta) < d_err
-    after = _evaluation(state, *args)
+    after = lane_evaluation(state, *args)
     assert after[FAILED] and not after[DONE]
 
 
@@ -242,7 +244,7 @@ def test_lockstep_bracket_moves_only_on_a_gap_beyond_its_error_bound():
     """d == +-d_err exactly with |d'| <= d1_err: the sign of the gap is not certain, so neither
     bracket end moves and the lane gives up as a flat top. As ``d >= d_err`` (``d <= -d_err``)
     it would move lo (hi) to t and step on."""
-    from fastpath.lockstep import _evaluation
+    from fastpath.elastic.lockstep import lane_evaluation
 
     for v in (2.0**-50, -(2.0**-50)):  # d = +d_err, then d = -d_err
         d_err, d1_err = _bounds(v)
@@ -250,7 +252,7 @@ def test_lockstep_bracket_moves_only_on_a_gap_beyond_its_error_bound():
         state, args = _crafted(v, delta)
         d, d1 = -0.5 * delta, -v - delta
         assert abs(d) == d_err and abs(d1) <= d1_err
-        after = _evaluation(state, *args)
+        after = lane_evaluation(state, *args)
         assert after[FAILED] and not after[DONE]
         assert (after[LO], after[HI]) == (0.25, 4.0)
 
@@ -259,18 +261,18 @@ def test_lockstep_halley_step_onto_a_bracket_end_is_bisected():
     """A Halley step that lands exactly on a bracket end is not inside the bracket: the guard
     bisects (``lo < t_next < hi``). As ``<=`` the lane would stop there (bracket closed) and
     give up. The step is first taken in a wide bracket; that end is then put on it."""
-    from fastpath.lockstep import _evaluation
+    from fastpath.elastic.lockstep import lane_evaluation
 
     # d = 0.5 > d_err, d' = -1: lo moves to t = 1 and Halley steps right (to 1.4);
     # d = -0.5 < -d_err, d' = -1.5: hi moves to t = 1 and Halley steps left (to 0.625)
     for v, delta, end in ((2.0, -1.0, HI), (0.5, 1.0, LO)):
         state, args = _crafted(v, delta)
-        wide = _evaluation(state, *args)
+        wide = lane_evaluation(state, *args)
         t_next = wide[T]
         assert not (wide[DONE] or wide[FAILED]) and 0.25 < t_next < 4.0 and t_next != 1.0
         lo, hi = (1.0, t_next) if end == HI else (t_next, 1.0)
         state, args = _crafted(v, delta, *((0.25, t_next) if end == HI else (t_next, 4.0)))
-        after = _evaluation(state, *args)
+        after = lane_evaluation(state, *args)
         assert not (after[DONE] or after[FAILED])
         assert (after[LO], after[HI]) == (lo, hi) and after[T] == 0.5 * (lo + hi)
 
@@ -281,7 +283,8 @@ def test_escape_chunk_counts_each_particle_into_its_own_block():
     2, 1), no hole (width 0), each censored at exactly 5 collisions, give 10, 10, 10, 5 (a block
     size (m + blocks + 1)//blocks = 3 would give 15, 15, 5, 0; a first lane's block
     (first - lane)//per_block, wrapped as a negative index, 5, 10, 10, 10)."""
-    from fastpath.ensemble import escape_chunk, log_edges
+    from fastpath.kernels.escape import escape_chunk
+    from fastpath.kernels.histogram import log_edges
 
     m, blocks, max_n = 7, 4, 5
     rng = np.random.default_rng(3)
@@ -290,12 +293,14 @@ def test_escape_chunk_counts_each_particle_into_its_own_block():
     nb, tb = len(n_edges), len(t_edges)
     collisions = np.zeros(blocks, np.int64)
     cens_n = np.zeros((blocks, nb), np.int64)
-    escape_chunk(rng.uniform(-np.pi, np.pi, m), rng.uniform(1.0, 5.0, m), np.zeros(m),
-                 np.zeros(m, np.int64), 0.6, np.array([1.0]), np.array([0.0]), max_n, np.inf,
-                 n_edges, t_edges, True, True, np.full(m, -1, np.int64),
-                 np.zeros(m, np.int64), np.zeros((blocks, 1, nb), np.int64),
-                 np.zeros((blocks, 1, tb), np.int64), cens_n, np.zeros((blocks, tb), np.int64),
-                 collisions, np.zeros(m, np.int8), np.zeros((m, 4)), np.zeros((0, 6)))
+    counts = EscapeCounts.zeros(blocks, 1, nb, tb)._replace(cens_n=cens_n, collisions=collisions)
+    escape_chunk(elastic(0.6), Starts(phi=rng.uniform(-np.pi, np.pi, m),
+                                      v=rng.uniform(1.0, 5.0, m), t=np.zeros(m),
+                                      n=np.zeros(m, np.int64)),
+                 Holes(lo=np.array([1.0]), width=np.array([0.0])),
+                 Horizon(max_collisions=max_n, max_time=np.inf),
+                 Bins(n_edges=n_edges, t_edges=t_edges, record_n=True, record_t=True),
+                 Sample.none(m), counts, Flags.zeros(m))
     assert cens_n.sum(axis=1).tolist() == [2, 2, 2, 1]  # every particle censored, none flagged
     assert collisions.tolist() == [2 * max_n, 2 * max_n, 2 * max_n, max_n]
 
@@ -305,7 +310,8 @@ def test_overlapping_holes_count_into_the_first_listed():
     returns the first j): with two identical holes every escape is in hole 0, in the lanes'
     vectorised hole test too (``hole[lane] < 0`` keeps the first; ``<= 0`` would let hole 1
     overwrite hole 0)."""
-    from fastpath.ensemble import escape_chunk, log_edges
+    from fastpath.kernels.escape import escape_chunk
+    from fastpath.kernels.histogram import log_edges
 
     m, blocks, max_n = 50, 2, 2000
     rng = np.random.default_rng(4)
@@ -315,12 +321,14 @@ def test_overlapping_holes_count_into_the_first_listed():
     esc_n = np.zeros((blocks, 2, nb), np.int64)
     cens_n = np.zeros((blocks, nb), np.int64)
     flags = np.zeros(m, np.int8)
-    escape_chunk(rng.uniform(-np.pi, np.pi, m), rng.uniform(1.0, 5.0, m), np.zeros(m),
-                 np.zeros(m, np.int64), 0.6, np.array([1.0, 1.0]), np.array([0.5, 0.5]), max_n,
-                 np.inf, n_edges, t_edges, True, True, np.full(m, -1, np.int64),
-                 np.zeros(m, np.int64), esc_n, np.zeros((blocks, 2, tb), np.int64), cens_n,
-                 np.zeros((blocks, tb), np.int64), np.zeros(blocks, np.int64), flags,
-                 np.zeros((m, 4)), np.zeros((0, 6)))
+    counts = EscapeCounts.zeros(blocks, 2, nb, tb)._replace(esc_n=esc_n, cens_n=cens_n)
+    escape_chunk(elastic(0.6), Starts(phi=rng.uniform(-np.pi, np.pi, m),
+                                      v=rng.uniform(1.0, 5.0, m), t=np.zeros(m),
+                                      n=np.zeros(m, np.int64)),
+                 Holes(lo=np.array([1.0, 1.0]), width=np.array([0.5, 0.5])),
+                 Horizon(max_collisions=max_n, max_time=np.inf),
+                 Bins(n_edges=n_edges, t_edges=t_edges, record_n=True, record_t=True),
+                 Sample.none(m), counts, Flags(status=flags, state=np.zeros((m, 4))))
     assert not flags.any()
     assert esc_n[:, 0].sum() > m // 2  # most escape (hole 0.5 wide, 2000 collisions)
     assert esc_n[:, 1].sum() == 0

@@ -1,13 +1,14 @@
-"""Tests written against surviving mutants of ``fastpath/flight.py`` and ``fastpath/gap.py`` (the
-AST driver's ``solver`` group, ``scripts/mutation/ensemble.py --group solver``).
+"""Tests written against surviving mutants of ``fastpath/elastic/lower_bound.py``,
+``fastpath/elastic/flight.py`` and ``fastpath/elastic/gap.py`` (the AST driver's ``solver`` group,
+``scripts/mutation/ensemble.py --group solver``).
 
 Every expected value here follows from the docstrings' rules and exact float arithmetic (inputs
 chosen so that the compared quantities are exact), or from an error bound derived below from the
 unit roundoff u = 2**-53 and checked against mpmath; none is copied from the program's output.
 Several tests call ``lower_bound_flight``'s plain-Python body (``py_func``; the function itself
-under NUMBA_DISABLE_JIT) with ``gap`` and ``certified_step`` wrapped, to count the evaluations and
-to see the lower models each step is given; every other callee is the kernel itself (compiled
-unless NUMBA_DISABLE_JIT).
+under NUMBA_DISABLE_JIT, with ``elastic_gap_bounds`` and ``next_point`` as plain Python too) with
+``gap`` and ``certified_step`` wrapped, to count the evaluations and to see the lower models each
+step is given; every other callee is the kernel itself (compiled unless NUMBA_DISABLE_JIT).
 
 Two surviving mutants of ``may_be_graze`` are equivalent and have no test: ``curvature < 0`` ->
 ``<= 0`` and ``r < 0`` -> ``<= 0``. Where they differ (curvature = +-0, resp. r = +-0) the
@@ -24,21 +25,15 @@ import pytest
 from mpmath import mp
 
 import fastpath
-from fastpath.flight import (
-    AUTO,
-    GENERAL,
-    ITERATION_LIMIT,
-    SEED,
-    departure_phase,
-    first_root,
-    flight_from,
-    lower_bound_flight,
-    may_be_graze,
-    polish,
-)
-from fastpath.gap import departure, gap, gap_error, gap_rate, rate_error
-from fastpath.sincos import sin_cos
-from fastpath.status import FlightStatus
+from fastpath.arithmetic.sincos import sin_cos
+from fastpath.elastic.flight import AUTO, GENERAL, departure_phase, flight_from
+from fastpath.elastic.flight import LOWER_BOUND as SEED
+from fastpath.elastic.gap import departure, gap, gap_error, gap_rate, rate_error
+from fastpath.elastic.lower_bound import first_root
+from fastpath.elastic.lower_bound import lower_bound_flight as _lower_bound_flight
+from fastpath.elastic.lower_bound import may_be_graze as _may_be_graze
+from fastpath.elastic.lower_bound import polish as _polish
+from fastpath.status import ITERATION_LIMIT, FlightStatus
 
 U = 2.0**-53
 DPS = 40
@@ -47,7 +42,20 @@ UNCERTAIN = int(FlightStatus.UNCERTAIN)
 NOT_DEPARTING = int(FlightStatus.NOT_DEPARTING)
 MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
 OVERFLOW = int(FlightStatus.OVERFLOW)
-flight_module = importlib.import_module("fastpath.flight")  # fastpath.flight is the API function
+flight_module = importlib.import_module("fastpath.elastic.lower_bound")
+
+
+def may_be_graze(phi, eps, t, r, d_err):
+    return _may_be_graze(eps, phi, t, r, d_err)
+
+
+def lower_bound_flight(phi, v, eps, w0, start=0.0):
+    """From t = start, or from the departure's step 2*w0/(1 + |eps|) (``solve_flight``)."""
+    return _lower_bound_flight(phi, v, eps, start if start > 0.0 else 2.0 * w0 / (1.0 + abs(eps)))
+
+
+def polish(phi, v, eps, t, d, r):
+    return _polish(t, d, r, rate_error(phi, v, eps, t))
 
 
 def _py(function):
@@ -71,7 +79,9 @@ def _traced_flight(monkeypatch, phi, v, eps, w0):
 
     monkeypatch.setattr(flight_module, "gap", counted_gap)
     monkeypatch.setattr(flight_module, "certified_step", seen_step)
-    result = _py(lower_bound_flight)(phi, v, eps, w0)
+    for name in ("elastic_gap_bounds", "next_point"):  # their bodies call the two above
+        monkeypatch.setattr(flight_module, name, _py(getattr(flight_module, name)))
+    result = _py(_lower_bound_flight)(phi, v, eps, 2.0 * w0 / (1.0 + abs(eps)))
     monkeypatch.undo()
     return result, times, steps
 

@@ -5,7 +5,7 @@ import math
 
 from mpmath import mp
 
-from fastpath.phase import _E_MIN, _PIECE_BITS, _PIECES, _TURNS
+from fastpath.arithmetic.phase import _E_MIN, _PIECE_BITS, _PIECES, _TURNS
 
 
 def test_turn_table_is_the_fraction_of_two_to_the_j_over_two_pi():
@@ -67,8 +67,8 @@ def test_reductions_next_to_a_whole_turn():
     [0, 2*pi), which may round 2*pi - 1e-17 to 0; 2u*|r| for the centred result) plus
     PAYNE_HANEK_ERROR, measured as a distance on the circle against mpmath at 1500 bits; and
     ``phase_error_of`` bounds the centred error."""
-    from fastpath.flight import phase_error_of
-    from fastpath.phase import PAYNE_HANEK_ERROR, PI, TWO_PI, centre_phase, reduce_phase
+    from fastpath.arithmetic.phase import PAYNE_HANEK_ERROR, PI, TWO_PI, centre_phase, reduce_phase
+    from fastpath.elastic.flight import phase_error_of
 
     xs = _near_turns()
     assert len(xs) > 40
@@ -92,7 +92,7 @@ def test_reductions_next_to_a_half_turn():
     check reads it (``-PI <= x < PI``): it must come back as -PI (same point on the circle up to
     the rounding). For x and -x: both reductions in range and, against mpmath at 1500 bits,
     within the rounding of the result plus PAYNE_HANEK_ERROR (module docstring, Accuracy)."""
-    from fastpath.phase import PAYNE_HANEK_ERROR, PI, TWO_PI, centre_phase, reduce_phase
+    from fastpath.arithmetic.phase import PAYNE_HANEK_ERROR, PI, TWO_PI, centre_phase, reduce_phase
 
     xs = [x / 2 for x in _near_turns()]
     u = 2.0**-53
@@ -115,7 +115,8 @@ def test_payne_hanek_at_two_to_the_twenty():
     result is exact up to its rounding plus PAYNE_HANEK_ERROR, |r - exact| <= ulp(r)/2 +
     PAYNE_HANEK_ERROR; Cody-Waite ("a few ulps") is one ulp off there (0x1.58e8ec12c0aa9p-2 for
     an exact 0.33682602753121184659...). Reference: mpmath at 200 bits."""
-    from fastpath.phase import CODY_WAITE_LIMIT, PAYNE_HANEK_ERROR, centre_phase, reduce_phase
+    from fastpath.arithmetic.phase import MODERATE_LIMIT as CODY_WAITE_LIMIT
+    from fastpath.arithmetic.phase import PAYNE_HANEK_ERROR, centre_phase, reduce_phase
 
     assert CODY_WAITE_LIMIT == 2.0**20
     with mp.workprec(200):
@@ -144,7 +145,7 @@ def test_centring_next_to_plus_and_minus_pi():
     above PI (r rounds to exactly -PI), the float below -PI (r rounds to exactly PI), and
     91.106186954104 (29*pi + 1.2e-18, r rounds to -PI with k = 15). ``centre_moderate``, used
     by the lanes, gives the same bits as ``centre_phase`` (the same arithmetic)."""
-    from fastpath.phase import PI, TWO_PI, centre_moderate, centre_phase
+    from fastpath.arithmetic.phase import PI, TWO_PI, centre_moderate, centre_phase
 
     xs = [91.106186954104, -91.106186954104]
     for c in (PI, -PI, 3 * PI, -3 * PI, 5 * PI, 29 * PI):
@@ -170,8 +171,8 @@ def test_collide_from_counts_the_carried_sine_error():
     1.5u here) is UNCERTAIN. phi = the float next to pi/6 (already centred: no reduction error),
     the given sine 0.5 (mpmath: within u of sin(phi)), eps = 1, v = -0.5 + j*u: w0 = j*u exactly,
     for j = -6 .. 6 (|w0| <= 6u < 8u)."""
-    from fastpath.collision import CARRIED_SINE_ERROR, collide_from
-    from fastpath.flight import UNCERTAIN
+    from fastpath.elastic.collision import CARRIED_SINE_ERROR, collide_from
+    from fastpath.status import UNCERTAIN
 
     u = 2.0**-53
     phi = math.pi / 6

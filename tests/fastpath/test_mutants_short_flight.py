@@ -12,8 +12,10 @@ import math
 import pytest
 from mpmath import mp
 
-from fastpath.gap import UNIT_ROUNDOFF as U
-from fastpath.short_flight import c4, departure_deceleration, s3, short_window
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF as U
+from fastpath.dissipative.short_flight import c4, departure_deceleration, s3
+from fastpath.dissipative.short_flight import elastic_short_window as short_window
+from fastpath.physics import NONE, dissipative
 
 DPS = 50
 
@@ -131,7 +133,7 @@ def test_the_window_is_open_at_m_h_exactly_half_a():
 def _count_gap_evaluations(monkeypatch, gap=None, rate=None):
     """Run ``short_flight`` as plain Python (``py_func``) with its gap (optionally replaced)
     counted: returns (the solver, the list of evaluation times)."""
-    import fastpath.short_flight as module
+    import fastpath.dissipative.short_flight as module
 
     calls = []
     real_gap = module.relative_gap
@@ -143,7 +145,15 @@ def _count_gap_evaluations(monkeypatch, gap=None, rate=None):
     monkeypatch.setattr(module, "relative_gap", counted_gap)
     if rate is not None:
         monkeypatch.setattr(module, "relative_rate", rate)
-    return getattr(module.short_flight, "py_func", module.short_flight), calls
+    for name in ("relative_gap_and_rate", "incoming_rate"):  # their bodies call the two above
+        kernel = getattr(module, name)
+        monkeypatch.setattr(module, name, getattr(kernel, "py_func", kernel))
+    short_flight = getattr(module.short_flight, "py_func", module.short_flight)
+
+    def solve(sin_phi, cos_phi, w, eps, upper):  # without drag the absolute v is not read
+        return short_flight(dissipative(eps, 0.0, NONE, 0.5), sin_phi, cos_phi, w, 0.0, upper)
+
+    return solve, calls
 
 
 def test_reported_iterations_are_the_gap_evaluations(monkeypatch):
@@ -161,7 +171,7 @@ def test_at_most_sixty_evaluations_then_the_limit(monkeypatch):
     """A gap that stays negative while Newton keeps moving down (a stand-in: d = -1, d' = -1e3,
     every step 1e-3) exhausts the solver: exactly ITERATION_LIMIT = 60 evaluations, reported as
     60 (kills the loop bound 60 -> 59 and -> 61, and the start 1 -> 2)."""
-    from fastpath.short_flight import ITERATION_LIMIT
+    from fastpath.status import ITERATION_LIMIT
 
     solve, calls = _count_gap_evaluations(
         monkeypatch, gap=lambda *args: -1.0, rate=lambda *args: -1e3)

@@ -2,12 +2,13 @@
 driver's ``solver`` group, ``scripts/mutation/ensemble.py --group solver``).
 
 The solver behind ``fastpath.flight`` answers most |eps| <= 1 flights in the lockstep lanes
-(``fastpath.lockstep``); ``fastpath.concave`` is reached from orbits, the ensembles' fallback and
-the flights the lanes give up. These tests call ``concave_flight`` (and ``flight_from`` with
-GENERAL) directly, and hold every answer to plain facts: CONVERGED, inside the certified bracket
-of DESIGN fact 2 (exact, mpmath), within K*kappa*u of the root (``fastpath_tolerances``), the
+(``fastpath.elastic.lockstep``); ``fastpath.elastic.concave`` is reached from orbits, the ensembles'
+fallback and the flights the lanes give up. These tests call ``concave_flight`` (and ``flight_from``
+with GENERAL) directly, and hold every answer to plain facts: CONVERGED, inside the certified
+bracket of DESIGN fact 2 (exact, mpmath), within K*kappa*u of the root (``fastpath_tolerances``),
+the
 returned sine and cosine of phi + tau within the carried-sine bound the collision assumes
-(``fastpath.collision.CARRIED_SINE_ERROR``), and eps = 0 exactly tau = 2v (DESIGN fact 9).
+(``fastpath.elastic.collision.CARRIED_SINE_ERROR``), and eps = 0 exactly tau = 2v (DESIGN fact 9).
 """
 
 import math
@@ -17,11 +18,11 @@ import pytest
 from fastpath_tolerances import K, U, kappa
 from mpmath import mp
 
-from fastpath.collision import CARRIED_SINE_ERROR
-from fastpath.concave import ITERATION_LIMIT, concave_flight
-from fastpath.flight import GENERAL, flight_from
-from fastpath.gap import departure
-from fastpath.status import FlightStatus
+from fastpath.elastic.collision import CARRIED_SINE_ERROR
+from fastpath.elastic.concave import concave_flight
+from fastpath.elastic.flight import GENERAL, flight_from
+from fastpath.elastic.gap import departure
+from fastpath.status import ITERATION_LIMIT, FlightStatus
 
 DPS = 40
 CONVERGED = int(FlightStatus.CONVERGED)
@@ -145,7 +146,7 @@ def test_tight_bounds_are_the_documented_ones(sin_phi, cos_phi, v, eps, w0_error
     w0_error ones too), so a dropped or subtracted term moves E or R by far more than the few u
     of evaluation order allowed. At t = SMALLEST_T the terms underflow and E is the allowance
     2**-1060 alone (a positive bound)."""
-    from fastpath.tight_gap import _SLACK, _UNDERFLOW, tight_gap
+    from fastpath.elastic.tight_gap import _SLACK, _UNDERFLOW, tight_gap
 
     d, d1, d2, s, c, d_err, d1_err = tight_gap(sin_phi, cos_phi, v, eps, w0_error, t)
     with mp.workdps(DPS):
@@ -175,8 +176,12 @@ def test_tight_bounds_are_the_documented_ones(sin_phi, cos_phi, v, eps, w0_error
 def test_classify_at_the_error_bounds():
     """A gap exactly at +-E (or a slope exactly at +-R) proves nothing: d > E is needed for
     "before", d < -E for "after", d' < -R for "at the root", d' > R for "before"; else flat."""
-    from fastpath.concave import _AFTER, _AT_ROOT, _BEFORE, _FLAT, classify
-    from fastpath.gap import gap_error, rate_error
+    from fastpath.elastic.concave import AFTER as _AFTER
+    from fastpath.elastic.concave import AT_ROOT as _AT_ROOT
+    from fastpath.elastic.concave import BEFORE as _BEFORE
+    from fastpath.elastic.concave import FLAT as _FLAT
+    from fastpath.elastic.concave import classify
+    from fastpath.elastic.gap import gap_error, rate_error
 
     phi, v, eps, t = 0.5, 1.0, 0.5, 1.0
     e, r = gap_error(phi, v, eps, t), rate_error(phi, v, eps, t)
@@ -194,7 +199,9 @@ def test_halley_steps_and_its_bisections():
     """The Halley step t - 2*d*d'/(2*d'**2 - d*d''); a step onto or beyond a bracket end is
     replaced by the arithmetic midpoint, or the geometric one where lo > 0 and hi > 4*lo (both
     strict: at lo = 0 the geometric mean is lo itself, a step that ends the flight at lo)."""
-    from fastpath.concave import _AFTER, _BEFORE, halley
+    from fastpath.elastic.concave import AFTER as _AFTER
+    from fastpath.elastic.concave import BEFORE as _BEFORE
+    from fastpath.elastic.concave import halley
 
     # inside: the Halley point (d'' = -1: 1 + 0.25/0.75)
     t_next, lo, hi = halley(1.0, 0.25, -0.5, -1.0, _BEFORE, 0.5, 3.0)
@@ -212,7 +219,7 @@ def test_halley_steps_and_its_bisections():
 
 def test_newton_is_final_at_its_threshold():
     """(1 + |eps|)/2*h**2 + |h|*R <= E/16, equality included (docstring)."""
-    from fastpath.concave import newton_is_final
+    from fastpath.elastic.concave import newton_is_final
 
     assert newton_is_final(1.0, 16.0, 0.0, 1.0)  # 1 <= 1
     assert not newton_is_final(1.0, 8.0, 0.0, 1.0)  # 1 > 0.5
@@ -224,7 +231,7 @@ def test_two_sum_is_exact():
     """s + e == x + y exactly (Knuth's TwoSum), the Holmes start's angle phi + 2v."""
     from fractions import Fraction
 
-    from fastpath.rotation import two_sum
+    from fastpath.arithmetic.rounding import two_sum
 
     assert two_sum(1.0, 2.0**-60) == (1.0, 2.0**-60)
     rng = np.random.default_rng(3)
@@ -262,7 +269,7 @@ def _documented_bracket(v, w0, w0_error, eps):
 def test_bracket_is_the_documented_one(v, w0, w0_error, eps):
     """Sound (lo below, hi above the documented bounds) and tight: lo within (1 - 4u) and a few
     u of its formula, hi within (1 + 4u) and a few u of its own."""
-    from fastpath.concave import bracket
+    from fastpath.elastic.concave import bracket
 
     lo, hi = bracket(v, w0, w0_error, eps)
     doc_lo, doc_hi = _documented_bracket(v, w0, w0_error, eps)
@@ -283,13 +290,13 @@ def test_an_infinite_bracket_is_an_overflow_before_any_evaluation():
 def test_holmes_start_at_equality():
     """The Holmes start is taken unless the lower bound 2*w0/(1 + |eps|) is below 1 (module
     docstring): at 2*w0 = 1 + |eps| exactly (phi = 0, w0 = v) it is the Holmes start's answer."""
-    from fastpath.concave import _flight_from_holmes, bracket
+    from fastpath.elastic.concave import bracket, flight_from_holmes
 
     for v, eps in ((0.75, 0.5), (1.0, 1.0), (0.5, 0.0), (0.625, -0.25)):
         w0, w0_error = departure(0.0, 0.0, v, eps, 0.0)
         assert 2.0 * w0 == 1.0 + abs(eps)
         lo, hi = bracket(v, w0, w0_error, eps)
-        assert _solve(0.0, v, eps) == _flight_from_holmes(0.0, 0.0, 1.0, v, eps, lo, hi)
+        assert _solve(0.0, v, eps) == flight_from_holmes(0.0, 0.0, 1.0, v, eps, lo, hi)
 
 
 @pytest.mark.parametrize("phi, v", [(-2.0, 0.75), (0.4, 0.75), (1.3, 0.75), (-2.0, 1.0),
@@ -335,7 +342,7 @@ def test_first_root_without_a_root_and_at_its_rounding_threshold():
     """d + r*s + k*s**2/2 with d > 0: r = k = 0 (or r >= 0, k >= 0) has no root: inf. A
     discriminant r**2 - 2*k*d that is negative by less than 4u*(r**2 + 2|k|*d) counts as zero:
     r = -1, k*d = (1 + 2**-51)/2 gives -2**-51 (exact), within 4u*2: the double root 2*d/(-r)."""
-    from fastpath.flight import first_root
+    from fastpath.elastic.lower_bound import first_root
 
     assert first_root(1.0, 0.0, 0.0) == math.inf
     assert first_root(1.0, 0.5, 0.0) == math.inf
@@ -345,8 +352,8 @@ def test_first_root_without_a_root_and_at_its_rounding_threshold():
 
 def test_phase_error_of_a_centred_phase():
     """0 for a phase used as given, one ulp-scale bound 2u*|centred| for a reduced one."""
-    from fastpath.flight import phase_error_of
-    from fastpath.phase import centre_phase
+    from fastpath.arithmetic.phase import centre_phase
+    from fastpath.elastic.flight import phase_error_of
 
     assert phase_error_of(1.0, 1.0) == 0.0
     centred = centre_phase(7.0)

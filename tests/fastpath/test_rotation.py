@@ -1,6 +1,7 @@
 """The sine and cosine that a flight returns are those of the exact angle phi + tau.
 
-``fastpath.rotation.sin_cos_of_sum`` takes libm at a = fl(x + y) and adds the TwoSum remainder
+``fastpath.arithmetic.rotation.sin_cos_of_sum`` takes libm at a = fl(x + y) and adds the TwoSum
+remainder
 e = x + y - a by angle addition. Its error bound, from the precision: libm's sine and cosine are
 within 1 ulp (<= 2u for values below 1), the two products and the sum add 1.5u, the Taylor
 polynomials' truncation is below u/40: 4u in all (u = 2**-53). libm at fl(x + y) alone is off by
@@ -15,11 +16,12 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from mpmath import mp
 
-from fastpath.collision import CARRIED_SINE_ERROR
-from fastpath.flight import CONVERGED, flight_from
-from fastpath.gap import UNIT_ROUNDOFF
-from fastpath.phase import centre_phase
-from fastpath.rotation import SMALL_ANGLE, rotate, sin_cos_of_sum, small_sin_cos, two_sum
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.arithmetic.rotation import SMALL_ANGLE, rotate, sin_cos_of_sum, small_sin_cos
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, two_sum
+from fastpath.elastic.collision import CARRIED_SINE_ERROR
+from fastpath.elastic.flight import flight_from
+from fastpath.status import CONVERGED
 
 SUM_ERROR = 4.0 * UNIT_ROUNDOFF
 

@@ -1,4 +1,4 @@
-"""fastpath.sincos: sine and cosine in straight-line code, against mpmath."""
+"""fastpath.arithmetic.sincos: sine and cosine in straight-line code, against mpmath."""
 
 import math
 
@@ -6,7 +6,8 @@ import mpmath
 import numpy as np
 import pytest
 
-from fastpath.sincos import SIN_COS_ERROR, SIN_COS_LIMIT, sin_cos, sin_cos_error
+from fastpath.arithmetic.phase import MODERATE_LIMIT as SIN_COS_LIMIT
+from fastpath.arithmetic.sincos import SIN_COS_ERROR, sin_cos, sin_cos_error
 
 U = 2.0**-53
 

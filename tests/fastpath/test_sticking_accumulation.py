@@ -3,14 +3,15 @@
 Tolerances (u = 2**-53):
 
 - Tail alone (``accumulation_tail``): its model error is C*q*T with q <= u and C <= 1/2
-  (``fastpath.sticking``); its formula rounds a = 1 - eps*cos(theta) with an error of
+  (``fastpath.dissipative.sticking``); its formula rounds a = 1 - eps*cos(theta) with an error of
   u*(1 + |eps|) (relative: u*(1 + |eps|)/a) plus a handful of roundings of u each:
   |T - T_ref| <= u*T*(1/2 + 4*(1 + |eps|)/a).
 - Accumulation time from a start (phi0, v0) computed by the orbit: every impact leaves a relative
   error of a few u in w (and in its flight), which moves the rest of the sequence, T_rem, by as
   much; T_rem shrinks by r per impact, so the sum is (few u)*t_acc/(1 - r): 8u*t_acc/(1 - r).
-  The start's w0 = v0 + eps*sin(phi0) is rounded by <= its bound B (``fastpath.gap.departure``),
-  which the tail carries with weight 2/(a0*(1 - r)) (T0's conditioning).
+  The start's w0 = v0 + eps*sin(phi0) is rounded by <= its bound B
+  (``fastpath.elastic.gap.departure``), which the tail carries with weight 2/(a0*(1 - r)) (T0's
+  conditioning).
 - Detachment phase: arccos(1/|eps|) as atan(sqrt((|eps| - 1)*(|eps| + 1))): a relative error of
   ~4u, < 2*pi*u absolute; 2*pi - alpha rounds by half an ulp of 2*pi (4u), adding the constant's
   low part by as much again: 16u.
@@ -25,8 +26,9 @@ from fastpath_figures import record
 from mpmath import mp
 
 import fastpath
-from fastpath.gap import departure
-from fastpath.sticking import accumulation_tail, detachment_phase
+from fastpath.dissipative.sticking import detachment_phase
+from fastpath.dissipative.sticking import elastic_accumulation_tail as accumulation_tail
+from fastpath.elastic.gap import departure
 
 U = 2.0**-53
 

@@ -29,9 +29,9 @@ from fastpath_tolerances import phase_rounding, tau_tolerance, v1_tolerance
 from mpmath import mp
 
 import fastpath
-from fastpath.collision import CARRIED_SINE_ERROR
-from fastpath.phase import centre_phase
-from fastpath.sticking import detachment_flight, detachment_phase, detachment_velocity
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.dissipative.sticking import detachment_flight, detachment_phase, detachment_velocity
+from fastpath.elastic.collision import CARRIED_SINE_ERROR
 
 U = 2.0**-53
 

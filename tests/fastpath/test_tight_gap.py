@@ -1,10 +1,11 @@
-"""``fastpath.tight_gap``: its bounds E and R hold against the exact gap and slope (mpmath).
+"""``fastpath.elastic.tight_gap``: its bounds E and R hold against the exact gap and slope (mpmath).
 
 The bound is the certificate of the concave solver's refinement near (near-)triple roots, so it
 is tested where it is tight and where the departure's sine is not libm's: the given sine and
 cosine may each be off by the phase error pe that the caller put into w0_error
-(``fastpath.gap.departure``), as they are when carried along an orbit. The exact gap is taken at
-the exact departure phase phi_e, with the given pair within pe (+ 1 ulp) of sin and cos of phi_e.
+(``fastpath.elastic.gap.departure``), as they are when carried along an orbit. The exact gap is
+taken at the exact departure phase phi_e, with the given pair within pe (+ 1 ulp) of sin and cos of
+phi_e.
 """
 
 import math
@@ -14,8 +15,8 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 from mpmath import mp
 
-from fastpath.gap import departure, gap_error, rate_error
-from fastpath.tight_gap import tight_gap
+from fastpath.elastic.gap import departure, gap_error, rate_error
+from fastpath.elastic.tight_gap import tight_gap
 
 DPS = 60
 

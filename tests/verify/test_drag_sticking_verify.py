@@ -8,19 +8,21 @@ Tolerances (u = 2**-53, D = 10**-dps the digits of verify's states):
   phi0 + t_end = theta* (mod 2*pi) within 8*D*(1 + t_end), as without drag.
 - fastpath's t_acc (tests/fastpath/test_drag_sticking.py, its documented bound):
   8u*t_acc/(1 - r) for the short flights' roundings plus, for the start and every ordinary flight
-  (which forms w from the absolute state), that departure's w bound (``fastpath.gap.departure``)
-  times T0's conditioning 2/(a*(1 - r)), a the riding force at the accumulation.
+  (which forms w from the absolute state), that departure's w bound
+  (``fastpath.elastic.gap.departure``) times T0's conditioning 2/(a*(1 - r)), a the riding force at
+  the accumulation.
 - fastpath's t_end: its clock and its phase are summed separately: 2*flights*u*(t_end + 8*pi),
   plus its theta*'s own error: linear 2u*(|x| + y)/g + 2u*(beta + alpha) + 16u (x = e**2 - 1,
   y = (e*k)**2, g = x + y), quadratic 2*F/|a'(theta*)| + 4*pi*u + 16u, F = 4u*(e + k*e**2)*
   (1 + 2*pi) (its bisection's stop).
 - The impact ending the flight from detachment: fastpath's root of its float gap is within
-  2.5*d_err/|d'(tau)| + 2 ulp(tau) of the root of that gap (``fastpath.drag.gap_state``'s rounding
-  bound d_err; tests/fastpath/drag_reference.tau_tolerance), and its departure phase is off by
-  the theta* tolerance dth above, which moves the gap by |dd/dtheta| <= |eps|*(tau + 2)*dth
-  (|dY/dv| <= t for a nondecreasing eta, |u'| <= |eps|), so the root by that over |d'(tau)|;
-  the phase adds the reductions (2 ulp(tau + 2*pi) + 8 ulp(2*pi)) and dth, v1 = (1 + r)*u -
-  r*v_in weighs a phase error by <= (1 + r)*|eps| + r*(1 + |eta(v_in)|) plus 4 ulps.
+  2.5*d_err/|d'(tau)| + 2 ulp(tau) of the root of that gap
+  (``fastpath.dissipative.drag.gap_state``'s rounding bound d_err;
+  tests/fastpath/drag_reference.tau_tolerance), and its departure phase is off by the theta*
+  tolerance dth above, which moves the gap by |dd/dtheta| <= |eps|*(tau + 2)*dth (|dY/dv| <= t for a
+  nondecreasing eta, |u'| <= |eps|), so the root by that over |d'(tau)|; the phase adds the
+  reductions (2 ulp(tau + 2*pi) + 8 ulp(2*pi)) and dth, v1 = (1 + r)*u - r*v_in weighs a phase error
+  by <= (1 + r)*|eps| + r*(1 + |eta(v_in)|) plus 4 ulps.
 - 50 against 70 digits, accumulation time: as without drag (tests/verify/test_sticking.py):
   D*(1/2 + N*(2*(|v0| + |eps|)/(a*(1 - r)) + t)), N impacts before the tail.
 - drag -> 0 (k = 2**-100): every drag effect on the times is O(k) with O(1) coefficients over
@@ -38,11 +40,12 @@ from mpmath import mp
 
 import fastpath
 import verify
-from fastpath.drag import LINEAR, QUADRATIC, gap_state
-from fastpath.drag_short_flight import drag_short_window
-from fastpath.drag_sticking import drag_detachment_phase
-from fastpath.gap import departure
-from fastpath.phase import centre_phase
+from fastpath.arithmetic.phase import centre_phase
+from fastpath.dissipative.drag import gap_state
+from fastpath.dissipative.short_flight import drag_short_window
+from fastpath.dissipative.sticking import drag_detachment_phase
+from fastpath.elastic.gap import departure
+from fastpath.physics import LINEAR, QUADRATIC
 from verify.dissipative.drag_sticking import drag_accumulation, leaves_plate_with_drag, riding
 
 U = 2.0**-53

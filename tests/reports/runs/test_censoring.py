@@ -19,8 +19,11 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.ensemble import bin_index, escape_chunk
-from fastpath.phase import TWO_PI
+from fastpath.arithmetic.phase import TWO_PI
+from fastpath.kernels.arrays import Bins, EscapeCounts, Flags, Holes, Horizon, Sample, Starts
+from fastpath.kernels.escape import escape_chunk
+from fastpath.kernels.histogram import bin_index
+from fastpath.physics import elastic
 from reports.runs import chunk
 from reports.runs.plan import chunk_starts, make_plan
 from reports.runs.scenes import parse_scene
@@ -137,10 +140,16 @@ def run_one(phi, v, max_n, max_t, n_edges, t_edges):
     out = (np.zeros((1, 1, nb), np.int64), np.zeros((1, 1, tb), np.int64),
            np.zeros((1, nb), np.int64), np.zeros((1, tb), np.int64))
     flags = np.zeros(1, np.int8)
-    escape_chunk(np.array([phi]), np.array([v]), np.zeros(1), np.zeros(1, np.int64), EPS,
-                 np.array([LO]), np.array([WIDTH]), max_n, max_t, n_edges, t_edges, True, True,
-                 np.full(1, -1), np.zeros(1, np.int64), *out, np.zeros(1, np.int64), flags,
-                 np.zeros((1, 4)), np.zeros((0, 6)))
+    escape_chunk(elastic(EPS), Starts(phi=np.array([phi]), v=np.array([v]), t=np.zeros(1),
+                                      n=np.zeros(1, np.int64)),
+                 Holes(lo=np.array([LO]), width=np.array([WIDTH])),
+                 Horizon(max_collisions=max_n, max_time=max_t),
+                 Bins(n_edges=n_edges, t_edges=t_edges, record_n=True, record_t=True),
+                 Sample.none(1),
+                 EscapeCounts(*out, stuck_n=np.zeros((1, nb), np.int64),
+                              stuck_t=np.zeros((1, tb), np.int64),
+                              collisions=np.zeros(1, np.int64)),
+                 Flags(status=flags, state=np.zeros((1, 4))))
     assert flags[0] == 0
     return tuple(a.reshape(-1) for a in out)
 

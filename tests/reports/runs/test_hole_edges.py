@@ -23,8 +23,11 @@ from hypothesis import strategies as st
 
 import fastpath
 import verify
-from fastpath.ensemble import bin_index, escape_chunk, exit_hole
-from fastpath.phase import TWO_PI
+from fastpath.arithmetic.phase import TWO_PI
+from fastpath.kernels.arrays import Bins, EscapeCounts, Flags, Holes, Horizon, Sample, Starts
+from fastpath.kernels.escape import escape_chunk
+from fastpath.kernels.histogram import bin_index, exit_hole
+from fastpath.physics import elastic
 from reports.runs import chunk
 from reports.runs.plan import chunk_starts, make_plan
 from reports.runs.scenes import parse_scene
@@ -186,12 +189,15 @@ def test_kernel_escape_at_a_landing_phase_on_an_edge():
         assert inside(phi1, lo, 1.0) == escapes, name
         esc_n = np.zeros((1, 1, 2), np.int64)
         cens_n = np.zeros((1, 2), np.int64)
-        escape_chunk(np.array([phi0]), np.array([v0]), np.zeros(1), np.zeros(1, np.int64), EPS,
-                     np.array([lo]), np.array([1.0]), 1, np.inf, np.array([1.0, 2.0]),
-                     np.array([0.0, 1.0]), True, True, np.full(1, -1), np.zeros(1, np.int64),
-                     esc_n, np.zeros((1, 1, 2), np.int64), cens_n, np.zeros((1, 2), np.int64),
-                     np.zeros(1, np.int64), np.zeros(1, np.int8), np.zeros((1, 4)),
-                     np.zeros((0, 6)))
+        escape_chunk(elastic(EPS), Starts(phi=np.array([phi0]), v=np.array([v0]),
+                                          t=np.zeros(1), n=np.zeros(1, np.int64)),
+                     Holes(lo=np.array([lo]), width=np.array([1.0])),
+                     Horizon(max_collisions=1, max_time=np.inf),
+                     Bins(n_edges=np.array([1.0, 2.0]), t_edges=np.array([0.0, 1.0]),
+                          record_n=True, record_t=True),
+                     Sample.none(1),
+                     EscapeCounts.zeros(1, 1, 2, 2)._replace(esc_n=esc_n, cens_n=cens_n),
+                     Flags.zeros(1))
         assert esc_n.sum() == escapes and cens_n.sum() == (not escapes), name
 
 
@@ -199,12 +205,11 @@ def flag_first_flights(real):
     """A stand-in for ``escape_chunk`` that flags every flight before the collision horizon, so
     ``simulate_chunk`` settles collision 1 with verify and tests the hole itself."""
 
-    def kernel(phi, v, t, n, eps, hole_lo, hole_width, max_collisions, *args):
-        if np.all(n >= max_collisions):
-            return real(phi, v, t, n, eps, hole_lo, hole_width, max_collisions, *args)
-        flags, flag_state = args[-3], args[-2]
-        flags[:] = 1  # FlightStatus.UNCERTAIN
-        flag_state[:] = np.column_stack([phi, v, t, n])
+    def kernel(physics, starts, holes, horizon, bins, sample, counts, flags):
+        if np.all(starts.n >= horizon.max_collisions):
+            return real(physics, starts, holes, horizon, bins, sample, counts, flags)
+        flags.status[:] = 1  # FlightStatus.UNCERTAIN
+        flags.state[:] = np.column_stack(starts)
 
     return kernel
 

@@ -16,7 +16,8 @@ import pytest
 
 import fastpath
 import verify
-from fastpath.phase import TWO_PI
+from fastpath.arithmetic.phase import TWO_PI
+from fastpath.kernels.arrays import Flags, Sample, Starts
 from reports.runs import chunk
 from reports.runs.counts import CheckpointError, Finished, Tally
 from reports.runs.plan import SAMPLE_DEPTH, chunk_starts, make_plan
@@ -50,18 +51,17 @@ def flagging_portrait(real, choose):
     """A stand-in for ``portrait_chunk`` that flags the next collision of the particles picked
     by ``choose(n)`` (before the horizon) and runs the real kernel on the others."""
 
-    def kernel(phi, v, n, eps, max_collisions, v_lo, v_hi, slot, target, counts, collisions,
-               flags, flag_state, samples):
-        flag = choose(n) & (n < max_collisions)
+    def kernel(physics, starts, max_collisions, sample, portrait, flags):
+        flag = choose(starts.n) & (starts.n < max_collisions)
         rest = ~flag
-        sub_flags = np.zeros(int(rest.sum()), np.int8)
-        sub_state = np.zeros((int(rest.sum()), 4))
-        real(phi[rest], v[rest], n[rest], eps, max_collisions, v_lo, v_hi, slot[rest],
-             target[rest], counts, collisions, sub_flags, sub_state, samples)
-        flags[rest] = sub_flags
-        flag_state[rest] = sub_state
-        flags[flag] = 1
-        flag_state[flag] = np.column_stack([phi, v, np.zeros(len(phi)), n])[flag]
+        sub_flags = Flags.zeros(int(rest.sum()))
+        real(physics, Starts(*(a[rest] for a in starts)), max_collisions,
+             Sample(slot=sample.slot[rest], target=sample.target[rest], rows=sample.rows),
+             portrait, sub_flags)
+        flags.status[rest] = sub_flags.status
+        flags.state[rest] = sub_flags.state
+        flags.status[flag] = 1
+        flags.state[flag] = np.column_stack(starts)[flag]
 
     return kernel
 
@@ -152,11 +152,9 @@ def test_settled_collision_exactly_at_the_time_horizon_is_made(monkeypatch):
     assert out.esc_n.sum() == 1 and out.cens_n.sum() == 0 and out.collisions == 1
 
 
-def _flag_everything(phi, v, t, n, eps, hole_lo, hole_width, max_collisions, max_time, n_edges,
-                     t_edges, record_n, record_t, slot, target, esc_n, esc_t, cens_n, cens_t,
-                     collisions, flags, flag_state, samples):
-    flags[:] = 1
-    flag_state[:] = np.column_stack([phi, v, t, n])
+def _flag_everything(physics, starts, holes, horizon, bins, sample, counts, flags):
+    flags.status[:] = 1
+    flags.state[:] = np.column_stack(starts)
 
 
 def test_rows_are_the_reached_samples_only():

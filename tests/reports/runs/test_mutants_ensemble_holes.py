@@ -12,8 +12,20 @@ from fractions import Fraction
 
 import numpy as np
 
-from fastpath.ensemble import NO_LIMIT, escape_chunk, exit_hole
-from fastpath.phase import TWO_PI
+from fastpath.arithmetic.phase import TWO_PI
+from fastpath.kernels.arrays import (
+    NO_LIMIT,
+    Bins,
+    EscapeCounts,
+    Flags,
+    Holes,
+    Horizon,
+    Sample,
+    Starts,
+)
+from fastpath.kernels.escape import escape_chunk
+from fastpath.kernels.histogram import exit_hole
+from fastpath.physics import elastic
 
 LO = 5.0
 WIDTH = (3.0 - LO) + TWO_PI  # rounded: the upper edge lo + width - TWO_PI is within 2**-51 of 3
@@ -44,11 +56,16 @@ def _escape_one(phi, v, eps, hole_lo, hole_width, max_time, max_n=NO_LIMIT, targ
     esc_n, esc_t = np.zeros((1, 1, 10), np.int64), np.zeros((1, 1, 10), np.int64)
     cens_n, cens_t = np.zeros((1, 10), np.int64), np.zeros((1, 10), np.int64)
     collisions, samples = np.zeros(1, np.int64), np.zeros((1, 6))
-    escape_chunk(np.array([phi]), np.array([v]), np.zeros(1), np.zeros(1, np.int64), eps,
-                 np.array([hole_lo]), np.array([hole_width]), max_n, max_time, t_edges,
-                 t_edges, True, True, np.full(1, -1 if target is None else 0, np.int64),
-                 np.full(1, target or 0, np.int64), esc_n, esc_t, cens_n, cens_t, collisions,
-                 np.zeros(1, np.int8), np.zeros((1, 4)), samples)
+    escape_chunk(elastic(eps), Starts(phi=np.array([phi]), v=np.array([v]), t=np.zeros(1),
+                                      n=np.zeros(1, np.int64)),
+                 Holes(lo=np.array([hole_lo]), width=np.array([hole_width])),
+                 Horizon(max_collisions=max_n, max_time=max_time),
+                 Bins(n_edges=t_edges, t_edges=t_edges, record_n=True, record_t=True),
+                 Sample(slot=np.full(1, -1 if target is None else 0, np.int64),
+                        target=np.full(1, target or 0, np.int64), rows=samples),
+                 EscapeCounts(esc_n, esc_t, cens_n, cens_t, np.zeros((1, 10), np.int64),
+                              np.zeros((1, 10), np.int64), collisions),
+                 Flags.zeros(1))
     return esc_t[0, 0], cens_t[0], collisions[0], samples[0]
 
 

@@ -183,13 +183,13 @@ def test_flagged_particles_are_settled_by_verify_and_resume(monkeypatch):
     real = chunk.escape_chunk
     calls = []
 
-    def undecided_first(phi, v, t, n, *args):
-        calls.append(len(phi))
+    def undecided_first(physics, starts, *args):
+        calls.append(len(starts.phi))
         if len(calls) > 1:
-            return real(phi, v, t, n, *args)
-        flags, flag_state = args[-3], args[-2]
-        flags[:] = 1  # FlightStatus.UNCERTAIN
-        flag_state[:] = np.column_stack([phi, v, t, n])
+            return real(physics, starts, *args)
+        flags = args[-1]
+        flags.status[:] = 1  # FlightStatus.UNCERTAIN
+        flags.state[:] = np.column_stack(starts)
         return None
 
     monkeypatch.setattr(chunk, "escape_chunk", undecided_first)

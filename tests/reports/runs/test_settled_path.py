@@ -24,8 +24,9 @@ import pytest
 
 import fastpath
 import verify
-from fastpath.ensemble import bin_index
-from fastpath.phase import TWO_PI
+from fastpath.arithmetic.phase import TWO_PI
+from fastpath.kernels.arrays import Flags, Sample, Starts
+from fastpath.kernels.histogram import bin_index
 from reports.runs import chunk
 from reports.runs.plan import chunk_starts, make_plan
 from reports.runs.scenes import parse_scene
@@ -72,20 +73,17 @@ def flagging_kernel(real, choose):
     ``choose(n)`` (those before the collision horizon) as undecided, and runs the real kernel on
     the others. The flagged state is (phi, v, t, n) before the collision, as the kernel's."""
 
-    def kernel(phi, v, t, n, eps, hole_lo, hole_width, max_collisions, max_time, n_edges,
-               t_edges, record_n, record_t, slot, target, esc_n, esc_t, cens_n, cens_t,
-               collisions, flags, flag_state, samples):
-        flag = choose(n) & (n < max_collisions)
+    def kernel(physics, starts, holes, horizon, bins, sample, counts, flags):
+        flag = choose(starts.n) & (starts.n < horizon.max_collisions)
         rest = ~flag
-        sub_flags = np.zeros(int(rest.sum()), np.int8)
-        sub_state = np.zeros((int(rest.sum()), 4))
-        real(phi[rest], v[rest], t[rest], n[rest], eps, hole_lo, hole_width, max_collisions,
-             max_time, n_edges, t_edges, record_n, record_t, slot[rest], target[rest], esc_n,
-             esc_t, cens_n, cens_t, collisions, sub_flags, sub_state, samples)
-        flags[rest] = sub_flags
-        flag_state[rest] = sub_state
-        flags[flag] = 1  # FlightStatus.UNCERTAIN
-        flag_state[flag] = np.column_stack([phi, v, t, n])[flag]
+        sub_flags = Flags.zeros(int(rest.sum()))
+        real(physics, Starts(*(a[rest] for a in starts)), holes, horizon, bins,
+             Sample(slot=sample.slot[rest], target=sample.target[rest], rows=sample.rows),
+             counts, sub_flags)
+        flags.status[rest] = sub_flags.status
+        flags.state[rest] = sub_flags.state
+        flags.status[flag] = 1  # FlightStatus.UNCERTAIN
+        flags.state[flag] = np.column_stack(starts)[flag]
 
     return kernel
 

@@ -11,7 +11,7 @@ import pytest
 from scene_texts import SMALL_VELOCITY as SMALL
 
 import fastpath
-from fastpath.moments import moments
+from fastpath.kernels.moments import moments
 from reports.cli import main
 from reports.runs import driver, executor
 from reports.runs.chunk import run_chunk
@@ -76,9 +76,10 @@ def test_run_outputs_and_invariants(small_run):
 
 
 def test_means_agree_with_fastpath_moments_on_the_same_starts():
-    """r < 1: the kernel and ``fastpath.moments`` make the same collisions (fastpath.advance),
-    so the means differ only by the rounding of the float sums: each sum of m terms of one sign
-    is within (m - 1)*u*sum|v| of exact, and the chunk's blocks differ from moments' blocks."""
+    """r < 1: the kernel and ``fastpath.kernels.moments`` make the same collisions
+    (fastpath.dissipative.carried), so the means differ only by the rounding of the float sums: each
+    sum of m terms of one sign is within (m - 1)*u*sum|v| of exact, and the chunk's blocks differ
+    from moments' blocks."""
     scene = _fresh(SMALL)
     plan = make_plan(scene)
     for e, r in enumerate(scene.restitutions):
@@ -100,8 +101,8 @@ def test_means_agree_with_fastpath_moments_on_the_same_starts():
 def test_elastic_curve_is_fastpath_step_iterated():
     """r = 1: each collision is ``fastpath.step`` (what the sample audit re-derives), so the
     means are those of step iterated from the same starts, to the same summation bound.
-    (``fastpath.moments`` carries sines across an orbit, ``fastpath.orbit``'s arithmetic: its
-    chaotic orbits part from step's after a few collisions at eps = 2.)"""
+    (``fastpath.kernels.moments`` carries sines across an orbit, ``fastpath.orbit``'s arithmetic:
+    its chaotic orbits part from step's after a few collisions at eps = 2.)"""
     scene = _fresh(SMALL)
     plan = make_plan(scene)
     result = run_chunk(scene, plan.seed, 0, 1)
@@ -284,21 +285,19 @@ def test_flagged_particles_are_settled_by_verify_and_counted_once(monkeypatch):
     scene = _fresh(SMALL)
     plan = make_plan(scene)
     base, _ = chunk.simulate_velocity_chunk(plan, 0, 0)
-    real = chunk._velocity_kernel()
+    real = chunk.moments_chunk
     calls = []
 
-    def undecided_first(phi, v, t, n, *args):
-        calls.append(len(phi))
+    def undecided_first(physics, starts, grid, as_step, sample, sums, flags):
+        calls.append(len(starts.phi))
         if len(calls) > 1:
-            return real(phi, v, t, n, *args)
-        args = list(args)
-        args[5] = np.int64(0)  # max_collisions: record the start, make no collision
-        real(phi, v, t, n, *args)
-        flags, flag_state = args[-3], args[-2]
-        flags[:] = 1  # FlightStatus.UNCERTAIN
-        flag_state[:] = np.column_stack([phi, v, t, n])
+            return real(physics, starts, grid, as_step, sample, sums, flags)
+        # max_collisions 0: record the start, make no collision
+        real(physics, starts, grid._replace(max_collisions=0), as_step, sample, sums, flags)
+        flags.status[:] = 1  # FlightStatus.UNCERTAIN
+        flags.state[:] = np.column_stack(starts)
 
-    monkeypatch.setattr(chunk, "_velocity_kernel", lambda: undecided_first)
+    monkeypatch.setattr(chunk, "moments_chunk", undecided_first)
     settled, _ = chunk.simulate_velocity_chunk(plan, 0, 0)
     m = len(chunk_starts(plan, 0, 0)[0])
     assert settled.settled == m and len(calls) == 2

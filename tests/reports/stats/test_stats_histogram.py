@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from fastpath.ensemble import bin_index, log_edges
+from fastpath.kernels.histogram import bin_index, log_edges
 from reports.stats.histogram import bin_means, run_edges, survival_boundaries
 
 BINS = {"collisions": {"first": 1, "decades": 8, "per_decade": 20, "integer": True},

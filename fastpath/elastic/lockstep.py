@@ -4,28 +4,29 @@ The ensemble kernels spend almost all their time in flights of the concave case 
 that start at the Holmes time t = 2*v and end after three or four evaluations. Written with
 early exits, each flight waits on its own branches and on libm; written as a fixed number of
 evaluations whose decisions are selects, a loop over particles compiles to vector instructions
-(``fastpath.ensemble``) and the flight costs a few nanoseconds.
+(``fastpath.kernels.escape``) and the flight costs a few nanoseconds.
 
-``lockstep_flight`` is the method of ``fastpath.concave`` (its Holmes start, the certified
+``lockstep_flight`` is the method of ``fastpath.elastic.concave`` (its Holmes start, the certified
 bracket, the classification of each evaluation with its error bounds, Halley steps with the
 bisection guard, the clamped Newton correction at the root), with three changes that keep it
 branch-free:
 
-* sines and cosines come from ``fastpath.sincos.sin_cos`` (no call; error <= 4u instead of
-  libm's ulp, within the gap's error bound: for t >= 1 ``gap_error`` allows >= 16u*|eps| for the
-  plate term and ``rate_error`` >= 8u*|eps|), also for the rotations of later iterates;
+* sines and cosines come from ``fastpath.arithmetic.sincos.sin_cos`` (no call; error <= 4u
+  instead of libm's ulp, within the gap's error bound: for t >= 1 ``gap_error`` allows
+  >= 16u*|eps| for the plate term and ``rate_error`` >= 8u*|eps|), also for the rotations of
+  later iterates;
 * exactly ``LOCKSTEP_EVALUATIONS`` evaluations, a lane's answer frozen at its first root;
 * one division per evaluation (Newton's and Halley's steps from one reciprocal) and the
   arithmetic midpoint as the bisection guard (no square roots);
 * whatever it does not handle, it does not answer: ``done`` is False for a flight that is not a
   certain departure, starts short (2*w0 < 1 + |eps|), has |phi + 2v| >= 2**20, a non-finite
   value, a flat top, a bracket closed to adjacent floats, or no root within the evaluations.
-  The caller then runs ``concave_flight``'s general loop. About 1 flight in 25 of the seed's
+  The caller then runs ``concave_flight``'s general loop. About 1 flight in 25 of the paper's
   escape ensemble (measured in the benchmark's report).
 
 Final step: as ``concave_flight``, the Newton correction is taken at a point where |d| is within
-its rounding bound, or where it is provably as good (``fastpath.concave.newton_is_final``): one
-evaluation fewer in most flights.
+its rounding bound, or where it is provably as good (``fastpath.elastic.concave.newton_is_final``):
+one evaluation fewer in most flights.
 
 The answer is a pure function of the inputs, so ``concave_flight`` (one flight) and the
 ensemble (a batch) return the same bits for the same departure.
@@ -33,46 +34,41 @@ ensemble (a batch) return the same bits for the same departure.
 
 import math
 
-from fastpath._jit import inline_jit, jit
-from fastpath.concave import bracket_from_root, newton_is_final
-from fastpath.gap import departure, gap_error, rate_error
-from fastpath.rotation import two_sum
-from fastpath.sincos import SIN_COS_LIMIT, sin_cos
+from fastpath.arithmetic.jit import inline_jit, jit
+from fastpath.arithmetic.phase import MODERATE_LIMIT
+from fastpath.arithmetic.rounding import select, two_sum
+from fastpath.arithmetic.sincos import sin_cos
+from fastpath.elastic.concave import bracket_from_root, newton_is_final
+from fastpath.elastic.gap import departure, gap_error, rate_error
 
 LOCKSTEP_EVALUATIONS = 4
 
-# the entries of a lane's state tuple (``_start``, ``_evaluation``): the iterate t, t - 2v, its
-# sine and cosine, the step h they still have to be rotated by, the bracket, the answer, the
-# root point with its sine and cosine, the evaluations made, and the two flags
+# the entries of a lane's state tuple (``lane_start``, ``lane_evaluation``): the iterate t,
+# t - 2v, its sine and cosine, the step h they still have to be rotated by, the bracket, the
+# answer, the root point with its sine and cosine, the evaluations made, and the two flags
 (T, DELTA, SIN, COS, PENDING, LO, HI, TAU, T_ROOT, SIN_ROOT, COS_ROOT, EVALUATIONS, DONE,
  FAILED) = range(14)
 
 
 @inline_jit
-def _select(condition, a, b):
-    """a if condition else b, as a select."""
-    return a if condition else b
-
-
-@inline_jit
 def moderate_bracket(v, w0, w0_error, eps):
-    """``fastpath.concave.bracket`` for 1e-150 < |v| < 1e150 (v**2 neither under- nor overflows),
-    without the branch to hypot."""
+    """``fastpath.elastic.concave.bracket`` for 1e-150 < |v| < 1e150 (v**2 neither under- nor
+    overflows), without the branch to hypot."""
     return bracket_from_root(v, w0, w0_error, eps, math.sqrt(v * v + 4.0 * abs(eps)))
 
 
 @inline_jit
-def _rotate(s, c, h):
+def lane_rotate(s, c, h):
     """(sin, cos) of the angle moved on by h: first order below 1e-8, else angle addition."""
     sh, ch = sin_cos(h)
     tiny = abs(h) < 1e-8
-    sh = _select(tiny, h, sh)
-    ch = _select(tiny, 1.0, ch)
+    sh = select(tiny, h, sh)
+    ch = select(tiny, 1.0, ch)
     return s * ch + c * sh, c * ch - s * sh
 
 
 @inline_jit
-def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
+def lane_evaluation(state, phi, cos_phi, v, eps, two_v, k):
     """Evaluation k of a lane that has neither answered nor given up; else unchanged.
 
     The iterate's sine and cosine are rotated on by the step the previous evaluation chose
@@ -86,7 +82,7 @@ def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
     if done or failed:
         return state
     if k > 1:
-        s, c = _rotate(s, c, h)
+        s, c = lane_rotate(s, c, h)
     d = eps * (cos_phi - c) - 0.5 * t * delta
     d1 = -v - delta + eps * s
     if not (abs(d) < math.inf and abs(d1) < math.inf):
@@ -125,15 +121,15 @@ def _evaluation(state, phi, cos_phi, v, eps, two_v, k):
 
 
 @inline_jit
-def _start(phi, sin_phi, v, eps, w0_error):
+def lane_start(phi, sin_phi, v, eps, w0_error):
     """The lane's state before its first evaluation (Holmes start t = 2*v), and two_v."""
     w0 = v + eps * sin_phi
     two_v = 2.0 * v
     theta0, theta0_error = two_sum(phi, two_v)
-    eligible = (2.0 * w0 >= 1.0 + abs(eps) and abs(theta0) < SIN_COS_LIMIT
+    eligible = (2.0 * w0 >= 1.0 + abs(eps) and abs(theta0) < MODERATE_LIMIT
                 and 1e-150 < abs(v) < 1e150)
     lo, hi = moderate_bracket(v, w0, w0_error, eps)
-    s, c = sin_cos(_select(eligible, theta0, 0.0))
+    s, c = sin_cos(select(eligible, theta0, 0.0))
     s, c = s + c * theta0_error, c - s * theta0_error  # |theta0_error| <= ulp: first order
     state = (two_v, 0.0, s, c, 0.0, lo, hi, math.nan, 0.0, 0.0, 1.0, 0, False,
              not (eligible and hi < math.inf))
@@ -141,10 +137,10 @@ def _start(phi, sin_phi, v, eps, w0_error):
 
 
 @inline_jit
-def _answer(state):
+def lane_answer(state):
     """(tau, sin(phi + tau), cos(phi + tau), evaluations, done) of a lane's final state."""
     _, _, _, _, _, _, _, tau, t_root, s_root, c_root, evaluations, done, failed = state
-    s1, c1 = _rotate(s_root, c_root, tau - t_root)
+    s1, c1 = lane_rotate(s_root, c_root, tau - t_root)
     return tau, s1, c1, evaluations, done and not failed
 
 
@@ -152,20 +148,20 @@ def _answer(state):
 def lockstep_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
     """(tau, sin(phi + tau), cos(phi + tau), evaluations, done) for |eps| <= 1, phi in [-pi, pi).
 
-    As ``fastpath.concave.concave_flight`` (same arguments, a certain departure w0 > w0_error),
-    for the flights described in the module docstring; done False: no answer, use that.
-    Straight-line code for the ensemble's loops over lanes.
+    As ``fastpath.elastic.concave.concave_flight`` (same arguments, a certain departure
+    w0 > w0_error), for the flights described in the module docstring; done False: no answer,
+    use that. Straight-line code for the ensemble's loops over lanes.
     """
-    state, two_v = _start(phi, sin_phi, v, eps, w0_error)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 1)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 2)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 3)
-    state = _evaluation(state, phi, cos_phi, v, eps, two_v, 4)
-    return _answer(state)
+    state, two_v = lane_start(phi, sin_phi, v, eps, w0_error)
+    state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, 1)
+    state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, 2)
+    state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, 3)
+    state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, 4)
+    return lane_answer(state)
 
 
 @inline_jit
-def _running(state):
+def lane_running(state):
     """The lane has neither answered nor given up."""
     return not (state[DONE] or state[FAILED])
 
@@ -174,12 +170,12 @@ def _running(state):
 def lockstep_flight_one(phi, sin_phi, cos_phi, v, eps, w0_error):
     """``lockstep_flight`` for one flight: the same evaluations, the same bits, but it stops
     at the first answer (or give-up) instead of running all LOCKSTEP_EVALUATIONS."""
-    state, two_v = _start(phi, sin_phi, v, eps, w0_error)
+    state, two_v = lane_start(phi, sin_phi, v, eps, w0_error)
     for k in range(1, LOCKSTEP_EVALUATIONS + 1):
-        if not _running(state):
+        if not lane_running(state):
             break
-        state = _evaluation(state, phi, cos_phi, v, eps, two_v, k)
-    return _answer(state)
+        state = lane_evaluation(state, phi, cos_phi, v, eps, two_v, k)
+    return lane_answer(state)
 
 
 @inline_jit

@@ -1,7 +1,7 @@
 """The gap near a short, nearly tangent root, with a rounding bound that scales with the terms.
 
-``fastpath.gap.gap_error`` allows an absolute error of a few u in sin(phi + t/2) (the "+3" of its
-plate term) and so about 12u*|eps|*t in d. Near a (near-)triple root of the concave solver
+``fastpath.elastic.gap.gap_error`` allows an absolute error of a few u in sin(phi + t/2) (the "+3"
+of its plate term) and so about 12u*|eps|*t in d. Near a (near-)triple root of the concave solver
 (eps -> 1, phi = -x, v = x, tau = 2x: DESIGN fact 11) the gap is of order x**4/24 and its slope
 x**3/6, while its terms are only of order t*x: there the generic bound is ~1e3-1e6 times the actual
 rounding, the solver stopped 16% away from the root (x = 3e-5; the Newton correction from there
@@ -19,7 +19,7 @@ Evaluation (t a float >= 2**-1000, so h = t/2 is exact; sh, ch = libm sin h, cos
 Error bound (first order in u = 2**-53; libm's sin and cos within one ulp, <= 2u relative; each
 float operation rounds by <= u of its computed result). The departure's sine and cosine have
 absolute errors sig and gam beyond which nothing is known but this: the caller's w0 bound
-``w0_error`` (``fastpath.gap.departure``) is >= |eps|*(2u|sin_phi| + phase error), so
+``w0_error`` (``fastpath.elastic.gap.departure``) is >= |eps|*(2u|sin_phi| + phase error), so
 |eps|*sig <= w0_error and |eps|*gam <= 2u|eps| + w0_error (the cosine of a carried pair is taken
 to be as good as its sine, as ``gap_error`` does). Writing |.| of computed values,
 
@@ -48,8 +48,8 @@ The terms u*|eps|*(3|sin_phi| + 5|sh|) are dominated by the w0_error ones for li
 
 import math
 
-from fastpath._jit import jit
-from fastpath.gap import UNIT_ROUNDOFF
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 
 U = UNIT_ROUNDOFF
 SMALLEST_T = 2.0**-1000  # t/2 exact, and every term far above the subnormal range's rounding

@@ -7,14 +7,15 @@ For a departure at phase phi with velocity v, after a time t (DESIGN section 2):
     d'(t) = v - t + eps*sin(phi + t)
 
 ``gap_error`` and ``rate_error`` bound the rounding errors of ``gap`` and ``gap_rate`` in float64
-(phi reduced); ``departure`` computes w0 = d'(0) = v + eps*sin(phi) with its error bound.
+(phi reduced); ``departure`` computes w0 = d'(0) = v + eps*sin(phi) with its error bound, and
+``departure_verdict`` says whether the particle leaves the plate.
 """
 
 import math
 
-from fastpath._jit import jit
-
-UNIT_ROUNDOFF = 2.0**-53
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.status import CONVERGED, NOT_DEPARTING, OVERFLOW, UNCERTAIN
 
 
 @jit
@@ -60,3 +61,17 @@ def departure(phi, sin_phi, v, eps, phase_error):
     w0 = v + eps * sin_phi
     bound = 2.0 * UNIT_ROUNDOFF * abs(w0) + 3.0 * UNIT_ROUNDOFF * abs(eps * sin_phi)
     return w0, bound + abs(eps) * phase_error
+
+
+@jit
+def departure_verdict(w0, bound):
+    """CONVERGED for a certain departure (w0 > bound), NOT_DEPARTING where w0 <= 0 is certain
+    (w0 <= -bound), UNCERTAIN where w0 is within its rounding bound of 0, OVERFLOW for a w0 that
+    is not finite."""
+    if not abs(w0) < math.inf:
+        return OVERFLOW
+    if not w0 > -bound:
+        return NOT_DEPARTING
+    if not w0 > bound:
+        return UNCERTAIN
+    return CONVERGED

@@ -11,7 +11,8 @@ With |h| <= SMALL_ANGLE = 0.125 the truncation errors h**11/11! and h**12/12! ar
 
 import math
 
-from fastpath._jit import jit
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rounding import two_sum
 
 SMALL_ANGLE = 0.125
 
@@ -32,14 +33,6 @@ def small_sin_cos(h):
 
 
 @jit
-def two_sum(x, y):
-    """(s, e) with s = fl(x + y) and x + y = s + e exactly (Knuth)."""
-    s = x + y
-    y_virtual = s - x
-    return s, (x - (s - y_virtual)) + (y - y_virtual)
-
-
-@jit
 def sin_cos_of_sum(x, y):
     """(sin(x + y), cos(x + y)) of the EXACT sum of two doubles.
 
@@ -49,7 +42,7 @@ def sin_cos_of_sum(x, y):
 
     libm at a and the Taylor polynomials at e. The error is libm's (< 1 ulp) plus a few
     roundings, whatever |x + y|: libm's sine of fl(x + y) alone is off by up to |e|, which is
-    16u at x + y ~ 24 (issue 12: a carried sine 9u off). e = 0 gives libm's values unchanged.
+    16u at x + y ~ 24. e = 0 gives libm's values unchanged.
     """
     a, e = two_sum(x, y)
     sin_a, cos_a = math.sin(a), math.cos(a)

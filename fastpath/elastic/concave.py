@@ -1,8 +1,8 @@
 """Fast flight solver for |eps| <= 1 (exactly 1 included), where the gap is concave (DESIGN fact 2).
 
 With d'' = -1 + eps*cos(phi + t) <= -1 + |eps| <= 0 the gap has exactly one positive root, so a
-point t where the computed gap exceeds its rounding bound E (``fastpath.gap.gap_error``) lies
-before it and a point with d < -E after it: every such evaluation narrows a certified bracket
+point t where the computed gap exceeds its rounding bound E (``fastpath.elastic.gap.gap_error``)
+lies before it and a point with d < -E after it: every such evaluation narrows a certified bracket
 [lo, hi]. It starts from the bounds of fact 2 and, since d <= 2|eps| + t*v - t**2/2,
 
     2*w0/(1 + |eps|)  <=  tau  <=  min(2*w0/(1 - |eps|),  v + sqrt(v**2 + 4|eps|)),
@@ -26,16 +26,16 @@ small: d ~ x**4/24 at phi = -x, v = x, eps -> 1) it is 1e3-1e6 times the actual 
 there is either flat (UNCERTAIN although float64 could decide) or far from the root, and the Newton
 correction's second-order error |d''|*(d/d')**2/(2|d'|) dominates (2.29 kappa*u at x = 3e-5).
 So when the loop stops flat, or where that second-order term may exceed u*t/2
-(``_newton_inexact``; never on ordinary flights, where d/d' ~ u*t), the iteration goes on with
-``fastpath.tight_gap``: fresh half-angle sines and a bound E, R from the sizes of the terms, proved
-there. Its points narrow the same certified bracket by the same rules, so every answer stays in
-it. Only short flights need this: a concave gap with d(0) = d(tau) = 0 lies between 0 and its
+(``newton_inexact``; never on ordinary flights, where d/d' ~ u*t), the iteration goes on with
+``fastpath.elastic.tight_gap``: fresh half-angle sines and a bound E, R from the sizes of the terms,
+proved there. Its points narrow the same certified bracket by the same rules, so every answer stays
+in it. Only short flights need this: a concave gap with d(0) = d(tau) = 0 lies between 0 and its
 tangent at tau, 0 <= d <= |d'(tau)|*tau on [0, tau], so a small d'(tau) needs d'' ~ 0 over the
 whole flight, i.e. eps ~ 1 and phi + t ~ 0 (mod 2*pi): impossible over the Holmes start's flights
 (tau >= 2*w0/(1 + |eps|) >= 1).
 
 Two starts and two ways of evaluating the gap, each one libm sine and cosine per flight; later
-iterates move the angles along by angle addition (``fastpath.rotation``):
+iterates move the angles along by angle addition (``fastpath.arithmetic.rotation``):
 
 - Unless the flight may be short (lower bound 2*w0/(1+|eps|) below 1), start at the Holmes
   flight time t = 2*v, where t*(v - t/2) vanishes, and
@@ -43,7 +43,7 @@ iterates move the angles along by angle addition (``fastpath.rotation``):
   eps*sin(phi + t), d'' = -1 + eps*cos(phi + t), the sine and cosine at the start taken of the
   exact sum phi + 2*v (``sin_cos_of_sum``: TwoSum, libm, the remainder by angle addition) and
   rotated on by the steps in delta. Here t >= 1, so the plate
-  term's rounding error, ~|eps|*u, is within the gap's error bound (``fastpath.gap``).
+  term's rounding error, ~|eps|*u, is within the gap's error bound (``fastpath.elastic.gap``).
 - Otherwise start at the root of w0*t - (1 - eps*cos(phi))*t**2/2 (the plate's acceleration
   frozen at departure) and use the half angle t/2: d = 2*eps*sin(t/2)*sin(phi + t/2) +
   t*(v - t/2), free of cancellation at small t.
@@ -53,22 +53,18 @@ Both return sin and cos of phi + tau, which the collision needs and the next fli
 
 import math
 
-from fastpath._jit import inline_jit, jit
-from fastpath.gap import UNIT_ROUNDOFF, gap_error, rate_error
-from fastpath.rotation import rotate, sin_cos_of_sum
-from fastpath.status import FlightStatus
-from fastpath.tight_gap import SMALLEST_T, tight_gap
-
-ITERATION_LIMIT = 60
-CONVERGED = int(FlightStatus.CONVERGED)
-UNCERTAIN = int(FlightStatus.UNCERTAIN)
-MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
-OVERFLOW = int(FlightStatus.OVERFLOW)
+from fastpath.arithmetic.jit import inline_jit, jit
+from fastpath.arithmetic.rotation import rotate, sin_cos_of_sum
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.elastic.gap import gap_error, rate_error
+from fastpath.elastic.tight_gap import SMALLEST_T, tight_gap
+from fastpath.status import CONVERGED, ITERATION_LIMIT, MAX_ITERATIONS, OVERFLOW, UNCERTAIN
 
 _NEWTON_STALLS = 2  # Newton steps in ``_refine`` that may fail to halve before it stops
 
-# classification of one evaluation (see the module docstring)
-_BEFORE, _AFTER, _AT_ROOT, _FLAT = 0, 1, 2, 3
+# classification of one evaluation (see the module docstring; ``fastpath.dissipative.drag_flight``
+# classifies its points the same way)
+BEFORE, AFTER, AT_ROOT, FLAT = 0, 1, 2, 3
 
 
 @jit
@@ -84,7 +80,7 @@ def bracket(v, w0, w0_error, eps):
 @inline_jit
 def bracket_from_root(v, w0, w0_error, eps, root):
     """``bracket`` given root = sqrt(v**2 + 4|eps|), in selects only (the lanes of
-    ``fastpath.lockstep`` vectorise it): both upper bounds are computed, the energy bound
+    ``fastpath.elastic.lockstep`` vectorise it): both upper bounds are computed, the energy bound
     (<= 2|v| + 2) is used only where the concave one is not already below 2|v| + 2."""
     a = 1.0 + abs(eps)
     lo = 2.0 * (w0 - w0_error if w0 - w0_error > 0.0 else 0.0) / a * (1.0 - 4.0 * UNIT_ROUNDOFF)
@@ -100,15 +96,15 @@ def classify(phi, v, eps, t, d, d1):
     """Where t lies relative to the root, from d(t) and d'(t) with their error bounds."""
     d_err = gap_error(phi, v, eps, t)
     if d > d_err:
-        return _BEFORE
+        return BEFORE
     if d < -d_err:
-        return _AFTER
+        return AFTER
     d1_err = rate_error(phi, v, eps, t)
     if d1 < -d1_err:
-        return _AT_ROOT
+        return AT_ROOT
     if d1 > d1_err:
-        return _BEFORE
-    return _FLAT
+        return BEFORE
+    return FLAT
 
 
 @jit
@@ -117,7 +113,7 @@ def halley(t, d, d1, d2, where, lo, hi):
 
     t_next is the Halley step from t, or a bisection point if that step leaves the bracket.
     """
-    if where == _BEFORE:
+    if where == BEFORE:
         lo = t
     else:
         hi = t
@@ -157,16 +153,16 @@ def concave_flight(phi, sin_phi, cos_phi, v, eps, w0_error):
     if not hi < math.inf:
         return math.nan, math.nan, math.nan, 0, OVERFLOW
     if 2.0 * w0 >= 1.0 + abs(eps):
-        return _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi)
-    return _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
+        return flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi)
+    return flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error)
 
 
 @jit
 def _finish(t, d, d1, s, c, phi, lo, hi, evaluations, where):
     """The answer from the last evaluation at t (module docstring)."""
-    if where == _FLAT:
+    if where == FLAT:
         return t, s, c, evaluations, UNCERTAIN
-    if where == _AT_ROOT:
+    if where == AT_ROOT:
         tau = min(max(t - d / d1, lo), hi)
     else:  # the bracket closed to adjacent floats around the root
         tau = lo
@@ -178,7 +174,7 @@ def _finish(t, d, d1, s, c, phi, lo, hi, evaluations, where):
 
 
 @jit
-def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
+def flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
     two_v = 2.0 * v
     s, c = sin_cos_of_sum(phi, two_v)
     delta, t = 0.0, two_v
@@ -188,15 +184,15 @@ def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
         if not abs(d) < math.inf:
             return math.nan, math.nan, math.nan, evaluations, OVERFLOW
         where = classify(phi, v, eps, t, d, d1)
-        if where >= _AT_ROOT:
+        if where >= AT_ROOT:
             return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, where)
         d1_err = rate_error(phi, v, eps, t)
         if d1 < -d1_err and newton_is_final(-d / d1, gap_error(phi, v, eps, t), d1_err, eps):
-            lo, hi = (t, hi) if where == _BEFORE else (lo, t)
-            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _AT_ROOT)
+            lo, hi = (t, hi) if where == BEFORE else (lo, t)
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, AT_ROOT)
         t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, where, lo, hi)
         if t_next == lo or t_next == hi:
-            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _BEFORE)
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, BEFORE)
         delta_next = t_next - two_v
         s, c = rotate(s, c, delta_next - delta, phi, t_next)
         delta, t = delta_next, t_next
@@ -204,7 +200,7 @@ def _flight_from_holmes(phi, sin_phi, cos_phi, v, eps, lo, hi):
 
 
 @jit
-def _newton_inexact(t, d, d1, d2, eps):
+def newton_inexact(t, d, d1, d2, eps):
     """Whether the correction -d/d1 from t may miss the root by more than u*t/2 in second order.
 
     With delta = d/d1 the Newton point misses by |d''(xi)|*delta**2/(2|d'|), and
@@ -221,7 +217,7 @@ def _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi, done):
 
     Each point is classified as by ``classify``, with E and R. From a point with |d| <= E and
     d' < -R (after the maximum, the root within rounding) the Newton point is the next iterate
-    while ``_newton_inexact``, up to _NEWTON_STALLS steps that fail to halve the previous one
+    while ``newton_inexact``, up to _NEWTON_STALLS steps that fail to halve the previous one
     (then rounding dominates: the computed gap is noise at the scale of the step); otherwise it
     is the answer (clamped into the certified bracket, ``_finish``). ``done``: evaluations
     so far. If the evaluations run out, the answer is the last such Newton point, or
@@ -233,32 +229,32 @@ def _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi, done):
     for evaluations in range(done + 1, ITERATION_LIMIT + 1):
         d, d1, d2, s, c, d_err, d1_err = tight_gap(sin_phi, cos_phi, v, eps, w0_error, t)
         if d > d_err or (d >= -d_err and d1 > d1_err):
-            where = _BEFORE
+            where = BEFORE
         elif d < -d_err:
-            where = _AFTER
+            where = AFTER
         elif d1 < -d1_err:
-            where = _AT_ROOT
+            where = AT_ROOT
         else:
-            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _FLAT)
-        if where == _AT_ROOT:
-            last = _finish(t, d, d1, s, c, phi, lo, hi, ITERATION_LIMIT, _AT_ROOT)
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, FLAT)
+        if where == AT_ROOT:
+            last = _finish(t, d, d1, s, c, phi, lo, hi, ITERATION_LIMIT, AT_ROOT)
             t_next = last[0]
             step = abs(t_next - t)
             if not step < 0.5 * last_step:
                 stalls += 1
-            if stalls > _NEWTON_STALLS or not _newton_inexact(t, d, d1, d2, eps):
-                return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _AT_ROOT)
+            if stalls > _NEWTON_STALLS or not newton_inexact(t, d, d1, d2, eps):
+                return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, AT_ROOT)
             last_step = step
         else:
             t_next, lo, hi = halley(t, d, d1, d2, where, lo, hi)
             if t_next == lo or t_next == hi:
-                return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _BEFORE)
+                return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, BEFORE)
         t = t_next
     return last
 
 
 @jit
-def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error):
+def flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error):
     w0 = v + eps * sin_phi
     t = 2.0 * w0 / (1.0 - eps * cos_phi)  # the frozen-acceleration root
     if not lo < t < hi:
@@ -274,8 +270,8 @@ def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error):
         if not abs(d) < math.inf:
             return math.nan, math.nan, math.nan, evaluations, OVERFLOW
         where = classify(phi, v, eps, t, d, d1)
-        if where >= _AT_ROOT:
-            if t >= SMALLEST_T and (where == _FLAT or _newton_inexact(t, d, d1, -1.0 + eps * c,
+        if where >= AT_ROOT:
+            if t >= SMALLEST_T and (where == FLAT or newton_inexact(t, d, d1, -1.0 + eps * c,
                                                                         eps)):
                 refined = _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi,
                                   evaluations)
@@ -285,7 +281,7 @@ def _flight_half_angle(phi, sin_phi, cos_phi, v, eps, lo, hi, w0_error):
             return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, where)
         t_next, lo, hi = halley(t, d, d1, -1.0 + eps * c, where, lo, hi)
         if t_next == lo or t_next == hi:
-            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, _BEFORE)
+            return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, BEFORE)
         sin_h, cos_h = rotate(sin_h, cos_h, 0.5 * (t_next - t), 0.0, 0.5 * t_next)
         t = t_next
     return t, s, c, ITERATION_LIMIT, MAX_ITERATIONS

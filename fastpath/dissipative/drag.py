@@ -1,10 +1,10 @@
 """Flights with air drag: the particle's motion in closed form and the gap to the plate.
 
-Gravity 1 and a drag deceleration eta(V) (issue 16, the dissipation spec), k = drag >= 0:
+Gravity 1 and a drag deceleration eta(V), k = drag >= 0 (``fastpath.physics``):
 
     V' = -1 - eta(V),   V(0) = v,   Y(0) = 0;      eta(V) = k*V (LINEAR), k*V*|V| (QUADRATIC).
 
-Law codes are ints so that numba kernels can take them: NONE (no drag), LINEAR, QUADRATIC.
+Law codes (``fastpath.physics``): NONE (no drag), LINEAR, QUADRATIC.
 
 Linear drag, z = -k*t, phi1(z) = expm1(z)/z, phi2(z) = (expm1(z) - z)/z**2 (both -> 1, 1/2 as
 k -> 0, so the limit t*(v - t/2) comes out with no cancellation):
@@ -41,18 +41,14 @@ arguments z = -k*t, s*t, t - t_top (a relative change of a few u of the time, or
 t_top): the scales add t*max|V| to Y's terms and t*max|V'| to V's (V and V' are monotone
 in a flight: the maxima are at the ends), and exp(z)'s relative sensitivity |z| to the
 rounding of z. The tests hold these bounds to a 60-digit reference. The gap adds the plate's
-terms with the bounds of ``fastpath.gap``.
+terms with the bounds of ``fastpath.elastic.gap``.
 """
 
 import math
 
-from fastpath._jit import jit
-from fastpath.gap import UNIT_ROUNDOFF
-
-NONE = 0
-LINEAR = 1
-QUADRATIC = 2
-LAWS = {"linear": LINEAR, "quadratic": QUADRATIC}  # the public drag_law names
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.physics import LINEAR, QUADRATIC
 
 ROUNDING_FACTOR = 16.0
 _TAIL_SWITCH = 20.0  # s*t above which ln cosh uses its exponential tail form
@@ -202,7 +198,7 @@ def gap_state(phi, v, eps, k, law, t):
         d''(t) = -1 - eta(V(t)) + eps*cos(phi + t)
 
     d_error and d1_error bound the rounding errors of d and d': the particle's (``particle``),
-    the plate's as in ``fastpath.gap``, and the final sums.
+    the plate's as in ``fastpath.elastic.gap``, and the final sums.
     """
     y, vel, y_err, v_err = particle(v, k, law, t)
     theta = phi + t

@@ -17,7 +17,7 @@ A 27-bit integer times a 26-bit piece has at most 53 bits: every product is exac
 fractional part. The first two pieces give the turns to 2**-52 exactly; the rest, all positive,
 are added with relative rounding only. The tail left off is < 2**53 * 2**-156 = 2**-103 turns. The
 turns r in [0, 1) (or [-1/2, 1/2) for a centred phase) are then multiplied by 2*pi in
-double-double arithmetic (Dekker's product).
+double-double arithmetic (Dekker's product, ``rounding.two_product``).
 
 Accuracy: the rounding of the result, plus an absolute error below PAYNE_HANEK_ERROR = 2**-70
 from the small pieces (lo < 2**-23 turns, summed with relative rounding) and the inner sum of the
@@ -30,21 +30,24 @@ import math
 
 import numpy as np
 
-from fastpath._jit import inline_jit, jit
+from fastpath.arithmetic.jit import inline_jit, jit
+from fastpath.arithmetic.rounding import two_product
 
 PI = math.pi
 TWO_PI = 2.0 * math.pi
+PI_LOW = 1.2246467991473532e-16  # pi - PI (the float's representation error)
+TWO_PI_LOW = 2.4492935982947064e-16  # 2*pi - TWO_PI
 # 2*pi = HI + MID + LO to ~1e-35 (HI and MID have 31 significant bits; checked in the tests).
 TWO_PI_HI = 6.2831853069365025
 TWO_PI_MID = 2.430840201437384e-10
 TWO_PI_LO = 1.1650928224373424e-19
-_MAX_EXACT_TURNS = 2.0**21
-CODY_WAITE_LIMIT = 2.0**20
+# |x| below it is a moderate phase: a Cody-Waite reduction (here, and in ``sincos``) has
+# |k| < 2**21 turns, and k times a 31- or 33-bit part of 2*pi is exact
+MODERATE_LIMIT = 2.0**20
 # Payne-Hanek table: rows j = _E_MIN .. 1023 (x >= 2**20 has e >= 20 - 52; e + 26 <= 971 + 26)
 _E_MIN = -40
 _PIECES = 6
 _PIECE_BITS = 26
-_SPLIT = 134217729.0  # 2**27 + 1, Veltkamp's splitter for Dekker's exact product
 
 
 def _inverse_two_pi_fixed(bits):
@@ -82,21 +85,7 @@ def _turn_table():
 
 
 _TURNS = _turn_table()
-_TWO_PI_LOW = 2.4492935982947064e-16  # 2*pi - TWO_PI (the float's representation error)
 PAYNE_HANEK_ERROR = 2.0**-70  # absolute error of a reduction of |x| >= 2**20, beyond its rounding
-
-
-@jit
-def _two_product(a, b):
-    """(p, e) with p = fl(a*b) and a*b = p + e exactly (Dekker, Veltkamp splitting)."""
-    p = a * b
-    a_big = _SPLIT * a
-    a_hi = a_big - (a_big - a)
-    a_lo = a - a_hi
-    b_big = _SPLIT * b
-    b_hi = b_big - (b_big - b)
-    b_lo = b - b_hi
-    return p, ((a_hi * b_hi - p) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo
 
 
 @jit
@@ -136,8 +125,8 @@ def _payne_hanek(x, centred):
         hi += 1.0  # exact
         if lo < bottom - hi:  # x < 0 with turns just below -1 (only [0, 1) can need it)
             hi += 1.0
-    p, e = _two_product(hi, TWO_PI)
-    r = p + (e + hi * _TWO_PI_LOW + lo * TWO_PI)
+    p, e = two_product(hi, TWO_PI)
+    r = p + (e + hi * TWO_PI_LOW + lo * TWO_PI)
     if not centred and r >= TWO_PI:  # rounded up from just below 2*pi
         r = 0.0
     if centred and r >= PI:
@@ -158,7 +147,7 @@ def reduce_phase(x):
         return x
     if not abs(x) < math.inf:
         return math.nan
-    if abs(x) >= CODY_WAITE_LIMIT:
+    if abs(x) >= MODERATE_LIMIT:
         return _payne_hanek(x, False)
     return reduce_moderate(x)
 
@@ -187,7 +176,7 @@ def centre_phase(x):
         return x
     if not abs(x) < math.inf:
         return math.nan
-    if abs(x) >= CODY_WAITE_LIMIT:
+    if abs(x) >= MODERATE_LIMIT:
         return _payne_hanek(x, True)
     return centre_moderate(x)
 

@@ -1,7 +1,7 @@
 """Sine and cosine together, in straight-line arithmetic that the compiler can vectorise.
 
 libm's ``sin`` and ``cos`` are calls, which stop LLVM from vectorising a loop over particles
-(``fastpath.lockstep``). ``sin_cos`` computes both from one reduction, with no call and no
+(``fastpath.elastic.lockstep``). ``sin_cos`` computes both from one reduction, with no call and no
 branch that is not a select:
 
 1. Quadrant: k = floor(x*(2/pi) + 1/2), r = x - k*pi/2 with pi/2 = P1 + P2 + P3 (P1 and P2 with
@@ -20,7 +20,7 @@ branch that is not a select:
 Error: |sin_cos(x) - (sin x, cos x)| <= SIN_COS_ERROR = 4u in each component for |x| < 2**20
 (u = 2**-53; the reduction's 1.6u times |cos r| <= 1, the tail's ~0.5u, the final addition's u;
 checked against mpmath at quadrant boundaries and at random in the tests). libm's error is
-below one ulp. For |x| >= 2**20 use libm (``SIN_COS_LIMIT``).
+below one ulp. For |x| >= 2**20 use libm (``phase.MODERATE_LIMIT``).
 
 Near zero the error is relative, as libm's: for x*(2/pi) in [-1/2, 1/2) (k = 0) the reduction
 is exact (r = x), the sine's tail T = r**3*(...) has |T| <= r**2/6*|r| <= 0.103|r| and a relative
@@ -33,11 +33,10 @@ keeps its w0 ~ 1.7e-16 decidable).
 
 import math
 
-from fastpath._jit import inline_jit
+from fastpath.arithmetic.jit import inline_jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 
-UNIT_ROUNDOFF = 2.0**-53
 SIN_COS_ERROR = 4.0 * UNIT_ROUNDOFF
-SIN_COS_LIMIT = 2.0**20
 
 _TWO_OVER_PI = 0.6366197723675814
 _P1 = 1.5707963267341256  # pi/2 = _P1 + _P2 + _P3 + O(1.1e-37)
@@ -81,4 +80,4 @@ def sin_cos_error(x):
     return 0.0 if -0.5 <= x * _TWO_OVER_PI < 0.5 else SIN_COS_ERROR
 
 
-__all__ = ["SIN_COS_ERROR", "SIN_COS_LIMIT", "sin_cos", "sin_cos_error"]
+__all__ = ["SIN_COS_ERROR", "sin_cos", "sin_cos_error"]

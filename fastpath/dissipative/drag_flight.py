@@ -1,6 +1,6 @@
-"""One flight with drag: the smallest positive root of the gap of ``fastpath.drag``.
+"""One flight with drag: the smallest positive root of the gap of ``fastpath.dissipative.drag``.
 
-Bounds on the gap's curvature (the seed's Section 2 with friction). d'' = p(t) + eps*cos(phi + t)
+Bounds on the gap's curvature (the paper's Section 2 with friction). d'' = p(t) + eps*cos(phi + t)
 with the particle's acceleration p(t) = -1 - eta(V(t)). V moves monotonically towards the terminal
 velocity (p = 0 there): from above it (the usual case, 1 + eta(v) >= 0) V decreases, so eta(V)
 decreases and p increases towards 0; from below (falling faster than terminal after an impact
@@ -8,29 +8,31 @@ on a plate moving down fast) p > 0 decreases towards 0. Either way, for s >= t,
 
     p(s) >= min(p(t), 0),   so   d''(s) >= -a(t),   a(t) = max(1 + eta(V(t)), 0) + |eps|.
 
-At departure a(0) = max(1 + eta(v), 0) + |eps|: 1 + eta(v) + |eps| as the seed writes it when
+At departure a(0) = max(1 + eta(v), 0) + |eps|: 1 + eta(v) + |eps| as the paper writes it when
 v >= terminal (v < 0 included: then eta(v) < 0 and the bound is below 1 + |eps|, still valid
 because V only decreases), and |eps| alone below terminal (not 1 + max(eta(v), 0) + |eps|,
 which holds too but is looser). Since a(t) only shrinks (in the usual case) the
 lower-bound steps take a(t_k) at each iterate: past the top of a fast flight with quadratic drag
 a(t) is ~1 + |eps| instead of 1 + k*v**2 + |eps|.
 
-Lower-bound steps (as ``fastpath.flight``): from t_k with d_k > 0 and slope r_k the seed's step
-with a(t_k), and the local step of ``fastpath.flight.certified_step`` with
+Lower-bound steps (the iteration ``next_point`` of ``fastpath.elastic.lower_bound``, with the gap
+and bounds of ``drag_gap_bounds`` and the graze test ``may_be_drag_graze``): from t_k with d_k > 0
+and slope r_k the paper's step with a(t_k), and the local step of
+``fastpath.elastic.lower_bound.certified_step`` with
 c_k = min(p(t_k), 0) + eps*cos(phi + t_k) (the particle's part frozen at its lower bound, the
 plate's part with its Taylor remainder), all lowered by their rounding bounds
-(``fastpath.drag.gap_state``); the same stop, polish, graze test and statuses. In the graze test
-the largest curvature after t is b = |eps| + max(p(t), 0) (p <= 0 and increasing, or p > 0 and
-decreasing; |eps| - 1 without drag) and the third derivative is bounded by |eps| + |p'|,
+(``fastpath.dissipative.drag.gap_state``); the same stop, polish, graze test and statuses. In the
+graze test the largest curvature after t is b = |eps| + max(p(t), 0) (p <= 0 and increasing, or
+p > 0 and decreasing; |eps| - 1 without drag) and the third derivative is bounded by |eps| + |p'|,
 with |p'| = eta'(V)*|p| <= k*|p(t)| (linear) or 2*k*max(|V(t)|, 1/sqrt(k))*|p(t)|
 (quadratic: V stays between V(t) and the terminal velocity).
 
-Concave flights (Halley in a bracket, as ``fastpath.concave``). If 1 + eta(v) >= 0 then p is
+Concave flights (Halley in a bracket, as ``fastpath.elastic.concave``). If 1 + eta(v) >= 0 then p is
 increasing, so on [0, t] d'' <= p(t) + |eps| = -m(t). A point t with m(t) > 0 certifies the gap
 concave on [0, t]: with d(0) = 0 < d'(0) there is at most one root in (0, t], so d(t) > E puts t
 before the first root and d(t) < -E after it (E the gap's rounding bound). Halley steps in the
-bracket [lo, hi] start, as in ``fastpath.concave``, for long flights (2*w0 >= 1 + |eps|) at the
-particle's own landing time to first order in the drag, 2*v*(1 - k*v/3) (linear) or 2*v*(1 -
+bracket [lo, hi] start, as in ``fastpath.elastic.concave``, for long flights (2*w0 >= 1 + |eps|) at
+the particle's own landing time to first order in the drag, 2*v*(1 - k*v/3) (linear) or 2*v*(1 -
 k*v**2/4) (quadratic; Y(2v) = -k*v**3*2/3 resp. -k*v**4/2 to first order, divided by |Y'(2v)| =
 v), when that correction is below a half; else at the root of w0*t - (1 + eta(v) -
 eps*cos(phi))*t**2/2 (the departure curvature frozen); while hi is not yet known (no point after
@@ -38,61 +40,58 @@ the root), a step that would go backwards is replaced by the root of the local q
 + d'*s + d''*s**2/2 (forward, d'' < 0). The first point where m(t) <= 0 (drag so strong or a
 fall so long that the particle nears its terminal velocity: even |eps| < 1 then allows a convex
 gap and several roots) hands the flight to the lower-bound steps, which go on from the bracket's
-lower end with the iterations left. The end is as in ``fastpath.concave``: a Newton correction
-clamped into the bracket; UNCERTAIN at a flat zero.
+lower end with the iterations left. The end is as in ``fastpath.elastic.concave``: a Newton
+correction clamped into the bracket; UNCERTAIN at a flat zero.
 """
 
 import math
 
-from fastpath._jit import jit
-from fastpath.concave import _AFTER, _AT_ROOT, _BEFORE, halley
-from fastpath.drag import LINEAR, NONE, QUADRATIC, eta, gap_state
-from fastpath.flight import (
-    AUTO,
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rotation import sin_cos_of_sum
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.arithmetic.sincos import sin_cos
+from fastpath.dissipative.drag import eta, gap_state
+from fastpath.elastic.concave import AFTER, AT_ROOT, BEFORE, halley
+from fastpath.elastic.flight import AUTO, departure_phase
+from fastpath.elastic.gap import departure, departure_verdict
+from fastpath.elastic.lower_bound import GOING_ON, lower_bound_step, next_point
+from fastpath.physics import LINEAR, NONE, QUADRATIC
+from fastpath.status import (
+    CONVERGED,
     ITERATION_LIMIT,
-    certified_step,
-    departure_phase,
-    lower_bound_step,
+    MAX_ITERATIONS,
+    OVERFLOW,
+    UNCERTAIN,
 )
-from fastpath.gap import UNIT_ROUNDOFF, departure
-from fastpath.rotation import sin_cos_of_sum
-from fastpath.sincos import sin_cos
-from fastpath.status import FlightStatus
-
-CONVERGED = int(FlightStatus.CONVERGED)
-UNCERTAIN = int(FlightStatus.UNCERTAIN)
-NOT_DEPARTING = int(FlightStatus.NOT_DEPARTING)
-MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
-OVERFLOW = int(FlightStatus.OVERFLOW)
 
 _U = UNIT_ROUNDOFF
 
 
 @jit
-def drag_flight(phi, sin_phi, cos_phi, v, eps, drag, law, w0_error, method=AUTO):
+def drag_flight(physics, phi, sin_phi, cos_phi, v, w0_error, method=AUTO):
     """(tau, sin(phi + tau), cos(phi + tau), iterations, status) with drag (module docstring).
 
-    phi in [-pi, pi) with its sine and cosine; w0_error bounds the rounding error of
-    w0 = v + eps*sin_phi (``fastpath.gap.departure``). Statuses as ``fastpath.flight.flight_from``.
-    method: AUTO (Halley where the gap is provably concave) or SEED (lower-bound steps only).
+    physics: the description (``fastpath.physics``) with drag > 0. phi in [-pi, pi) with its
+    sine and cosine; w0_error bounds the rounding error of w0 = v + eps*sin_phi
+    (``fastpath.elastic.gap.departure``). Statuses as ``fastpath.elastic.flight.flight_from``.
+    method: AUTO (Halley where the gap is provably concave) or LOWER_BOUND (lower-bound steps
+    only).
     """
+    eps, drag, law = physics.eps, physics.drag, physics.law
     w0 = v + eps * sin_phi
-    if not abs(w0) < math.inf:
-        return math.nan, math.nan, math.nan, 0, OVERFLOW
-    if not w0 > -w0_error:
-        return math.nan, math.nan, math.nan, 0, NOT_DEPARTING
-    if not w0 > w0_error:
-        return math.nan, math.nan, math.nan, 0, UNCERTAIN
+    verdict = departure_verdict(w0, w0_error)
+    if verdict != CONVERGED:
+        return math.nan, math.nan, math.nan, 0, verdict
     a = curvature_bound(v, 0.0, eps, drag, law)
     lo = 2.0 * (w0 - w0_error) / a * (1.0 - 4.0 * _U)
     used = 0
     if method == AUTO and abs(eps) < 1.0 and 1.0 + eta(v, drag, law) >= 0.0:
-        tau, iterations, status = concave_drag_flight(phi, cos_phi, v, eps, drag, law, w0, lo)
+        tau, iterations, status = concave_drag_flight(physics, phi, cos_phi, v, w0, lo)
         if status != MAX_ITERATIONS or iterations == ITERATION_LIMIT:
             sin1, cos1 = sin_cos_of_sum(phi, tau)
             return tau, sin1, cos1, iterations, status
         used, lo = iterations, tau  # not certified concave: lower-bound steps from its lo
-    tau, iterations, status = lower_bound_drag_flight(phi, v, eps, drag, law, lo, used)
+    tau, iterations, status = lower_bound_drag_flight(physics, phi, v, lo, used)
     sin1, cos1 = sin_cos_of_sum(phi, tau)
     return tau, sin1, cos1, iterations, status
 
@@ -106,13 +105,14 @@ def curvature_bound(vel, v_err, eps, drag, law):
 
 
 @jit
-def concave_drag_flight(phi, cos_phi, v, eps, drag, law, w0, lo):
+def concave_drag_flight(physics, phi, cos_phi, v, w0, lo):
     """(tau, evaluations, status) by Halley in a certified bracket (module docstring).
 
     MAX_ITERATIONS with fewer than ITERATION_LIMIT evaluations means: the gap could not be
     certified concave at an iterate; tau is then the bracket's certified lower end (the gap is
     positive on (0, tau]), where the caller goes on with lower-bound steps.
     """
+    eps, drag, law = physics.eps, physics.drag, physics.law
     hi = math.inf
     t = 2.0 * w0 / (1.0 + eta(v, drag, law) - eps * cos_phi)
     drop = drag * v if law == LINEAR else 0.75 * drag * v * v  # 3*(relative shortening)
@@ -128,18 +128,18 @@ def concave_drag_flight(phi, cos_phi, v, eps, drag, law, w0, lo):
         if not p_high + abs(eps) * (1.0 + 2.0 * _U) < 0.0:
             return lo, evaluations, MAX_ITERATIONS  # not certified concave up to t
         if d > d_err:
-            where = _BEFORE
+            where = BEFORE
         elif d < -d_err:
-            where = _AFTER
+            where = AFTER
         elif d1 < -d1_err:
-            where = _AT_ROOT
+            where = AT_ROOT
         elif d1 > d1_err:
-            where = _BEFORE
+            where = BEFORE
         else:
             return t, evaluations, UNCERTAIN  # a flat zero: float64 cannot place the root
-        if where == _AT_ROOT:
+        if where == AT_ROOT:
             return min(max(t - d / d1, lo), hi), evaluations, CONVERGED
-        if where == _BEFORE and hi == math.inf:
+        if where == BEFORE and hi == math.inf:
             lo = t
             t_next = t - 2.0 * d * d1 / (2.0 * d1 * d1 - d * d2)
             if not t_next > lo:  # backwards before the top: the local model's root instead
@@ -153,42 +153,42 @@ def concave_drag_flight(phi, cos_phi, v, eps, drag, law, w0, lo):
 
 
 @jit
-def lower_bound_drag_flight(phi, v, eps, drag, law, t, used):
+def drag_gap_bounds(physics, phi, v, t):
+    """(bounds, V(t), its error): the gap with drag at t and what the lower-bound step needs, as
+    ``fastpath.elastic.lower_bound.elastic_gap_bounds``: d, d1, their rounding bounds, a lower
+    bound on d2 with the particle's part at its bound min(p, 0) (module docstring), the jerk
+    -eps*sin(phi + t), eps and the curvature bound a(t); the particle's velocity for the graze
+    test."""
+    eps, drag, law = physics.eps, physics.drag, physics.law
+    d, d1, _, d_err, d1_err, vel, v_err = gap_state(phi, v, eps, drag, law, t)
+    theta = phi + t
+    p_low = min(-1.0 - eta(vel + v_err, drag, law), 0.0) * (1.0 + 4.0 * _U)
+    curvature = p_low + eps * math.cos(theta) - 4.0 * _U * abs(eps) * (1.0 + t)
+    a = curvature_bound(vel, v_err, eps, drag, law)
+    return (d, d1, d_err, d1_err, curvature, -eps * math.sin(theta), eps, a), vel, v_err
+
+
+@jit
+def lower_bound_drag_flight(physics, phi, v, t, used):
     """(tau, evaluations, status) by certified lower-bound steps from t (a certified lower bound,
-    the departure's step), counting ``used`` evaluations already spent."""
+    the departure's step), counting ``used`` evaluations already spent: the iteration of
+    ``fastpath.elastic.lower_bound`` with ``drag_gap_bounds`` and ``may_be_drag_graze``."""
     for k in range(used + 1, ITERATION_LIMIT + 1):
-        d, d1, d2, d_err, d1_err, vel, v_err = gap_state(phi, v, eps, drag, law, t)
-        if not (abs(d) < math.inf and abs(d1) < math.inf):
-            return math.nan, k, OVERFLOW
-        if d <= d_err:
-            if may_be_graze(phi, vel, v_err, eps, drag, law, t, d1, d_err):
-                return t, k, UNCERTAIN
-            return polish(t, d, d1, d1_err), k, CONVERGED
-        theta = phi + t
-        p_low = min(-1.0 - eta(vel + v_err, drag, law), 0.0) * (1.0 + 4.0 * _U)
-        curvature = p_low + eps * math.cos(theta) - 4.0 * _U * abs(eps) * (1.0 + t)
-        a = curvature_bound(vel, v_err, eps, drag, law)
-        step = certified_step(d - d_err, d1 - d1_err, curvature, -eps * math.sin(theta), eps, a)
-        t_next = t + step
-        if t_next == t:  # the root is within rounding of t
-            return polish(t, d, d1, d1_err), k, CONVERGED
-        t = t_next
+        bounds, vel, v_err = drag_gap_bounds(physics, phi, v, t)
+        d, r, d_err = bounds[0], bounds[1], bounds[2]
+        grazes = d <= d_err and may_be_drag_graze(physics, phi, vel, v_err, t, r, d_err)
+        t, status = next_point(t, bounds, grazes)
+        if status != GOING_ON:
+            return t, k, status
     return t, ITERATION_LIMIT, MAX_ITERATIONS
 
 
 @jit
-def polish(t, d, d1, d1_err):
-    """One Newton correction t - d/d' at a stop with |d| within rounding of zero, taken only
-    where the slope is negative beyond its error (``fastpath.flight.polish``)."""
-    if not d1 < -d1_err:
-        return t
-    return t - d / d1
-
-
-@jit
-def may_be_graze(phi, vel, v_err, eps, drag, law, t, r, d_err):
+def may_be_drag_graze(physics, phi, vel, v_err, t, r, d_err):
     """Whether a gap within rounding of zero at t may be a near-tangent dip (module docstring;
-    the argument of ``fastpath.flight.may_be_graze`` with the drag's curvature and jerk bounds)."""
+    the argument of ``fastpath.elastic.lower_bound.may_be_graze`` with the drag's curvature and
+    jerk bounds); vel: V(t) with its error bound v_err."""
+    eps, drag, law = physics.eps, physics.drag, physics.law
     p = -1.0 - eta(vel, drag, law)
     p_err = abs(eta(vel + v_err, drag, law) - eta(vel - v_err, drag, law)) + 4.0 * _U * abs(p)
     # sup of p after t: 0 (approached, p increasing) or p(t) (p > 0 decreasing); -1 without drag
@@ -209,12 +209,13 @@ def may_be_graze(phi, vel, v_err, eps, drag, law, t, r, d_err):
 
 
 @jit
-def solve_drag_flight(phi, v, eps, drag, law, method=AUTO):
-    """(tau, iterations, status) for a departure at any real phase phi (as ``solve_flight``)."""
+def solve_drag_flight(physics, phi, v, method=AUTO):
+    """(tau, iterations, status) for a departure at any real phase phi (as
+    ``fastpath.elastic.flight.solve_flight``), with the drag of ``physics``."""
     centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)  # as dissipative_collide: flight and step agree
-    _, w0_error = departure(centred, sin_phi, v, eps, phase_error)
+    _, w0_error = departure(centred, sin_phi, v, physics.eps, phase_error)
     tau, _, _, iterations, status = drag_flight(
-        centred, sin_phi, cos_phi, v, eps, drag, law, w0_error, method
+        physics, centred, sin_phi, cos_phi, v, w0_error, method
     )
     return tau, iterations, status

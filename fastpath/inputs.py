@@ -8,7 +8,7 @@ import numbers
 
 import numpy as np
 
-from fastpath.drag import LAWS
+from fastpath.physics import LAWS
 
 _LAW_NAMES = tuple(LAWS)  # a str compares by value; a tuple test never calls array __eq__
 
@@ -88,10 +88,10 @@ def count(name, value, minimum=0):
     return int(value)
 
 
-def physics(drag, drag_law, restitution):
+def physics_options(drag, drag_law, restitution):
     """Check the keyword-only physics options; return (drag, law code, restitution).
 
-    drag: a finite real number >= 0; drag_law: "linear" or "quadratic" (``fastpath.drag.LAWS``);
+    drag: a finite real number >= 0; drag_law: "linear" or "quadratic" (``fastpath.physics.LAWS``);
     restitution: a finite real number in (0, 1]. ValueError naming the bad value otherwise.
     """
     if (type(drag) is float and type(restitution) is float and type(drag_law) is str

@@ -1,4 +1,4 @@
-"""The exact collision map (phi, v) -> (phi1, v1) of the seed's equations (1)-(2).
+"""The exact collision map (phi, v) -> (phi1, v1) of the paper's equations (1)-(2).
 
 After the flight time tau (``solve_flight``), with plate velocity u = -eps*sin(phi + tau) and
 incoming velocity v_in = v - tau, the elastic impact gives
@@ -7,11 +7,11 @@ incoming velocity v_in = v - tau, the elastic impact gives
 """
 
 
-from fastpath._jit import jit
-from fastpath.flight import AUTO, departure_phase, flight_from, phase_error_of
-from fastpath.gap import UNIT_ROUNDOFF
-from fastpath.phase import centre_phase, reduce_phase
-from fastpath.sincos import sin_cos
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.phase import centre_phase, reduce_phase
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.arithmetic.sincos import sin_cos
+from fastpath.elastic.flight import AUTO, departure_phase, flight_from, phase_error_of
 
 CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rotation, Newton)
 
@@ -20,8 +20,8 @@ CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rota
 def collide(phi, v, eps, method=AUTO):
     """Return (phi1, v1, tau, iterations, status) for one flight and impact.
 
-    The sine and cosine are computed here from the centred phase by ``fastpath.sincos`` (the
-    ensembles' lanes do the same): its error beyond libm's and the centring's are added.
+    The sine and cosine are computed here from the centred phase by ``fastpath.arithmetic.sincos``
+    (the ensembles' lanes do the same): its error beyond libm's and the centring's are added.
     """
     centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)

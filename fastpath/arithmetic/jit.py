@@ -9,6 +9,12 @@ would silently keep its old machine code. So the cache lives in a directory name
 all of fastpath's sources, under ``NUMBA_CACHE_DIR`` if set, else the user cache directory.
 numba reads that setting when a kernel is decorated, so it is changed only for that moment and
 other libraries' caches stay where they were.
+
+Two limits of numba that the kernels respect (numba 0.68 loses the writes otherwise, silently):
+inside a ``prange`` loop an array held in a tuple (``fastpath.kernels.arrays``) is written only
+through a called function, never as ``group.array[i] = ...`` in the loop body itself; and an
+``overload`` (``fastpath.physics.model_of``) is not inlined into its caller (``inline="always"``
+dropped writes to arrays unpacked from a tuple). LLVM still inlines and folds it.
 """
 
 import hashlib
@@ -19,9 +25,10 @@ import numba
 
 
 def _cache_dir():
+    package = Path(__file__).resolve().parents[1]
     digest = hashlib.sha256()
-    for path in sorted(Path(__file__).parent.glob("*.py")):
-        digest.update(path.name.encode() + b"\0" + path.read_bytes())
+    for path in sorted(package.rglob("*.py")):
+        digest.update(path.relative_to(package).as_posix().encode() + b"\0" + path.read_bytes())
     root = os.environ.get("NUMBA_CACHE_DIR") or os.path.join(
         os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
         "bouncer-verify",

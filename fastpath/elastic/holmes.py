@@ -7,8 +7,8 @@ The flight time is 2*v; the exact map agrees with it to O(eps/v).
 
 import math
 
-from fastpath._jit import jit
-from fastpath.phase import reduce_phase
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.phase import reduce_phase
 
 
 @jit

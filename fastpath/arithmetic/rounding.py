@@ -1,0 +1,40 @@
+"""The unit roundoff and error-free transformations of float64 arithmetic.
+
+With round-to-nearest, fl(x op y) = (x op y)*(1 + delta), |delta| <= UNIT_ROUNDOFF = 2**-53, for
+results in the normal range. ``two_sum`` and ``two_product`` return a rounded result together
+with its exact rounding error, so that x + y or x*y can be carried as an unevaluated sum of two
+floats (Knuth's TwoSum; Dekker's product with Veltkamp's splitting).
+"""
+
+from fastpath.arithmetic.jit import inline_jit, jit
+
+UNIT_ROUNDOFF = 2.0**-53
+_SPLIT = 134217729.0  # 2**27 + 1, Veltkamp's splitter for Dekker's exact product
+
+
+@jit
+def two_sum(x, y):
+    """(s, e) with s = fl(x + y) and x + y = s + e exactly (Knuth)."""
+    s = x + y
+    y_virtual = s - x
+    return s, (x - (s - y_virtual)) + (y - y_virtual)
+
+
+@jit
+def two_product(a, b):
+    """(p, e) with p = fl(a*b) and a*b = p + e exactly (Dekker, Veltkamp splitting; |a*b| below
+    ~1e300 so that the splitting does not overflow)."""
+    p = a * b
+    a_big = _SPLIT * a
+    a_hi = a_big - (a_big - a)
+    a_lo = a - a_hi
+    b_big = _SPLIT * b
+    b_hi = b_big - (b_big - b)
+    b_lo = b - b_hi
+    return p, ((a_hi * b_hi - p) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo
+
+
+@inline_jit
+def select(condition, a, b):
+    """a if condition else b, as a select (no branch: it keeps a loop vectorisable)."""
+    return a if condition else b

@@ -1,0 +1,184 @@
+"""The paper's lower-bound step: a flight approached from below, never overstepping its root.
+
+Used for |eps| > 1, where the gap can have several roots (and for every eps with the method
+"lower_bound").
+
+Global step (the paper's, DESIGN fact 3). Gravity and the plate's acceleration give
+d2(t) >= -(1 + |eps|) =: -a (d1, d2, d3: the first three derivatives of d), so from a time t_k
+with d_k = d(t_k) > 0 and slope r_k = d1(t_k),
+
+    d(t_k + s) >= d_k + r_k*s - a*s**2/2,
+
+and the larger root s_a of the right-hand side is a rigorous lower bound on the time left before
+the next collision.
+
+Local step (fast near a double root). The derivatives of the plate term are bounded by |eps|, so
+with c_k = d2(t_k) = -1 + eps*cos(phi + t_k) and j_k = d3(t_k) = -eps*sin(phi + t_k),
+
+    d2(t_k + s) >= c_k + j_k*s - |eps|*s**2/2 >= min(c_k, c_k + j_k*H - |eps|*H**2/2) =: c_H
+
+for 0 <= s <= H (a concave quadratic in s has its minimum at an end), and c_H >= -a too. Hence
+d(t_k + s) >= q_H(s) := d_k + r_k*s + c_H*s**2/2 on [0, H]. If the first positive root s_H of
+q_H is <= H, d > 0 on [t_k, t_k + s_H): a step of s_H never oversteps; if q_H has no root in
+[0, H], a step of H does not. H starts at s_a and grows towards s_H for a few rounds; the step is
+the largest certified one. Near a double root t* (d ~ m*(t - t*)**2/2) the model's error is
+O(|eps|*h**4) at a distance h, so h shrinks quadratically instead of the global step's crawl
+(eps just above 1: the global bound a ~ 2 dwarfs the dip's curvature <= eps - 1, and steps of
+~sqrt(2*d/a) took up to 20,000 iterations).
+
+Rounding: the models use d_k, r_k and c_k lowered by their error bounds (``gap_error``,
+``rate_error``), so they bound the exact gap from below; a discriminant within its rounding of zero
+counts as a root. Root formulas are chosen by the sign of r_k so that they never subtract nearly
+equal numbers (``first_root``). The iteration stops when the gap is within its rounding error of
+zero; a final Newton correction (``polish``) then moves onto the crossing: the stop can be up to
+~12 kappa*u early, the polish leaves only the gap's actual rounding. It is taken only where the
+slope d1 < 0 beyond its error; where d is convex over the step the tangent lies below d and its
+root is not beyond the crossing, where it is concave the overshoot is at most s**2*a/(2|d1|) for a
+step s itself at rounding level (|d| <= E). No second root lies that close (``may_be_graze``).
+
+For |eps| > 1 the gap can be convex (d2 <= |eps| - 1 =: b), and a zero gap with a small slope may
+be the bottom of a near-tangent dip whose sign float64 cannot tell: that flight is UNCERTAIN. At
+most ITERATION_LIMIT evaluations for any input (then MAX_ITERATIONS, as UNCERTAIN). A non-finite
+intermediate (v**2, t*v overflowing) gives OVERFLOW.
+"""
+
+import math
+
+from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.elastic.gap import gap, gap_error, gap_rate, rate_error
+from fastpath.status import CONVERGED, ITERATION_LIMIT, MAX_ITERATIONS, OVERFLOW, UNCERTAIN
+
+_GROWTH_ROUNDS = 4  # rounds of growing H in the local step
+GOING_ON = -1  # ``next_point``: no end yet
+
+
+@jit
+def lower_bound_step(d, r, a):
+    """Larger root s of d + r*s - a*s**2/2 = 0 (d >= 0, a > 0), cancellation-free."""
+    root = math.sqrt(r * r + 2.0 * a * d)
+    if r >= 0.0:
+        return (r + root) / a
+    return 2.0 * d / (root - r)
+
+
+@jit
+def first_root(d, r, k):
+    """Smallest positive root of d + r*s + k*s**2/2 (d > 0), inf if none; cancellation-free.
+
+    A discriminant within its rounding error of zero counts as zero (a root: the shorter step).
+    """
+    disc = r * r - 2.0 * k * d
+    if disc < -4.0 * UNIT_ROUNDOFF * (r * r + 2.0 * abs(k) * d) or (r >= 0.0 and k >= 0.0):
+        return math.inf
+    disc = max(disc, 0.0)
+    if r < 0.0:
+        return 2.0 * d / (math.sqrt(disc) - r)
+    return (r + math.sqrt(disc)) / -k
+
+
+@jit
+def certified_step(d, r, c, j, eps, a):
+    """Largest step from a point with d > 0 that the module docstring's lower models certify.
+
+    a > 0 bounds -d2 from above for the rest of the flight (1 + |eps| here; with drag
+    ``fastpath.dissipative.drag_flight`` passes its own bound), c is a lower bound on d2 at the
+    point where only the plate's part still varies (third derivative j, Taylor remainder
+    |eps|*s**2/2).
+    """
+    best = lower_bound_step(d, r, a)
+    h = best
+    for _ in range(_GROWTH_ROUNDS):
+        c_h = max(min(c, c + j * h - 0.5 * abs(eps) * h * h), -a)
+        s_h = first_root(d, r, c_h)
+        if s_h <= h:
+            return max(best, s_h)
+        best = h  # q_H > 0 on [0, H]
+        h = min(s_h, 4.0 * h)
+    return best
+
+
+@jit
+def may_be_graze(eps, phi, t, r, d_err):
+    """Whether a gap within rounding of zero at t (|d| <= d_err) may be a near-tangent dip.
+
+    The exact gap is then <= 2*d_err at t. Where it is locally concave, d2 = d''(t) < 0, it
+    stays concave for a time R = -d2/|eps| (the third derivative is bounded by |eps|), so with
+    slope r < 0 it surely crosses zero within 2*d_err/|r| if that is shorter than R: a collision
+    at t up to rounding. Otherwise a dip of depth <= 2*d_err can follow only if
+    r > -sqrt(4*b*d_err), with b = |eps| - 1 the largest possible curvature (safety factor 2).
+    """
+    convex_bound = abs(eps) - 1.0
+    if convex_bound <= 0.0:
+        return False  # the gap is concave everywhere: no dip
+    # raised by its rounding bound, the argument's rounding u*(|phi| + t) included (as in
+    # elastic_gap_bounds): the shortcut needs d'' < 0 for certain
+    curvature = -1.0 + eps * math.cos(phi + t) + 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
+    if curvature < 0.0 and r < 0.0 and 2.0 * d_err < -r * (-curvature / abs(eps)):
+        return False
+    return r > -2.0 * math.sqrt(4.0 * convex_bound * d_err)
+
+
+@jit
+def elastic_gap_bounds(eps, phi, v, t):
+    """What a lower-bound step at t needs, without drag: (d, d1, E, R, c, j, eps, a).
+
+    d and its slope d1 with their rounding bounds E, R (``fastpath.elastic.gap``); c = d2(t)
+    lowered by its rounding bound (the argument's u*(|phi| + t) included); the jerk
+    j = d3(t) = -eps*sin(phi + t); a = 1 + |eps|, the bound on -d2 for the rest of the flight.
+    """
+    d = gap(phi, v, eps, t)
+    r = gap_rate(phi, v, eps, t)
+    d_err = gap_error(phi, v, eps, t)
+    r_err = rate_error(phi, v, eps, t)
+    theta = phi + t
+    curvature = -1.0 + eps * math.cos(theta) - 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
+    return d, r, d_err, r_err, curvature, -eps * math.sin(theta), eps, 1.0 + abs(eps)
+
+
+@jit
+def next_point(t, bounds, grazes):
+    """One lower-bound iteration from t, given the gap's ``bounds`` there (as
+    ``elastic_gap_bounds``) and whether a zero gap there may be a graze: (t_next, status),
+    status GOING_ON or the FlightStatus of the flight's end at t_next.
+
+    The models take the worst values within rounding: d, d1 and d2 lowered by their bounds.
+    """
+    d, r, d_err, r_err, curvature, jerk, eps, a = bounds
+    if not (abs(d) < math.inf and abs(r) < math.inf):
+        return math.nan, OVERFLOW
+    if d <= d_err:
+        if grazes:
+            return t, UNCERTAIN
+        return polish(t, d, r, r_err), CONVERGED
+    t_next = t + certified_step(d - d_err, r - r_err, curvature, jerk, eps, a)
+    if t_next == t:  # the root is within rounding of t: d <= d_err + |r|*ulp(t)
+        return polish(t, d, r, r_err), CONVERGED
+    return t_next, GOING_ON
+
+
+@jit
+def lower_bound_flight(phi, v, eps, t):
+    """(tau, evaluations, status) by certified lower-bound steps from t; phi reduced.
+
+    t: a time certified to lie before the first root: the step from the departure,
+    2*w0/(1 + |eps|), or a later point where d > 0 is known, as after a detachment
+    (``fastpath.dissipative.sticking``). With drag the same iteration runs in
+    ``fastpath.dissipative.drag_flight.lower_bound_drag_flight``.
+    """
+    for k in range(1, ITERATION_LIMIT + 1):
+        bounds = elastic_gap_bounds(eps, phi, v, t)
+        grazes = bounds[0] <= bounds[2] and may_be_graze(eps, phi, t, bounds[1], bounds[2])
+        t, status = next_point(t, bounds, grazes)
+        if status != GOING_ON:
+            return t, k, status
+    return t, ITERATION_LIMIT, MAX_ITERATIONS
+
+
+@jit
+def polish(t, d, r, r_err):
+    """One certified Newton correction t - d/r at a stop with |d| within rounding of zero,
+    taken only where the slope r is negative beyond its rounding bound r_err."""
+    if not r < -r_err:
+        return t
+    return t - d / r

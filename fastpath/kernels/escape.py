@@ -1,0 +1,296 @@
+"""Escape and transport ensembles: many starts through the map, recording only histograms.
+
+Escape and transport (the paper's Sections 3 and 4). Each particle runs from its start (n = 0,
+t = 0 is never tested against the holes) until
+
+* collision n = 1, 2, ... lands at a phase phi_n (mod 2*pi) inside a hole j: it escapes through
+  hole j with escape index N = n and escape time T = t_n = tau_0 + ... + tau_{n-1};
+* the horizon: the next collision would have index n > ``max_collisions`` or time
+  t > ``max_time``: it is censored, and we know only N > n and T > t (the last known bound);
+* with restitution r < 1: its impacts accumulate where it can never leave the plate (stuck for
+  good, ``fastpath.dissipative.sticking``): counted in ``stuck_n`` / ``stuck_t`` by the index n
+  of the impact after which the tail was summed and by the accumulation time t_acc (censored
+  at (n, t_acc) if t_acc > max_time). Escapes + censored + stuck + flagged = particles;
+* a flight that float64 cannot decide (status UNCERTAIN or MAX_ITERATIONS, or NOT_DEPARTING at
+  a graze): the particle is flagged with its departure (phi, v, t, n) and stops; the driver
+  settles that collision with ``verify`` and resumes it here.
+
+Holes, bins and blocks: ``fastpath.kernels.histogram``, ``fastpath.kernels.arrays``. With r < 1
+the collisions are the impacts: riding the plate through a hole's phases during a sticking
+episode is not a collision and does not escape; the impacts of a summed tail are collisions, so
+a tail whose phases would cross into a hole is not summed (``fastpath.dissipative.carried``).
+After a detachment the next collision is the first impact of the flight from the detachment
+state; flags and samples then refer to that departure (theta*, u(theta*)).
+
+One particle loop for every description (``fastpath.physics``), compiled per model. Each
+group of blocks keeps LANES particles in flight together; for the elastic map the flights of
+all lanes are computed first in one vectorised loop (``lane_collide``, ``fastpath.elastic.
+lockstep``), then the bookkeeping runs lane by lane, a finished particle's lane taking the next
+one. A lane the lockstep flight does not answer gets ``collide``, whose answer is the same
+function of the departure: every particle's collisions are those of ``fastpath.step`` whatever
+the lanes, blocks or threads. With dissipation each lane's collision is
+``fastpath.dissipative.carried.advance`` on its carried state (no vectorised part).
+
+Verification sample (``arrays.Sample``): the pre-collision state and fast result (n, phi, v,
+phi1, v1, tau) of the picked collision, and with r < 1 the departure's carried entries
+(``fastpath.dissipative.carried.CARRIED``), from which ``fastpath.carried_step`` repeats it.
+"""
+
+import numpy as np
+from numba import get_num_threads, prange
+
+from fastpath.arithmetic.jit import inline_jit, jit, parallel_jit
+from fastpath.arithmetic.phase import MODERATE_LIMIT, centre_moderate, reduce_moderate
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, select
+from fastpath.arithmetic.sincos import sin_cos, sin_cos_error
+from fastpath.dissipative.carried import CARRIED, PHI, STATE_SIZE, STUCK, T, V, copy_carried
+from fastpath.dissipative.sticking import detachment
+from fastpath.elastic.collision import collide
+from fastpath.elastic.flight import AUTO, GENERAL, departure_phase
+from fastpath.elastic.holmes import holmes_collide
+from fastpath.elastic.lockstep import lockstep_collide
+from fastpath.kernels.arrays import keeps_carried
+from fastpath.kernels.histogram import censor, escape, exit_hole, in_hole, stuck
+from fastpath.kernels.particle import advance, departure_point
+from fastpath.kernels.records import flag, start_particle, store_carried, store_sample
+from fastpath.physics import DISSIPATIVE, ELASTIC, model_of
+from fastpath.status import CONVERGED
+
+LANES = 64  # particles in flight together in a group (a multiple of the vector width)
+
+
+@inline_jit
+def lane_collide(centred, v, eps, phase_error):
+    """``collide`` from a centred phase in straight-line code, for the common flight:
+    (tau, phi1, v1, centred phi1, its phase error for the next flight, answered).
+
+    The same arithmetic as ``collide`` -> ``collide_from`` -> ``flight_from`` ->
+    ``lockstep_flight`` -> reduce_phase / centre_phase (their moderate ranges); answered False
+    where collide would do anything else (then the caller calls it).
+    """
+    s, c = sin_cos(centred)
+    tau, sin1, _, _, answered = lockstep_collide(centred, s, c, v, eps, phase_error)
+    x = centred + tau
+    phi1 = reduce_moderate(x)
+    centred1 = centre_moderate(phi1)
+    phase_error1 = select(centred1 == phi1, 0.0, 2.0 * UNIT_ROUNDOFF * abs(centred1))
+    v1 = tau - v - 2.0 * eps * sin1
+    return (tau, phi1, v1, centred1, phase_error1 + sin_cos_error(centred1),
+            answered and abs(x) < MODERATE_LIMIT)
+
+
+def escape_chunk(physics, starts, holes, horizon, bins, sample, counts, flags):
+    """Run the particles ``starts`` (``arrays.Starts``) to their exit (module docstring).
+
+    physics: an Elastic or Dissipative description. Outputs are added to (the caller zeroes
+    them): ``counts`` (``arrays.EscapeCounts``, one row per block: len(counts.collisions)
+    blocks of consecutive particles), ``flags`` (``arrays.Flags``), ``sample.rows``.
+
+    Groups of whole blocks share lanes, one group per thread: a group ends with its last
+    long-lived particles in half-empty lanes, so the fewer groups the less of that (16 groups
+    of the 2^16 starts of a paper chunk cost 7% more per collision than one, on one thread).
+    A particle counts into its own block's row, so the grouping, like the threads, changes no
+    number: it only spreads the work.
+    """
+    _escape_groups(physics, starts, holes, horizon, bins, sample, counts, flags,
+                   detachment(physics), get_num_threads())
+
+
+@parallel_jit
+def _escape_groups(physics, starts, holes, horizon, bins, sample, counts, flags, detach,
+                   groups):
+    """``escape_chunk`` in ``groups`` groups of blocks (at least 1, at most one per block)."""
+    m = len(starts.phi)
+    blocks = len(counts.collisions)
+    per_block = (m + blocks - 1) // blocks
+    groups = max(1, min(blocks, groups))
+    per_group = (blocks + groups - 1) // groups
+    for g in prange(groups):
+        span = (per_block, min(m, g * per_group * per_block),
+                min(m, (g + 1) * per_group * per_block))
+        _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, flags,
+                      detach)
+
+
+@jit
+def _load(physics, lanes, lane, i, per_block, starts, sample, flags):
+    """Put particle i into a lane; False (the particle flagged) if it does not depart."""
+    idx, block, phi, v, t, n, slot, target, centred, phase_error, states = lanes
+    idx[lane], block[lane] = i, i // per_block
+    phi[lane], v[lane], t[lane], n[lane] = starts.phi[i], starts.v[i], starts.t[i], starts.n[i]
+    slot[lane], target[lane] = sample.slot[i], sample.target[i]
+    flags.status[i] = 0
+    if model_of(physics) == ELASTIC:
+        centred[lane], phase_error[lane] = departure_phase(phi[lane])
+        return True
+    state = states[lane]
+    if not start_particle(physics, state, i, starts, flags, True):
+        return False
+    phi[lane], v[lane], t[lane] = departure_point(state)
+    return True
+
+
+@jit
+def _load_next(physics, lanes, lane, following, end, per_block, starts, sample, flags):
+    """Fill the lane with the next particle that departs: (loaded, the next index)."""
+    while following < end:
+        loaded = _load(physics, lanes, lane, following, per_block, starts, sample, flags)
+        following += 1
+        if loaded:
+            return True, following
+    return False, following
+
+
+@jit
+def _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, flags, detach):
+    """Particles first .. end-1 of ``escape_chunk`` (whole blocks of per_block) in lanes;
+    span = (per_block, first, end)."""
+    per_block, first, end = span
+    idx, block = np.empty(LANES, np.int64), np.empty(LANES, np.int64)
+    phi, v, t, n = np.empty(LANES), np.empty(LANES), np.empty(LANES), np.empty(LANES, np.int64)
+    slot, target = np.empty(LANES, np.int64), np.empty(LANES, np.int64)
+    centred, phase_error = np.empty(LANES), np.empty(LANES)
+    tau, phi1, v1 = np.empty(LANES), np.empty(LANES), np.empty(LANES)
+    centred1, phase_error1 = np.empty(LANES), np.empty(LANES)
+    answered, hole = np.empty(LANES, np.bool_), np.empty(LANES, np.int64)
+    states, carried = np.empty((LANES, STATE_SIZE)), np.empty((LANES, len(CARRIED)))
+    lanes = (idx, block, phi, v, t, n, slot, target, centred, phase_error, states)
+    eps = physics.eps
+    hole_lo, hole_width = holes.lo, holes.width
+    max_collisions, max_time = horizon.max_collisions, horizon.max_time
+    dissipative = model_of(physics) == DISSIPATIVE
+    keep_carried = keeps_carried(sample.rows, physics.restitution)
+    active, following = 0, first
+    while active < LANES:
+        loaded, following = _load_next(physics, lanes, active, following, end, per_block,
+                                       starts, sample, flags)
+        if not loaded:
+            break
+        active += 1
+    while active > 0:
+        if not dissipative:
+            for lane in range(active):  # vectorised: no calls, no branches but selects
+                (tau[lane], phi1[lane], v1[lane], centred1[lane], phase_error1[lane],
+                 answered[lane]) = lane_collide(centred[lane], v[lane], eps, phase_error[lane])
+            for lane in range(active):
+                hole[lane] = -1
+            for h in range(len(hole_lo)):  # exit_hole of every lane, vectorised over the lanes
+                lo_h, width_h = hole_lo[h], hole_width[h]
+                for lane in range(active):
+                    hole[lane] = select(hole[lane] < 0 and in_hole(phi1[lane], lo_h, width_h),
+                                        h, hole[lane])
+        idle = False
+        for lane in range(active):
+            i = idx[lane]
+            b = block[lane]
+            finished = False
+            if n[lane] >= max_collisions:
+                censor(counts, bins, b, n[lane], t[lane])
+                finished = True
+            else:
+                kind, t_start = 0, 0.0
+                if dissipative:
+                    state = states[lane]
+                    if keep_carried and slot[lane] >= 0 and n[lane] < target[lane]:
+                        copy_carried(state, carried[lane])
+                    status, _, tau_l, kind, t_start, _ = advance(
+                        physics, state, AUTO, True, detach, hole_lo)
+                    phi1_l, v1_l, t1 = state[PHI], state[V], state[T]
+                    answered[lane] = False
+                elif answered[lane]:
+                    phi1_l, v1_l, tau_l, status = phi1[lane], v1[lane], tau[lane], CONVERGED
+                    t1 = t[lane] + tau_l
+                else:  # what the lanes do not answer: collide's general path, the same function
+                    phi1_l, v1_l, tau_l, _, status = collide(phi[lane], v[lane], eps, GENERAL)
+                    centred1[lane], phase_error1[lane] = departure_phase(phi1_l)
+                    t1 = t[lane] + tau_l
+                if status != CONVERGED:
+                    flag(flags, i, status, phi[lane], v[lane], t[lane], n[lane])
+                    finished = True
+                elif t1 > max_time:
+                    censor(counts, bins, b, n[lane], t1)
+                    finished = True
+                else:
+                    n[lane] += 1
+                    counts.collisions[b] += 1
+                    if slot[lane] >= 0 and n[lane] <= target[lane]:
+                        store_sample(sample.rows, slot[lane], n[lane], (phi[lane], v[lane]),
+                                     (phi1_l, v1_l, tau_l))
+                        if dissipative and keep_carried:
+                            store_carried(sample.rows, slot[lane], carried[lane])
+                    if dissipative:
+                        phi[lane], v[lane], t[lane] = departure_point(states[lane])
+                    else:
+                        phi[lane], v[lane], t[lane] = phi1_l, v1_l, t1
+                    j = hole[lane] if answered[lane] else exit_hole(phi1_l, hole_lo, hole_width)
+                    if j >= 0:
+                        escape(counts, bins, b, j, n[lane], t1)
+                        finished = True
+                    elif kind == STUCK:
+                        if t_start <= max_time:
+                            stuck(counts, bins, b, n[lane], t_start)
+                        else:
+                            censor(counts, bins, b, n[lane], t_start)
+                        finished = True
+                    else:
+                        centred[lane], phase_error[lane] = centred1[lane], phase_error1[lane]
+            if finished:
+                loaded, following = _load_next(physics, lanes, lane, following, end, per_block,
+                                               starts, sample, flags)
+                if not loaded:
+                    idx[lane] = -1
+                    idle = True
+        if idle:  # the block's last particles: move the lanes still in flight to the front
+            busy = 0
+            for lane in range(active):
+                if idx[lane] >= 0:
+                    idx[busy], phi[busy], centred[busy] = idx[lane], phi[lane], centred[lane]
+                    phase_error[busy], v[busy], t[busy] = phase_error[lane], v[lane], t[lane]
+                    n[busy], slot[busy], target[busy] = n[lane], slot[lane], target[lane]
+                    block[busy] = block[lane]
+                    if dissipative:
+                        states[busy, :] = states[lane, :]
+                        carried[busy, :] = carried[lane, :]
+                    busy += 1
+            active = busy
+
+
+@parallel_jit
+def holmes_escape_chunk(physics, starts, holes, horizon, bins, counts):
+    """``escape_chunk`` with the Holmes map (flight time 2*v) instead of the exact map: the bare
+    loop the benchmark compares the exact map's lanes with (same starts, holes, horizon, bins
+    and blocks; no verification sample, no flags: the Holmes map has no undecidable flight;
+    starts at t = 0, n = 0)."""
+    m = len(starts.phi)
+    blocks = len(counts.collisions)
+    per_block = (m + blocks - 1) // blocks
+    for b in prange(blocks):  # (numba drops writes to a tuple's arrays made here directly)
+        _holmes_block(physics.eps, (b, b * per_block, min(m, (b + 1) * per_block)), starts,
+                      holes, horizon, bins, counts)
+
+
+@jit
+def _holmes_block(eps, span, starts, holes, horizon, bins, counts):
+    """Particles first .. last-1 of ``holmes_escape_chunk`` into block b's row,
+    span = (b, first, last)."""
+    b, first, last = span
+    done = 0
+    for i in range(first, last):
+        phi, v, t, n = starts.phi[i], starts.v[i], 0.0, 0
+        while True:
+            if n >= horizon.max_collisions:
+                censor(counts, bins, b, n, t)
+                break
+            t1 = t + 2.0 * v
+            if t1 > horizon.max_time:
+                censor(counts, bins, b, n, t1)
+                break
+            phi, v = holmes_collide(phi, v, eps)
+            t = t1
+            n += 1
+            done += 1
+            j = exit_hole(phi, holes.lo, holes.width)
+            if j >= 0:
+                escape(counts, bins, b, j, n, t)
+                break
+    counts.collisions[b] += done

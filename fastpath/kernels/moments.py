@@ -1,0 +1,237 @@
+"""Velocity moments of many particles (Fermi acceleration, velocity diffusion), any description.
+
+Each particle i runs from (phi0[i], v0[i]) through the map of the description (``fastpath.physics``:
+the exact map, the Holmes map with flight time 2*v, or drag and restitution with sticking). Only
+sums are kept, never the orbits:
+
+* at the collision indices ``n_grid`` (sorted, >= 0): sum of v_n, of v_n**2 and of
+  (v_n - v_0)**2 over the particles that reached collision n;
+* at the times ``t_grid`` (sorted, >= 0): sum of v(t) = v_N with t_N <= t < t_{N+1}, the velocity
+  just after the last collision at or before t, over the particles that reached time t.
+
+A particle runs until it has passed both n_grid[-1] and t_grid[-1], or until ``max_collisions``
+(then the later time points miss it: ``count_t`` says how many particles each point holds). An
+exact flight float64 cannot decide (status UNCERTAIN or MAX_ITERATIONS, only for |eps| >= 1)
+stops the particle: it is flagged (``arrays.Flags``) and contributes only to the grid points it
+reached before; ``count_n`` records that.
+
+With restitution r < 1 a particle stuck for good (the impacts accumulate where it can never
+leave, ``fastpath.dissipative.sticking``) after collision n is counted in ``stuck_n`` at every
+n_j > n and in ``stuck_t`` at every t_j >= t_acc, and not in ``count_n`` / ``count_t`` there: its
+velocity is the plate's. v(t) between collisions is the velocity of the last departure at or
+before t: an impact's outgoing velocity, or after a sticking episode the detachment velocity
+u(theta*) from t_detach on; during an episode (t_acc <= t < t_detach) it stays the last
+impact's (~ the plate's velocity at t_acc, where the relative velocity has gone to 0).
+
+The particles are split into ``len(count_n)`` fixed blocks of consecutive indices, each with its
+own row of sums, filled in particle order: the result is identical for any number of threads,
+and the spread over blocks gives the statistical uncertainty.
+"""
+
+import numpy as np
+from numba import prange
+
+from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.dissipative.carried import EPISODE, STUCK, VK, T, V
+from fastpath.dissipative.sticking import detachment
+from fastpath.inputs import count, float_inputs, physics_options
+from fastpath.kernels.arrays import Flags, MomentGrid, MomentSums, Sample, Starts
+from fastpath.kernels.records import particle_buffers, sampled_collision, start_particle
+from fastpath.physics import describe, holmes
+from fastpath.status import CONVERGED
+
+MODELS = ("exact", "holmes")
+
+
+def moments_chunk(physics, starts, grid, as_step, sample, sums, flags):
+    """Fill the block sums ``sums`` (``arrays.MomentSums``, added to; the caller zeroes them)
+    for the particles ``starts`` (module docstring). as_step: each collision is
+    ``fastpath.step``'s (the runs' velocity scenes, audited by ``step``) or, False, an orbit's
+    (``fastpath.kernels.particle``). Flags and sample as ``fastpath.kernels.escape``; a resumed
+    particle (n > 0) starts at the grid point of its n, which is filled here."""
+    _moments_blocks(physics, starts, grid, as_step, sample, sums, flags, detachment(physics))
+
+
+@parallel_jit
+def _moments_blocks(physics, starts, grid, as_step, sample, sums, flags, detach):
+    """``moments_chunk``, one block of particles per ``prange`` iteration."""
+    m = len(starts.phi)
+    blocks = len(sums.collisions)
+    per_block = (m + blocks - 1) // blocks
+    for b in prange(blocks):  # (numba drops writes to a tuple's arrays made here directly)
+        _moments_block(physics, (b, b * per_block, min(m, (b + 1) * per_block), as_step),
+                       starts, grid, sample, sums, flags, detach)
+
+
+@jit
+def _add_n(sums, b, jn, n, v, start, n_grid):
+    """Add v = v_n to the grid points n_grid[jn], ... equal to n; return the next jn."""
+    while jn < len(n_grid) and n_grid[jn] == n:
+        sums.count_n[b, jn] += 1
+        sums.sum_v_n[b, jn] += v
+        sums.sum_v2_n[b, jn] += v * v
+        sums.sum_dv2_n[b, jn] += (v - start) * (v - start)
+        jn += 1
+    return jn
+
+
+@jit
+def _add_t(sums, b, jt, until, v, t_grid):
+    """Add v to the time points t_grid[jt], ... below ``until``; return the next jt."""
+    while jt < len(t_grid) and t_grid[jt] < until:
+        sums.count_t[b, jt] += 1
+        sums.sum_v_t[b, jt] += v
+        jt += 1
+    return jt
+
+
+@jit
+def _moments_block(physics, span, starts, grid, sample, sums, flags, detach):
+    """Particles first .. last-1 into block b's rows, span = (b, first, last, as_step)."""
+    b, first, last, as_step = span
+    n_grid, t_grid = grid.n, grid.t
+    kn, kt = len(n_grid), len(t_grid)
+    n_last = n_grid[kn - 1] if kn > 0 else 0
+    t_last = t_grid[kt - 1] if kt > 0 else -1.0
+    state, carried = particle_buffers()
+    motion = (as_step, detach, np.empty(0))
+    done = 0
+    for i in range(first, last):
+        if not start_particle(physics, state, i, starts, flags, as_step):
+            continue
+        n, v, t = starts.n[i], starts.v[i], starts.t[i]
+        start = v
+        jn = _add_n(sums, b, np.searchsorted(n_grid, n), n, v, start, n_grid)
+        jt = np.searchsorted(t_grid, t)
+        while not ((n >= n_last and t > t_last) or n >= grid.max_collisions):
+            status, _, kind, t_start, t_end = sampled_collision(physics, state, i, n, sample,
+                                                                flags, carried, motion)
+            if status != CONVERGED:
+                break
+            jt = _add_t(sums, b, jt, state[T], v, t_grid)  # t <= t_grid < t1: v(t) = v
+            v, t = state[V], state[T]
+            n += 1
+            done += 1
+            jn = _add_n(sums, b, jn, n, v, start, n_grid)
+            if kind == STUCK:
+                jt = _add_t(sums, b, jt, t_start, v, t_grid)
+                for j in range(jn, kn):
+                    sums.stuck_n[b, j] += 1
+                for j in range(jt, kt):
+                    sums.stuck_t[b, j] += 1
+                break
+            if kind == EPISODE:  # riding: the last impact's velocity; then the detachment's
+                jt = _add_t(sums, b, jt, t_end, v, t_grid)
+                v, t = state[VK], t_end
+    sums.collisions[b] += done
+
+
+class Moments:
+    """Block sums of ``moments`` with the grids; means and block-level views.
+
+    Attributes: ``n_grid``, ``t_grid``; ``sums`` (``arrays.MomentSums``) and its block arrays
+    ``count_n``, ``sum_v_n``, ``sum_v2_n``, ``sum_dv2_n``, ``count_t``, ``sum_v_t``, ``stuck_n``,
+    ``stuck_t`` (rows = blocks; stuck: particles stuck for good before grid point n resp. time
+    t, not in count_n/count_t, zeros without restitution < 1); ``collisions`` (total),
+    ``flagged`` (particles stopped at an undecidable flight), ``model``, ``eps``.
+    """
+
+    def __init__(self, n_grid, t_grid, sums, flagged, model, eps):
+        self.n_grid, self.t_grid, self.sums = n_grid, t_grid, sums
+        self.collisions = int(sums.collisions.sum())
+        self.flagged, self.model, self.eps = flagged, model, eps
+
+    def __getattr__(self, name):
+        if name in MomentSums._fields:
+            return getattr(self.sums, name)
+        raise AttributeError(name)
+
+    @property
+    def particles_n(self):
+        return self.count_n.sum(axis=0)
+
+    @property
+    def particles_t(self):
+        return self.count_t.sum(axis=0)
+
+    @property
+    def mean_v_n(self):
+        """<v_n> at n_grid (NaN where no particle got there)."""
+        return _ratio(self.sum_v_n.sum(axis=0), self.particles_n)
+
+    @property
+    def mean_v2_n(self):
+        return _ratio(self.sum_v2_n.sum(axis=0), self.particles_n)
+
+    @property
+    def mean_dv2_n(self):
+        """<(v_n - v_0)**2> at n_grid."""
+        return _ratio(self.sum_dv2_n.sum(axis=0), self.particles_n)
+
+    @property
+    def mean_v_t(self):
+        """<v(t)> at t_grid."""
+        return _ratio(self.sum_v_t.sum(axis=0), self.particles_t)
+
+
+def _ratio(num, den):
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(den > 0, num / np.maximum(den, 1), np.nan)
+
+
+def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_collisions=None,
+            *, drag=0.0, drag_law="linear", restitution=1.0):
+    """Velocity moments of the orbits from (phi0[i], v0[i]) at collision indices ``n_grid`` and
+    times ``t_grid``: a ``Moments``. ``blocks`` (at most; fewer if some would be empty) fixes
+    the partition of the particles (not the threads: any thread count gives the same numbers).
+    ``max_collisions`` caps each orbit (default: 100 * n_grid[-1] + 10**6 when a time grid is
+    given, else n_grid[-1]).
+
+    drag, drag_law, restitution: as for ``fastpath.orbit`` (model "exact" only); with
+    restitution < 1 ``stuck_n``, ``stuck_t`` count the particles stuck for good.
+
+    Raises ValueError for non-finite inputs, non-departing starts (v0 + eps*sin(phi0) <= 0),
+    unsorted or negative grids, an unknown model, bad physics keywords.
+    """
+    drag, law, restitution = physics_options(drag, drag_law, restitution)
+    dissipative = drag != 0.0 or restitution != 1.0
+    if dissipative and model != "exact":
+        raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
+    (phi_a, v_a), _, _ = float_inputs(phi0=phi0, v0=v0)
+    (eps_a,), _, scalar = float_inputs(eps=eps)
+    if not scalar:
+        raise ValueError(f"eps must be a scalar, got shape {np.shape(eps)}")
+    eps = float(eps_a[0])
+    if model not in MODELS:
+        raise ValueError(f"model must be 'exact' or 'holmes', got {model!r}")
+    bad = np.flatnonzero(~(v_a + eps * np.sin(phi_a) > 0.0))
+    if len(bad):
+        i = int(bad[0])
+        raise ValueError(f"start {i} (phi0={phi_a[i]!r}, v0={v_a[i]!r}) does not depart:"
+                         f" v0 + eps*sin(phi0) <= 0 at eps={eps!r}")
+    n_grid = np.asarray(n_grid, dtype=np.int64).ravel()
+    t_grid = np.asarray(t_grid, dtype=np.float64).ravel()
+    for name, grid in (("n_grid", n_grid), ("t_grid", t_grid)):
+        if len(grid) and (np.any(np.diff(grid) < 0) or grid[0] < 0
+                          or not np.all(np.isfinite(grid))):
+            raise ValueError(f"{name} must be finite, >= 0 and sorted, got {grid!r}")
+    if not len(n_grid) and not len(t_grid):
+        raise ValueError("give n_grid and/or t_grid")
+    blocks = max(1, min(count("blocks", blocks, 1), len(phi_a)))
+    per_block = -(-len(phi_a) // blocks)
+    blocks = -(-len(phi_a) // per_block)  # no empty block
+    if max_collisions is None:
+        n_last = int(n_grid[-1]) if len(n_grid) else 0
+        max_collisions = 100 * n_last + 10**6 if len(t_grid) else n_last
+    max_collisions = count("max_collisions", max_collisions)
+    described = holmes(eps) if model == "holmes" else describe(eps, drag, law, restitution)
+    m = len(phi_a)
+    sums = MomentSums.zeros(blocks, len(n_grid), len(t_grid))
+    flags = Flags.zeros(m)
+    moments_chunk(described, Starts(phi=phi_a, v=v_a, t=np.zeros(m), n=np.zeros(m, np.int64)),
+                  MomentGrid(n=n_grid, t=t_grid, max_collisions=max_collisions), False,
+                  Sample.none(m), sums, flags)
+    return Moments(n_grid, t_grid, sums, int(np.count_nonzero(flags.status)), model, eps)
+
+
+__all__ = ["Moments", "moments", "moments_chunk"]
