@@ -1,6 +1,6 @@
 """``bouncer plot RUN_DIR``: the survival curves (the portrait, <v_n>) of a run, as PNG."""
 
-from reports.stats.plot import plot_run
+from reports.stats.plot import FIT_CHOICES, plot_run
 
 
 def _plot(args):
@@ -16,7 +16,9 @@ def add_parser(subparsers):
     plot.add_argument("run_dir", metavar="RUN_DIR")
     plot.add_argument("--out", help="image file (default: RUN_DIR/survival.png, portrait.png"
                                     " or velocity.png)")
-    plot.add_argument("--fit", choices=["exponential", "stretched", "power"])
+    plot.add_argument("--fit", choices=list(FIT_CHOICES),
+                      help="maximum-likelihood fits as `bouncer fit`: 'regimes' draws its law of"
+                      " every regime; a law name fits that law over --window")
     plot.add_argument("--window", type=float, nargs=2, metavar=("LO", "HI"))
     plot.add_argument("--clock", choices=["collisions", "time"], default="time")
     plot.add_argument("--curve", help="fit only this curve")
