@@ -177,15 +177,16 @@ def _resampled(curve, rng):
     return dataclasses.replace(curve, escapes=draw[:k], censored=draw[k:])
 
 
-def _slope_median_ratio(n, t, t_lo, t_hi, per_decade=4):
-    """(slope of log median(t/n) against log t over quarter-decade bins of t in [t_lo, t_hi]
-    with at least 20 escapes, bins used)."""
-    use = (t >= t_lo) & (t <= t_hi) & (n > 0)
-    if use.sum() < 50:
+def _slope_median_ratio(n, t, n_lo, n_hi, per_decade=4):
+    """(slope of log median(t/n) against log n over quarter-decade bins of n in [n_lo, n_hi]
+    with at least 20 escapes, bins used). Binned by n, the variable the escapes were selected
+    on (n > n_half): binning by t would keep only the slow particles at the small t."""
+    use = (n >= n_lo) & (n <= n_hi) & (n > 0)
+    if use.sum() < 50 or n_hi <= n_lo:
         return math.nan, 0
-    edges = np.geomspace(t_lo, t_hi * (1 + 1e-12),
-                         max(2, int(per_decade * math.log10(t_hi / t_lo))) + 1)
-    idx = np.searchsorted(edges, t[use], side="right") - 1
+    edges = np.geomspace(n_lo, n_hi * (1 + 1e-12),
+                         max(2, int(per_decade * math.log10(n_hi / n_lo))) + 1)
+    idx = np.searchsorted(edges, n[use], side="right") - 1
     ratio = t[use] / n[use]
     pts = []
     for b in range(len(edges) - 1):
@@ -213,25 +214,25 @@ def bounded_velocity_claim(hole, a, study, run):
                           f"{R.MIN_ESCAPES_TAIL}): too few to decide; the slow decay needs a "
                           "larger sample with n and t recorded together.",
                           particles_per_curve=study.particles, run=None)
-    t_lo, t_hi = float(t.min()), float(t.max())
-    slope, bins = _slope_median_ratio(n, t, t_lo, t_hi)
+    n_lo, n_hi = float(n_half), float(n.max())
+    slope, bins = _slope_median_ratio(n, t, n_lo, n_hi)
     rng = np.random.default_rng(SLOPE_SEED)
     boot = []
     for _ in range(BOOTSTRAP):
         pick = rng.integers(0, count, count)
-        boot.append(_slope_median_ratio(n[pick], t[pick], t_lo, t_hi)[0])
+        boot.append(_slope_median_ratio(n[pick], t[pick], n_lo, n_hi)[0])
     boot = np.array([b for b in boot if math.isfinite(b)])
     ci = ((float(np.percentile(boot, 2.5)), float(np.percentile(boot, 97.5)))
           if len(boot) > BOOTSTRAP // 2 else (math.nan, math.nan))
     verdict = R.band_verdict(*ci, *R.BOUNDED)
     ratio = t / n
     evidence = (f"Sampled study of {study.particles:,} starts: {count} escapes after n_half = "
-                f"{n_half:g} (the slow population holds half the escapes), t from {t_lo:.4g} to "
-                f"{t_hi:.4g}; mean time per collision t/n (twice the mean velocity): median "
+                f"{n_half:g} (the slow population holds half the escapes), n up to {n_hi:.4g}; "
+                f"mean time per collision t/n (twice the mean velocity): median "
                 f"{np.median(ratio):.3g}, 5-95% {np.percentile(ratio, 5):.3g}-"
-                f"{np.percentile(ratio, 95):.3g}; slope of log median(t/n) against log t over "
+                f"{np.percentile(ratio, 95):.3g}; slope of log median(t/n) against log n over "
                 f"{bins} quarter-decades = {_g(slope, 3)}, bootstrap 95% [{_g(ci[0], 3)}, "
-                f"{_g(ci[1], 3)}] (0 for bounded velocity, 1/3 for Fermi acceleration).")
+                f"{_g(ci[1], 3)}] (0 for bounded velocity, 1/2 for velocity diffusion).")
     return make_claim(cid, verdict, evidence, particles_per_curve=study.particles,
                       statistical={"slope": slope, "slope_ci95": list(ci),
                                    "median_t_over_n": float(np.median(ratio))}, run=None)

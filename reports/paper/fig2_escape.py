@@ -23,7 +23,6 @@ from reports.runs.survival import read_survival
 from reports.stats.hazard import all_cause_survival
 
 LAW_STYLE = {"exponential": ":", "power_law": "--", "stretched_exponential": "-."}
-REGIMES = ("intermediate", "tail", "matched")
 
 
 def draw_detail(ax, curve, detail, xs=None, color="k"):
@@ -36,8 +35,10 @@ def draw_detail(ax, curve, detail, xs=None, color="k"):
 
 
 def _draw_regimes(ax, a, clock, xs=None):
+    """At most three regimes: the intermediate one and the late tail (discrete time) or the
+    matched late levels (continuous time)."""
     drawn = 0
-    for regime in ("intermediate", "tail"):
+    for regime in ("intermediate", "tail" if clock == "collisions" else "matched"):
         d = a["details"].get((clock, regime))
         if d is not None and drawn < 3:
             draw_detail(ax, a["curves"][clock], d, xs)

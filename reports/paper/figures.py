@@ -108,8 +108,9 @@ def decide(out_dir, runs, quick, echo):
     claims = escape_hole_claims(quick)
     claims += escape_claims(esc, runs["paper-escape"], {"follow": follow, "snapshot": snapshot})
     claims += fermi_claims(fermi)
-    claims.append(other_box_claim(runs["paper-escape"], runs["escape-second-box"]))
-    claims.append(other_density_claim(runs["paper-escape"], smooth))
+    levels = {f"phi_c={h}": a["windows"].level_tail for h, a in esc.items()}
+    claims.append(other_box_claim(runs["paper-escape"], runs["escape-second-box"], levels))
+    claims.append(other_density_claim(runs["paper-escape"], smooth, levels))
     island = studies.island_box_sample(0.0, bool(quick))
     box_regular = (int(island[2].regular.sum()), len(island[0]))
     claims.append(island_start_claim(runs["escape-island-start"], box_regular))

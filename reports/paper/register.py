@@ -193,13 +193,13 @@ def _escape_entries():
             "their velocity stays bounded", Q_BOUNDED,
             "mean time per collision t/n (twice the mean velocity) of each escape after n_half, "
             "from a sampled study recording n and t of each particle (reports/paper/follow.py):"
-            " slope of log median(t/n) against log t over quarter-decades of t; bootstrap "
-            "interval over particles",
+            " slope of log median(t/n) against log n over quarter-decades of n (the variable "
+            "the escapes are selected on); bootstrap interval over particles",
             "the slow decay: escapes after n_half, where the slow population holds half the "
             f"escapes; at least {R.MIN_ESCAPES_TAIL} escapes",
             f"confirmed if the slope's interval lies within [{R.BOUNDED[0]}, {R.BOUNDED[1]}] "
-            "(bounded velocity), refuted if wholly outside (Fermi acceleration gives 1/3)",
-            "'tightly bounded velocity': t/n ~ t^s with |s| <= 0.1"))
+            "(bounded velocity), refuted if wholly outside (velocity diffusion gives 1/2)",
+            "'tightly bounded velocity': t/n ~ n^s with |s| <= 0.1"))
     for h in ISLAND_HOLES:
         out.append(_entry(
             f"fig2-stages-phi_c={h}", "2",
@@ -260,8 +260,9 @@ def _escape_entries():
                "hazard ratio (log-rank, binned) of the run from the box 2.8 < phi < 3.6, "
                "5 < v < 7 (scene escape-second-box) against the paper-scale run, every hole and "
                "clock, over the earlier and the later half of the long-time window",
-               "long times: from where the paper-scale curve has fallen to 10^-2 to the last bin"
-               " with 10 particles at risk in both runs",
+               "long times: the late tail, from where the paper-scale curve falls to its tail "
+               "level P(n_tail) (the slow population holds 90% of the escapes), in both clocks,"
+               " to the last bin with 10 particles at risk in both runs",
                "confirmed if every hazard ratio's 95% interval lies within [1/1.1, 1.1], refuted"
                " if one lies wholly outside, inconclusive otherwise",
                f"'the same results': hazards equal within {R.pct(R.SAME)}"),
@@ -276,15 +277,17 @@ def _escape_entries():
         _entry("sec3-island-start", "sec3",
                "starts touching an island not connected with the hole give a survival that "
                "tends to a constant, the share of starts on the island", Q_PLATEAU,
-               "survival P(t) at the horizon t = 10^5 (scene escape-island-start, hole at pi) "
-               "and its fall over the last decade; the share of the start box on regular "
+               "survival P(t) of the scene escape-island-start (hole at pi) over the last two "
+               "decades before the horizon t = 10^5; the share of the start box on regular "
                "orbits (reports/paper/islands.py, 4000 random starts)",
-               "t -> infinity: the last decade before the horizon",
-               f"confirmed if P falls by less than {R.pct(R.PLATEAU_FALL)} over the last decade"
-               " (Wilson upper bound) and equals the regular share under the 'the same' rule; "
-               "refuted if either fails beyond its uncertainty",
-               f"'a constant': falls < {R.pct(R.PLATEAU_FALL)} per decade; 'giving the "
-               f"probability': equal within {R.pct(R.SAME)}"),
+               "t -> infinity: the trend of the last two decades before the horizon",
+               "confirmed if the fall decelerates (the last decade holds significantly fewer "
+               "than half of the two decades' escapes) and the limit, between P(10^5) and P(10^5)"
+               " minus the geometric continuation of the falls, equals the regular share under "
+               "'the same'; refuted if the fall accelerates or the limit differs beyond the "
+               "uncertainties; inconclusive otherwise",
+               f"'tends to a constant': a decelerating fall; 'giving the probability': equal "
+               f"within {R.pct(R.SAME)}"),
         _entry("sec3-destruction", "sec3",
                "a hole over part of the large island, much smaller than the island, destroys "
                "the orbits surrounding it", Q_DESTRUCTION,

@@ -70,8 +70,7 @@ OVER_OR_NEAR = 0.01         # >= 1% of a strip widened by one hole width on the 
 ALMOST_ENTIRELY = 0.1       # "almost entirely in the chaotic sea": <= 10% on islands
 MOSTLY = 0.5                # "mostly chaotic sea": < 50% on islands
 BOTH = 0.01                 # "both islands and sea": >= 1% of each
-PLATEAU_FALL = 0.01         # "tends to a constant": falls by < 1% over the last decade
-BOUNDED = (-0.1, 0.1)       # velocity bounded: t/n ~ t^s with |s| <= 0.1 (1/3 if it diffused)
+BOUNDED = (-0.1, 0.1)       # velocity bounded: t/n ~ n^s with |s| <= 0.1 (1/2 if it diffused)
 
 
 def band_verdict(lo, hi, band_lo, band_hi):

@@ -23,7 +23,6 @@ from reports.stats.analysis import usable_range
 from reports.stats.hazard import all_cause_survival, first_below, hazard_ratio
 from reports.stats.histogram import read_run
 
-LONG_TIME_LEVEL = 1e-2
 MIN_AT_RISK = 10
 HR_BAND = (1 / (1 + R.SAME), 1 + R.SAME)
 
@@ -44,10 +43,11 @@ def followed_curve(followed, ref):
                                competing=np.zeros_like(escapes), particles=followed.particles)
 
 
-def long_time_window(ref, other):
-    """(a, b): from where ref's survival falls to LONG_TIME_LEVEL to the last boundary with
-    MIN_AT_RISK particles at risk in both curves, inside both usable ranges; or None."""
-    a = first_below(all_cause_survival(ref), LONG_TIME_LEVEL)
+def long_time_window(ref, other, level):
+    """(a, b): from where ref's survival falls to ``level`` (its late tail's) to the last
+    boundary with MIN_AT_RISK particles at risk in both curves, inside both usable ranges; or
+    None."""
+    a = first_below(all_cause_survival(ref), level)
     if a is None:
         return None
     risk_ok = np.flatnonzero((all_cause_survival(ref) * ref.particles >= MIN_AT_RISK)
@@ -58,9 +58,9 @@ def long_time_window(ref, other):
     return (a, b) if b - a >= 2 else None
 
 
-def compare_long_times(ref, other):
+def compare_long_times(ref, other, level):
     """Verdict of the 'same results at long times' rule for one curve pair, with its text."""
-    w = long_time_window(ref, other)
+    w = long_time_window(ref, other, level)
     if w is None:
         return INCONCLUSIVE, "no long-time window", []
     a, b = w
@@ -77,17 +77,23 @@ def compare_long_times(ref, other):
     return R.all_of(verdicts), ", ".join(parts), verdicts
 
 
-def same_results_claim(claim_id, ref_curves, other_curves, what, particles, run):
-    """Compare every (hole, clock) of two escape ensembles at long times."""
+def same_results_claim(claim_id, ref_curves, other_curves, levels, what, particles, run):
+    """Compare every (hole, clock) of two escape ensembles at long times; ``levels``: the late
+    tail's survival level of each hole of the reference run ({experiment: level or None})."""
     verdicts, parts = [], []
     for key, ref in ref_curves.items():
         if key not in other_curves:
             continue
-        v, text, _ = compare_long_times(ref, other_curves[key])
+        if levels.get(key[0]) is None:
+            verdicts.append(INCONCLUSIVE)
+            parts.append(f"{key[0]}: the reference has no late tail")
+            continue
+        v, text, _ = compare_long_times(ref, other_curves[key], levels[key[0]])
         verdicts.append(v)
         parts.append(f"{key[0]} ({'n' if key[1] == 'collisions' else 't'}): {text}")
     evidence = (f"{what} against the paper-scale run, hazard ratio (log-rank) over the earlier "
-                f"and later half of the long-time window, band [{HR_BAND[0]:.3f}, "
+                "and later half of the late tail (from the reference's tail level), band "
+                f"[{HR_BAND[0]:.3f}, "
                 f"{HR_BAND[1]:.3f}]: " + "; ".join(parts) + ".")
     return make_claim(claim_id, R.all_of(verdicts) if verdicts else INCONCLUSIVE, evidence,
                       particles_per_curve=particles, run=run)
@@ -97,56 +103,73 @@ def curves_by_key(run_dir):
     return {(c.experiment, c.clock): c for c in read_run(run_dir)}
 
 
-def other_box_claim(ref_run, box_run):
+def other_box_claim(ref_run, box_run, levels):
     ref, box = curves_by_key(ref_run), curves_by_key(box_run)
     n = next(iter(box.values())).particles
-    return same_results_claim("sec3-other-box", ref, box, f"Run {Path(box_run).name} "
+    return same_results_claim("sec3-other-box", ref, box, levels, f"Run {Path(box_run).name} "
                               f"({n:,} per hole)", n, Path(box_run).name)
 
 
-def other_density_claim(ref_run, samples):
+def other_density_claim(ref_run, samples, levels):
     """``samples``: {hole name: Followed} of the smooth density."""
     ref = curves_by_key(ref_run)
     other = {key: followed_curve(samples[key[0]], c) for key, c in ref.items()
              if key[0] in samples}
     n = next(iter(samples.values())).particles
-    return same_results_claim("sec3-other-density", ref, other,
+    return same_results_claim("sec3-other-density", ref, other, levels,
                               f"Sampled study, smooth density ({n:,} per hole)", n, None)
 
 
 def island_start_claim(run_dir, box_classified):
-    """Survival with the hole at pi of the run of scene escape-island-start against the regular
-    share of the box (``box_classified``: (regular count, samples))."""
+    """The survival with the hole at pi of the run of scene escape-island-start tends to a
+    constant equal to the regular share of the box (``box_classified``: (regular count,
+    samples)). Tending to a constant: the escapes of the last decade before the horizon T are
+    significantly fewer than those of the decade before (a decelerating fall; the share of the
+    two decades' escapes in the last one has its Wilson interval below 1/2); the limit then lies
+    between S(T) and S(T) - k2 r/(1 - r)/N (the falls continuing as a geometric series of ratio
+    r = k2/k1), and is compared with the regular share by the 'the same' rule on that range."""
     curves = curves_by_key(run_dir)
     key = next(k for k in curves if k[1] == "time" and not k[0].endswith("=0"))
     c = curves[key]
     s = all_cause_survival(c)
+    n = c.particles
     k_h = int(np.flatnonzero(c.censored)[0]) if c.censored.any() else usable_range(c)[1]
     t_h = float(c.x[k_h])
     k_10 = int(np.searchsorted(c.x, t_h / 10))
-    n = c.particles
-    inside_10, inside_h = round(s[k_10] * n), round(s[k_h] * n)
-    fell = inside_10 - inside_h
-    fall_ci = tuple(float(x) for x in wilson(fell, max(inside_10, 1)))
-    plateau = R.fraction_at_most(fell, inside_10, R.PLATEAU_FALL, fall_ci) if inside_10 else \
-        INCONCLUSIVE
+    k_100 = int(np.searchsorted(c.x, t_h / 100))
+    inside = [round(s[k] * n) for k in (k_100, k_10, k_h)]
+    k1, k2 = inside[0] - inside[1], inside[1] - inside[2]
+    share_ci = tuple(float(x) for x in wilson(k2, max(k1 + k2, 1)))
+    if k1 + k2 == 0:
+        converging = CONFIRMED
+    elif share_ci[1] < 0.5:
+        converging = CONFIRMED
+    elif share_ci[0] > 0.5:
+        converging = REFUTED
+    else:
+        converging = INCONCLUSIVE
+    r = k2 / k1 if k1 else 0.0
+    low = (inside[2] - (k2 * r / (1 - r) if r < 1 else inside[2])) / n
+    high = inside[2] / n
     reg, m = box_classified
-    p_ci = tuple(float(x) for x in wilson(inside_h, n))
     f_ci = tuple(float(x) for x in wilson(reg, m))
-    same = R.same_verdict(inside_h / n, 0.5 * (p_ci[1] - p_ci[0]), reg / m,
+    p_ci = tuple(float(x) for x in wilson(inside[2], n))
+    lo_, hi_ = min(low, p_ci[0]), p_ci[1]
+    same = R.same_verdict(0.5 * (lo_ + hi_), 0.5 * (hi_ - lo_), reg / m,
                           0.5 * (f_ci[1] - f_ci[0]))
-    evidence = (f"Run {Path(run_dir).name} ({n:,} starts, hole at phi_c = pi): P(t) = "
-                f"{s[k_10]:.4f} at t = {c.x[k_10]:.3g} and {s[k_h]:.4f} at the horizon t = "
-                f"{t_h:.3g}: {fell} of {inside_10} left in the last decade (share "
-                f"{fell / max(inside_10, 1):.4f}, 95% [{fall_ci[0]:.4f}, {fall_ci[1]:.4f}], "
-                f"against {R.pct(R.PLATEAU_FALL)}); regular share of the box "
+    evidence = (f"Run {Path(run_dir).name} ({n:,} starts, hole at phi_c = pi): still inside "
+                f"{inside[0]:,}, {inside[1]:,} and {inside[2]:,} at t = {c.x[k_100]:.3g}, "
+                f"{c.x[k_10]:.3g} and the horizon {t_h:.3g}; escapes in the last two decades "
+                f"{k1} then {k2} (share of the last {k2 / max(k1 + k2, 1):.3f}, 95% "
+                f"[{share_ci[0]:.3f}, {share_ci[1]:.3f}] against 1/2: the fall "
+                f"{'decelerates' if converging == CONFIRMED else 'does not clearly decelerate'})"
+                f"; limit between {low:.4f} and {high:.4f}; regular share of the box "
                 f"{reg / m:.4f} (95% [{f_ci[0]:.4f}, {f_ci[1]:.4f}], {m} random starts "
-                f"classified by their orbits) against P = {inside_h / n:.4f} "
-                f"[{p_ci[0]:.4f}, {p_ci[1]:.4f}]: {same}.")
-    return make_claim("sec3-island-start", R.all_of([plateau, same]), evidence,
+                f"classified by their orbits): {same} under 'the same'.")
+    return make_claim("sec3-island-start", R.all_of([converging, same]), evidence,
                       particles_per_curve=n,
-                      statistical={"plateau": inside_h / n, "regular_share": reg / m,
-                                   "fall_last_decade": fell / max(inside_10, 1)},
+                      statistical={"survival_at_horizon": high, "limit_low": low,
+                                   "regular_share": reg / m},
                       run=Path(run_dir).name)
 
 
@@ -161,7 +184,9 @@ def destruction_claim(sample, hole_width=0.3):
     left = int((large & (fol.exit < 0)).sum())
     ci = tuple(float(x) for x in wilson(left, m))
     destroyed = R.fraction_at_most(left, m, R.TRAP_SHARE, ci)
-    width = float(np.max(cls.phase_hi[large]) - np.min(cls.phase_lo[large]))
+    # the phase extent of the island's orbits: 5th and 95th percentiles of their lowest and
+    # highest phases (a few orbits locked by chance while they wander are left out)
+    width = float(np.percentile(cls.phase_hi[large], 95) - np.percentile(cls.phase_lo[large], 5))
     smaller = CONFIRMED if width >= 3 * hole_width else REFUTED
     others = int((~large & cls.regular & (fol.exit < 0)).sum())
     evidence = (f"Sampled study, {len(large):,} starts in the box 0.3 < phi < 0.9, 2.7 < v < 3.3:"

@@ -9,7 +9,8 @@
     n of the escapes per quarter-decade of t, island holes), not the n ~ t^(2/3) of a typical
     diffusing orbit;
 (c) the slow decay does not accelerate: the mean time per collision t/n of the escapes after
-    n_half stays flat in t (Fermi acceleration would make it grow as t^(1/3)).
+    n_half, per quarter-decade of their n, stays flat (velocity diffusion would make it grow as
+    n^(1/2)).
 """
 
 from __future__ import annotations
@@ -26,10 +27,12 @@ from reports.runs.scenes import load_scene
 
 
 def _median_by_t(x, t, per_decade=4, minimum=20):
+    """Median of x per quarter-decade of t (bins with at least ``minimum`` values)."""
     if not len(t):
         return np.array([]), np.array([])
-    edges = np.geomspace(max(t.min(), 1.0), t.max() * 1.0001,
-                         max(2, int(per_decade * math.log10(t.max() / max(t.min(), 1.0)))) + 1)
+    top = max(t.max() * 1.0001, max(t.min(), 1.0) * 1.01)
+    edges = np.geomspace(max(t.min(), 1.0), top,
+                         max(2, int(per_decade * math.log10(top / max(t.min(), 1.0)))) + 1)
     k = np.searchsorted(edges, t, side="right") - 1
     mids, meds = [], []
     for b in range(len(edges) - 1):
@@ -95,18 +98,19 @@ def figure_survivors(portrait_run, out_dir, analysis, follow, snapshots):
         if fol is None or n_half is None or n_half.n_at.get("half") is None:
             continue
         late = (fol.exit >= 0) & (fol.n > n_half.n_at["half"])
-        mids, meds = _median_by_t(fol.t[late] / fol.n[late], fol.t[late])
+        n = fol.n[late].astype(float)
+        mids, meds = _median_by_t(fol.t[late] / n, n)
         if len(mids):
             ax.plot(mids, meds, "o-", ms=3, lw=0.8,
                     label=f"phi_c = {hole} (n > {n_half.n_at['half']:g})")
     if ax.lines:
         lo, hi = ax.get_xlim()
-        tt = np.geomspace(lo, hi, 10)
+        nn = np.geomspace(lo, hi, 10)
         base = ax.lines[0].get_ydata()[0]
-        ax.plot(tt, base * (tt / tt[0]) ** (1 / 3), "k:", lw=1, label="t^(1/3) (accelerating)")
+        ax.plot(nn, base * (nn / nn[0]) ** 0.5, "k:", lw=1, label="n^(1/2) (diffusing)")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("escape time t")
+    ax.set_xlabel("collisions n at escape")
     ax.set_ylabel("median t/n (twice the mean velocity)")
     ax.set_title("(c) the slow decay: time per collision of late escapes", fontsize=9)
     ax.legend(fontsize=7)

@@ -62,10 +62,13 @@ def test_power_law_data_are_algebraic():
     assert R.form_verdict(d, "exponential", R.MIN_ESCAPES_INTERMEDIATE)[0] == REFUTED
 
 
-def test_a_window_with_too_few_escapes_is_inconclusive():
+def test_a_window_with_too_few_escapes_is_inconclusive(stretched_052):
     curve, d = detail_of("stretched_exponential", {"c": 0.5, "beta": 0.52}, n=300, seed=4)
     assert d["escapes"] < R.MIN_ESCAPES_INTERMEDIATE
     assert R.form_verdict(d, "sqrt", R.MIN_ESCAPES_INTERMEDIATE, close=True)[0] == INCONCLUSIVE
+    # the minimum decides even where the interval alone would (it rules out a lucky window)
+    few = {**stretched_052[1], "escapes": R.MIN_ESCAPES_INTERMEDIATE - 1}
+    assert R.form_verdict(few, "sqrt", R.MIN_ESCAPES_INTERMEDIATE, close=True)[0] == INCONCLUSIVE
 
 
 def test_well_approximated_needs_the_law_to_win_and_to_stay_near_the_data(stretched_052):
@@ -76,6 +79,16 @@ def test_well_approximated_needs_the_law_to_win_and_to_stay_near_the_data(stretc
     curve, d = detail_of("power_law", {"alpha": 1.5}, seed=2)
     assert R.well_approximated_verdict(curve, d, "stretched_exponential",
                                        R.MIN_ESCAPES_TAIL)[0] == REFUTED
+
+
+def test_the_noise_of_a_small_sample_is_not_a_departure_from_its_law():
+    """1000 particles of a stretched law: the life table wanders by its statistical noise, which
+    the 95% band absorbs (in this draw every boundary stays inside it: excess exactly 0)."""
+    curve, d = detail_of("stretched_exponential", {"c": 0.5, "beta": 0.52}, n=1000, seed=8)
+    verdict, excess = R.well_approximated_verdict(curve, d, "stretched_exponential",
+                                                  R.MIN_ESCAPES_TAIL)
+    assert excess == 0.0
+    assert verdict in (CONFIRMED, INCONCLUSIVE)  # inconclusive if a simple law is not rejected
 
 
 def test_a_sharp_bend_is_not_well_approximated_by_one_law():
@@ -164,3 +177,10 @@ def test_all_of():
     assert R.all_of([CONFIRMED, REFUTED, INCONCLUSIVE]) == REFUTED
     assert R.all_of([CONFIRMED, INCONCLUSIVE]) == INCONCLUSIVE
     assert R.all_of([]) == INCONCLUSIVE
+
+
+def test_close_to_is_narrower_than_the_form_word():
+    """beta = 0.68: nearer the sqrt law than the others (its cell) but not close to 1/2."""
+    _, d = detail_of("stretched_exponential", {"c": 0.3, "beta": 0.68}, seed=7)
+    assert R.form_verdict(d, "sqrt", R.MIN_ESCAPES_INTERMEDIATE, close=True)[0] == REFUTED
+    assert R.form_verdict(d, "sqrt", R.MIN_ESCAPES_INTERMEDIATE)[0] == CONFIRMED
