@@ -168,10 +168,6 @@ def stage_progress(label, enabled=True):
 CLAIMS_HEADING = "## The paper's claims: verdicts"
 FIGURES_HEADING = "## The paper's figures from trusted runs"
 PHYSICS_HEADING = "## Physics checks against published results"
-# headings an older report.md may use for the same sections (replaced by a paper-only rebuild)
-SECTION_NAMES = {CLAIMS_HEADING: ("## The seed's claims: verdicts",),
-                 FIGURES_HEADING: ("## The seed's figures from trusted runs",),
-                 PHYSICS_HEADING: ()}
 
 
 def claim_sections(out_dir, particles, quick, echo, include_runs):
@@ -199,8 +195,7 @@ def splice(old_md, sections):
     out, i, done = [], 0, set()
     while i < len(lines):
         line = lines[i]
-        hit = next((h for h in sections if line.strip() in (h, *SECTION_NAMES.get(h, ()))),
-                   None)
+        hit = next((h for h in sections if line.strip() == h), None)
         if hit is None:
             out.append(line)
             i += 1
@@ -216,6 +211,20 @@ def splice(old_md, sections):
         first = next((k for k, line in enumerate(out) if line.startswith("## ")), len(out))
         out[first:first] = [t.rstrip("\n") + "\n" for t in missing]
     return "\n".join(out) + "\n"
+
+
+REBUILD_NOTE = "Paper sections (claims, figures, physics checks) rebuilt"
+
+
+def with_rebuild_note(md, note):
+    """``md`` with ``note`` after its "Built ..." line, replacing an earlier rebuild note."""
+    lines = [line for line in md.splitlines() if not line.startswith(REBUILD_NOTE)]
+    text = "\n".join(lines)
+    while "\n\n\n" in text:
+        text = text.replace("\n\n\n", "\n\n")
+    lines = text.splitlines()
+    at = next((i + 1 for i, line in enumerate(lines) if line.startswith("Built ")), 1)
+    return "\n".join(lines[:at] + ["", note] + lines[at:]) + "\n"
 
 
 def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), include_runs=(),
@@ -248,13 +257,11 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
     path = out_dir / "report.md"
     if paper_only and path.is_file():
         old = path.read_text(encoding="utf-8")
-        note = (f"Paper sections (claims, figures, physics checks) rebuilt {_now_utc()} from "
-                f"the runs in {out_dir}; the speed and work-precision sections are from the "
-                "build named above.")
+        note = (f"{REBUILD_NOTE} {_now_utc()} from the runs in {out_dir}; the speed and "
+                "work-precision sections are from the build named above.")
         new = splice(old, {CLAIMS_HEADING: claims_heading_text(stored),
                            FIGURES_HEADING: "\n".join(claim_md), PHYSICS_HEADING: physics})
-        head, sep, rest = new.partition("\n\n")
-        rundir.write_atomic(path, head + sep + note + "\n\n" + rest)
+        rundir.write_atomic(path, with_rebuild_note(new, note))
         echo(f"paper sections of {path} rebuilt in {time.perf_counter() - start:.0f} s")
         return path
     parts = [_header(particles, quick)]

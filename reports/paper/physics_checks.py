@@ -59,7 +59,7 @@ def physics_checks_section(out_dir, quick=False, echo=None) -> str:
     md = [
         "## Physics checks against published results",
         "",
-        "Measured quantities against the values the literature (and the seed) predict. "
+        "Measured quantities against the values the literature (and the paper) predict. "
         "`+-` is one standard error (method column says how it is estimated); \"agrees\" means "
         "within 3 standard errors (plus, for the diffusion coefficient, a rough estimate "
         "(2/(pi K))^1.5 of the Rechester-White formula's truncation error).",

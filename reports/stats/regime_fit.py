@@ -1,9 +1,9 @@
 """One regime of an analysed curve in detail, for the report's claims and figures.
 
 ``analysis.analyse`` finds the regimes of a curve (where the decay changes law) and fits the
-late one with intervals. The claims of the seed are also about other regimes, so here any
+late one with intervals. The paper's claims are also about other regimes, so here any
 regime [x_from, x_to] is refitted with 95% profile intervals, its law chosen by the rule of
-``selection`` (with Vuong's exponential-vs-power-law test kept, the seed's dichotomy), its
+``selection`` (with Vuong's exponential-vs-power-law test kept, the paper's dichotomy), its
 systematic half-ranges taken over the window family of ``analysis.systematic``. Fitted laws
 are drawn anchored at the empirical all-cause survival
 
