@@ -43,6 +43,11 @@ def _median_by_t(x, t, per_decade=4, minimum=20):
     return np.array(mids), np.array(meds)
 
 
+def _legend(ax, **kw):
+    if ax.get_legend_handles_labels()[0]:  # a quick study may leave a panel without data
+        ax.legend(fontsize=7, **kw)
+
+
 def figure_survivors(portrait_run, out_dir, analysis, follow, snapshots):
     """``follow``: {hole: Followed}; ``snapshots``: {hole: collision count of its snapshot}."""
     plt = pyplot()
@@ -67,7 +72,7 @@ def figure_survivors(portrait_run, out_dir, analysis, follow, snapshots):
     ax.set_xlabel("collision phase phi (centred)")
     ax.set_ylabel("v")
     ax.set_title("(a) late survivors, next 200 collisions", fontsize=9)
-    ax.legend(fontsize=7, loc="upper left")
+    _legend(ax, loc="upper left")
     ax = axes[1]
     for hole in ("0", "0.5", "1", "1.5"):
         fol = follow.get(hole)
@@ -90,7 +95,7 @@ def figure_survivors(portrait_run, out_dir, analysis, follow, snapshots):
     ax.set_xlabel("escape time t")
     ax.set_ylabel("median collisions n of the escapes")
     ax.set_title("(b) holes over the islands: n of the orbits escaping at t", fontsize=9)
-    ax.legend(fontsize=7)
+    _legend(ax)
     ax = axes[2]
     for hole in ("2", "2.5", "1", "1.5"):
         fol = follow.get(hole)
@@ -113,7 +118,7 @@ def figure_survivors(portrait_run, out_dir, analysis, follow, snapshots):
     ax.set_xlabel("collisions n at escape")
     ax.set_ylabel("median t/n (twice the mean velocity)")
     ax.set_title("(c) the slow decay: time per collision of late escapes", fontsize=9)
-    ax.legend(fontsize=7)
+    _legend(ax)
     sizes = {h: f.particles for h, f in follow.items()}
     caption(fig, "Sampled studies of the paper's escape setup (eps = 0.6, start box 3.85 < phi <"
                  " 4.15, 2 < v < 4), each particle followed with fastpath.step and its n and t "
