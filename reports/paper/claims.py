@@ -142,9 +142,9 @@ def claims_markdown(claims: list[dict]) -> str:
     order = {REFUTED: 0, INCONCLUSIVE: 1, CONFIRMED: 2}
     for c in sorted(claims, key=lambda c: order[c["verdict"]]):
         said = (f"The paper: \"{_quoted(c['quote'])}\"" if c["source"] == PAPER else
-                f"Source: {c['source']}" + (f": \"{_quoted(c['quote'])}\"" if c["quote"] else ""))
+                f"Source: {c['source']}" + (f": \"{_quoted(c['quote'])}\"" if c["quote"] else "."))
         lines.append(
-            f"- **{c['id']}** ({c['verdict']}). {said}. *Reading:* {c['statement']}. "
+            f"- **{c['id']}** ({c['verdict']}). {said} *Reading:* {c['statement']}. "
             f"*Observable:* {c['observable']}. *Regime:* {c['regime']}. *Rule:* {c['rule']}. "
             f"*Tolerance:* {c['tolerance']}. *Evidence:* {c['evidence']}")
     return "\n".join(lines) + "\n"
