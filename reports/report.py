@@ -1,5 +1,5 @@
 """``bouncer report``: one Markdown report of how fast and how accurate each way of simulating
-the bouncer is, and the seed's results reproduced from verified runs.
+the bouncer is, and the paper's results reproduced from verified runs.
 
 Sections, each computed in this run (nothing is copied in by hand):
 
@@ -10,13 +10,17 @@ Sections, each computed in this run (nothing is copied in by hand):
    hard-case table from the same evaluation (``reports.precision.hard_case_table``), with the
    dissipative hard cases (drag, departures at rest, chattering grazes: fastpath and verify
    only) in a sub-table of their own;
-3. the seed's figures from trusted ensemble runs (``reports.paper.figures``);
+3. the paper's figures from trusted ensemble runs, with every claim of the paper decided
+   (``reports.paper.figures``; the sections that contribute claims are listed in
+   ``claim_sections``);
 4. physics checks against published results (``reports.paper.physics_checks``);
 5. optionally, finished runs given with ``--include-run`` (e.g. the paper-scale escape run).
 
-Figures are written as PNG and PDF next to ``report.md``, the seed's claims with their verdicts
-to ``report.json`` (the claims of ``report.md`` are rendered from it); files are replaced
-atomically.
+Figures are written as PNG and PDF next to ``report.md``, the claims with their verdicts to
+``report.json`` (the claims of ``report.md`` are rendered from it); files are replaced
+atomically. ``build_report(..., paper_only=True)`` rebuilds only the paper's sections (claims,
+figures, physics checks) from the runs, and splices them into an existing ``report.md``,
+keeping its speed and work-precision sections.
 """
 
 from __future__ import annotations
@@ -87,7 +91,7 @@ def _speed_section(quick, echo):
     best = time_orbits(0.6, collisions, repeats)
     return "\n".join([
         "## Speed: exact map against the Holmes map", "",
-        f"Headline: the seed's escape ensemble takes **{ratio:.2f} x** the time of a Holmes-map"
+        f"Headline: the paper's escape ensemble takes **{ratio:.2f} x** the time of a Holmes-map"
         f" ensemble on the same starts end to end (verification sample, histograms,"
         f" checkpoints), **{kernel:.2f} x** kernel against kernel (`bouncer bench`).", "",
         ensemble_table(ensembles), "",
@@ -161,10 +165,73 @@ def stage_progress(label, enabled=True):
         bar.close()
 
 
+CLAIMS_HEADING = "## The paper's claims: verdicts"
+FIGURES_HEADING = "## The paper's figures from trusted runs"
+PHYSICS_HEADING = "## Physics checks against published results"
+
+
+def claim_sections(out_dir, particles, quick, echo, include_runs):
+    """(label, make) of every section that contributes claims; make() -> (markdown, claims),
+    the claims as ``Claim``s or as dicts with the keys of ``reports.paper.claims.FIELDS``. A
+    section of more claims is one more entry here."""
+    return [
+        ("paper's figures and claims", lambda: paper_figures_section(
+            out_dir, particles=particles, quick=quick, echo=echo, runs_dir=out_dir / "runs",
+            include_runs=include_runs)),
+    ]
+
+
+def claims_heading_text(stored):
+    return (f"{CLAIMS_HEADING}\n\nRendered from `report.json` (every claim with its quote, "
+            "reading, rule, tolerance, evidence, uncertainties and run). Rules and tolerances: "
+            "`reports/paper/rules.py`; the register: `reports/paper/register.py`.\n\n"
+            + claims_markdown(stored))
+
+
+def splice(old_md, sections):
+    """``old_md`` with each section (heading -> new text, up to the next "## " heading)
+    replaced; a section not found is inserted after the first paragraph block."""
+    lines = old_md.splitlines()
+    out, i, done = [], 0, set()
+    while i < len(lines):
+        line = lines[i]
+        hit = next((h for h in sections if line.strip() == h), None)
+        if hit is None:
+            out.append(line)
+            i += 1
+            continue
+        out.extend(sections[hit].rstrip("\n").splitlines())
+        out.append("")
+        done.add(hit)
+        i += 1
+        while i < len(lines) and not lines[i].startswith("## "):
+            i += 1
+    missing = [text for h, text in sections.items() if h not in done]
+    if missing:
+        first = next((k for k, line in enumerate(out) if line.startswith("## ")), len(out))
+        out[first:first] = [t.rstrip("\n") + "\n" for t in missing]
+    return "\n".join(out) + "\n"
+
+
+REBUILD_NOTE = "Paper sections (claims, figures, physics checks) rebuilt"
+
+
+def with_rebuild_note(md, note):
+    """``md`` with ``note`` after its "Built ..." line, replacing an earlier rebuild note."""
+    lines = [line for line in md.splitlines() if not line.startswith(REBUILD_NOTE)]
+    text = "\n".join(lines)
+    while "\n\n\n" in text:
+        text = text.replace("\n\n\n", "\n\n")
+    lines = text.splitlines()
+    at = next((i + 1 for i, line in enumerate(lines) if line.startswith("Built ")), 1)
+    return "\n".join(lines[:at] + ["", note] + lines[at:]) + "\n"
+
+
 def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), include_runs=(),
-                 echo=print, progress=True):
+                 echo=print, progress=True, paper_only=False):
     """Compute every section and write ``out_dir/report.md``; returns its path. ``progress``:
-    a progress line per stage on stderr."""
+    a progress line per stage on stderr. ``paper_only``: only the claims, the paper's figures
+    and the physics checks, spliced into an existing ``report.md`` (written whole if none)."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
@@ -173,20 +240,37 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
     def timed(label, make):
         t0 = time.perf_counter()
         with stage_progress(f"report: {label}", progress):
-            text = make()
+            result = make()
         timings.append((label, time.perf_counter() - t0))
-        return text
+        return result
 
+    claims, claim_md = [], []
+    for label, make in claim_sections(out_dir, particles, quick, echo, include_runs):
+        md, section_claims = timed(label, make)
+        claim_md.append(md)
+        claims += list(section_claims)
+    physics = timed("physics checks", lambda: physics_checks_section(out_dir, quick=quick,
+                                                                     echo=echo))
+    write_report_json(out_dir / "report.json", claims, built=_now_utc(),
+                      particles_per_curve=particles, quick=quick)
+    stored = json.loads((out_dir / "report.json").read_text(encoding="utf-8"))["claims"]
+    path = out_dir / "report.md"
+    if paper_only and path.is_file():
+        old = path.read_text(encoding="utf-8")
+        note = (f"{REBUILD_NOTE} {_now_utc()} from the runs in {out_dir}; the speed and "
+                "work-precision sections are from the build named above.")
+        new = splice(old, {CLAIMS_HEADING: claims_heading_text(stored),
+                           FIGURES_HEADING: "\n".join(claim_md), PHYSICS_HEADING: physics})
+        rundir.write_atomic(path, with_rebuild_note(new, note))
+        echo(f"paper sections of {path} rebuilt in {time.perf_counter() - start:.0f} s")
+        return path
     parts = [_header(particles, quick)]
-    parts.append(timed("speed", lambda: _speed_section(quick, echo)))
-    parts.append(timed("work-precision and hard cases",
-                       lambda: _precision_sections(out_dir, quick, compare, echo)))
-    paper_md, claims = timed("seed's figures", lambda: paper_figures_section(
-        out_dir, particles=particles, quick=quick, echo=echo, runs_dir=out_dir / "runs",
-        include_runs=include_runs))
-    parts.append(paper_md)
-    parts.append(timed("physics checks",
-                       lambda: physics_checks_section(out_dir, quick=quick, echo=echo)))
+    if not paper_only:
+        parts.append(timed("speed", lambda: _speed_section(quick, echo)))
+        parts.append(timed("work-precision and hard cases",
+                           lambda: _precision_sections(out_dir, quick, compare, echo)))
+    parts += claim_md
+    parts.append(physics)
     for run_dir in include_runs:
         parts.append(timed(f"included run {run_dir}",
                            lambda r=run_dir: _included_run(out_dir, r, echo)))
@@ -194,12 +278,7 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
     rows = "\n".join(f"| {label} | {seconds:.0f} |" for label, seconds in timings)
     parts.append("## How long this report took\n\n| section | seconds |\n|---|---|\n"
                  f"{rows}\n| total | {total:.0f} |\n")
-    write_report_json(out_dir / "report.json", claims, built=_now_utc(),
-                      particles_per_curve=particles, quick=quick)
-    stored = json.loads((out_dir / "report.json").read_text(encoding="utf-8"))["claims"]
-    parts.insert(1, "## The seed's claims: verdicts\n\nRendered from `report.json` (every claim "
-                 "with its evidence, uncertainties, rule and run).\n\n" + claims_markdown(stored))
-    path = out_dir / "report.md"
+    parts.insert(1, claims_heading_text(stored))
     rundir.write_atomic(path, "\n".join(parts))
     echo(f"report written to {path} in {total:.0f} s")
     return path

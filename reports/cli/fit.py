@@ -20,10 +20,11 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from reports.stats.analysis import analyse
+from reports.stats.analysis import analyse, best_law_text
 from reports.stats.histogram import CLOCKS, read_csv_histogram, read_run
 
 PROGRESS_FROM = 10  # curves; fewer run silently
+STAGES_FROM = 1000  # bins: a curve this long reports its stages on stderr
 
 
 def add_parser(subparsers):
@@ -81,7 +82,10 @@ def _slug(text):
 
 def _work(item):
     curve, folder, out, plot = item
-    result = analyse(curve)
+    label = f"fit: {Path(curve.source).name} {curve.curve} ({curve.clock})"
+    say = (lambda text: print(f"{label}: {text}", file=sys.stderr, flush=True)) if len(
+        curve.escapes) >= STAGES_FROM else None
+    result = analyse(curve, progress=say)
     png = None
     if plot:
         from reports.stats.figure import plot_curve
@@ -94,24 +98,13 @@ def _work(item):
     return {"source": curve.source, **result, "png": str(png) if png else None}
 
 
-def _fmt_param(model, name):
-    value, ci = model[name], model[f"{name}_ci95"]
-    show = [("inf" if v is None else f"{v:.4g}") for v in [value, *ci]]
-    return f"{name}={show[0]} [{show[1]}, {show[2]}]"
-
-
 def table(results):
     """Readable lines: per curve the best law with its parameters, window and regimes."""
     lines = []
     for r in results:
-        law = r["best"]
-        shown = law if law != "inconclusive" else "stretched_exponential"
-        params = {"exponential": ["gamma"], "power_law": ["alpha"],
-                  "stretched_exponential": ["c", "beta"]}[shown]
-        text = ", ".join(_fmt_param(r["models"][shown], p) for p in params)
         regimes = " | ".join(f"{g['law']} {g['from']:g}-{g['to']:g}" for g in r["regimes"])
         lines.append(f"{Path(r['source']).name}  {r['curve']}  [{r['clock']}]  N={r['particles']}"
-                     f"  best: {law}  ({text}{'' if law == shown else ', stretched shown'})"
+                     f"  best: {best_law_text(r)}"
                      f"  window [{r['window'][0]:g}, {r['window'][1]:g}]  regimes: {regimes}")
     return "\n".join(lines)
 

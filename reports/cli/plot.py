@@ -1,6 +1,6 @@
 """``bouncer plot RUN_DIR``: the survival curves (the portrait, <v_n>) of a run, as PNG."""
 
-from reports.stats.plot import plot_run
+from reports.stats.plot import FIT_CHOICES, plot_run
 
 
 def _plot(args):
@@ -16,8 +16,9 @@ def add_parser(subparsers):
     plot.add_argument("run_dir", metavar="RUN_DIR", help="the run directory to draw")
     plot.add_argument("--out", help="image file (default: RUN_DIR/survival.png, portrait.png"
                                     " or velocity.png)")
-    plot.add_argument("--fit", choices=["exponential", "stretched", "power"],
-                      help="draw this model fitted to each curve (needs --window)")
+    plot.add_argument("--fit", choices=list(FIT_CHOICES),
+                      help="maximum-likelihood fits as `bouncer fit`: 'regimes' draws its law of"
+                      " every regime; a law name fits that law over --window")
     plot.add_argument("--window", type=float, nargs=2, metavar=("LO", "HI"),
                       help="the range of the clock the fit uses")
     plot.add_argument("--clock", choices=["collisions", "time"], default="time",

@@ -1,1 +1,2 @@
-"""The seed's figures, one module per figure, and the physics checks against published results."""
+"""The paper's figures and claims (one module per figure, the register of claims, their rules
+and evaluators) and the physics checks against published results."""

@@ -1,12 +1,28 @@
-"""The seed's claims as data: one ``Claim`` per statement, with a verdict and the rule behind it.
+"""Claims as data: one ``Claim`` per checkable statement, with its verdict and the rule behind it.
 
-A verdict is ``confirmed``, ``refuted`` or ``inconclusive`` (the data cannot decide under the
-stated rule). ``statistical`` and ``systematic`` hold the uncertainties of the quantities the
-verdict rests on (95% intervals from the likelihood, and half-ranges over the window family of
-``reports.stats.analysis``); ``run`` names the run directory the numbers come from.
+A claim's fields (``report.json`` holds exactly these keys, in this order):
 
-``report.json`` holds ``{"claims": [...]}`` and the markdown of the claims is rendered from that
-same list (``claims_markdown``), so the two cannot disagree.
+    id, figure        where it belongs ("2", "3", "4", "sec3", ...)
+    statement         our one-line reading of what is asserted
+    quote             the paper's own words, verbatim (whitespace may differ, "..." elides);
+                      empty for claims that are not the paper's
+    observable        what is measured
+    regime            the part of the data the statement speaks of (bulk, intermediate, late
+                      tail, finite time, matched survival levels, ...)
+    rule              how the verdict follows from the measurement
+    tolerance         the stated tolerance of a qualitative word ("close to", "the same", ...)
+    source            "paper", a cited publication, or "this project" (our own estimate)
+    verdict           confirmed | refuted | inconclusive (the data cannot decide under the rule)
+    evidence          the numbers that decided it
+    particles_per_curve, statistical, systematic, run
+
+``statistical`` and ``systematic`` hold the uncertainties the verdict rests on (95% intervals,
+half-ranges over a stated window family); ``run`` names the run directory of the numbers.
+The register of the paper's claims (``reports.paper.register``) fixes id, figure, statement,
+quote, observable, regime, rule, tolerance and source before any verdict is computed.
+
+``report.json`` holds ``{"claims": [...]}``; the markdown of the claims is rendered from that same
+list (``claims_markdown``), so the two cannot disagree.
 """
 
 from __future__ import annotations
@@ -19,26 +35,41 @@ from reports.runs import rundir
 
 CONFIRMED, REFUTED, INCONCLUSIVE = "confirmed", "refuted", "inconclusive"
 VERDICTS = (CONFIRMED, REFUTED, INCONCLUSIVE)
+PAPER = "paper"
+THIS_PROJECT = "this project"
+FIELDS = ("id", "figure", "statement", "quote", "observable", "regime", "rule", "tolerance",
+          "source", "verdict", "evidence", "particles_per_curve", "statistical", "systematic",
+          "run")
 
 
 @dataclass
 class Claim:
-    """One statement of the seed checked on data."""
+    """One statement checked on data (module docstring). Build it by keyword."""
 
     id: str
-    figure: str  # "1".."4" or "fermi"
-    seed_says: str
+    figure: str
+    statement: str
+    quote: str
+    observable: str
+    regime: str
+    rule: str
+    tolerance: str
+    source: str
     verdict: str
     evidence: str
-    particles_per_curve: int | None
+    particles_per_curve: int | None = None
     statistical: dict = field(default_factory=dict)
     systematic: dict = field(default_factory=dict)
     run: str | None = None
-    rule: str = ""
 
     def __post_init__(self):
         if self.verdict not in VERDICTS:
             raise ValueError(f"verdict must be one of {', '.join(VERDICTS)}, got {self.verdict!r}")
+        if not self.source:
+            raise ValueError(f"claim {self.id!r}: source must be 'paper', a cited publication or"
+                             f" {THIS_PROJECT!r}")
+        if self.source == PAPER and not self.quote.strip():
+            raise ValueError(f"claim {self.id!r}: a claim of the paper needs its quote")
 
 
 def _json_safe(value):
@@ -48,11 +79,22 @@ def _json_safe(value):
         return {str(k): _json_safe(v) for k, v in value.items()}
     if isinstance(value, list | tuple):
         return [_json_safe(v) for v in value]
+    if hasattr(value, "item") and not isinstance(value, str):
+        return _json_safe(value.item())
     return value
 
 
 def claims_json(claims) -> list[dict]:
-    return [_json_safe(asdict(c)) for c in claims]
+    """JSON-ready dicts of ``Claim``s or of claim dicts (another section's), keys in FIELDS
+    order; a dict with other keys is refused."""
+    out = []
+    for c in claims:
+        d = asdict(c) if isinstance(c, Claim) else dict(c)
+        if set(d) != set(FIELDS):
+            raise ValueError(f"claim {d.get('id')!r}: keys must be exactly {', '.join(FIELDS)};"
+                             f" got {', '.join(sorted(d))}")
+        out.append(_json_safe({k: d[k] for k in FIELDS}))
+    return out
 
 
 def write_report_json(path, claims, **sections):
@@ -65,31 +107,44 @@ def _cell(text) -> str:
     return str(text).replace("|", "/").replace("\n", " ")
 
 
-BEYOND_THE_SEED = ("dissipation",)  # figures of claims the seed does not make (issue 16's study)
-
-
 def _verdict_counts(claims):
     counts = {v: sum(c["verdict"] == v for c in claims) for v in VERDICTS}
     return (f"{counts[CONFIRMED]} confirmed, {counts[REFUTED]} refuted, "
             f"{counts[INCONCLUSIVE]} inconclusive")
 
 
+def _quoted(text):
+    return " ".join(str(text).split())
+
+
+def claims_summary(claims: list[dict]) -> str:
+    """One line: the paper's claims and the others, with their verdict counts."""
+    paper = [c for c in claims if c["source"] == PAPER]
+    other = [c for c in claims if c["source"] != PAPER]
+    line = f"{len(paper)} claims of the paper: {_verdict_counts(paper)}."
+    if other:
+        line += (f" {len(other)} claims from other publications or this project (not the "
+                 f"paper's): {_verdict_counts(other)}.")
+    return line
+
+
 def claims_markdown(claims: list[dict]) -> str:
-    """A table of the claims (from their JSON form), then each claim's evidence and rule."""
-    seeds = [c for c in claims if c["figure"] not in BEYOND_THE_SEED]
-    beyond = [c for c in claims if c["figure"] in BEYOND_THE_SEED]
-    summary = f"{len(seeds)} claims of the seed: {_verdict_counts(seeds)}."
-    if beyond:
-        figures = ", ".join(sorted({c["figure"] for c in beyond}))
-        summary += f" {len(beyond)} beyond the seed ({figures}): {_verdict_counts(beyond)}."
-    lines = [summary, "",
-             "| id | figure | the seed says | verdict | particles per curve | run |",
-             "|---|---|---|---|---|---|"]
+    """A table of the claims (from their JSON form), then every claim with its quote, reading,
+    rule, tolerance and the evidence that decided it; refuted and inconclusive claims first."""
+    lines = [claims_summary(claims), "",
+             "| id | figure | verdict | our reading | source | particles per curve | run |",
+             "|---|---|---|---|---|---|---|"]
     for c in claims:
         n = c["particles_per_curve"]
-        lines.append(f"| {c['id']} | {c['figure']} | {_cell(c['seed_says'])} | "
-                     f"**{c['verdict']}** | {f'{n:,}' if n else '-'} | {c['run'] or '-'} |")
+        lines.append(f"| {c['id']} | {c['figure']} | **{c['verdict']}** | {_cell(c['statement'])}"
+                     f" | {_cell(c['source'])} | {f'{n:,}' if n else '-'} | {c['run'] or '-'} |")
     lines.append("")
-    for c in claims:
-        lines.append(f"- **{c['id']}** ({c['verdict']}): {c['evidence']} *Rule:* {c['rule']}")
+    order = {REFUTED: 0, INCONCLUSIVE: 1, CONFIRMED: 2}
+    for c in sorted(claims, key=lambda c: order[c["verdict"]]):
+        said = (f"The paper: \"{_quoted(c['quote'])}\"" if c["source"] == PAPER else
+                f"Source: {c['source']}" + (f": \"{_quoted(c['quote'])}\"" if c["quote"] else "."))
+        lines.append(
+            f"- **{c['id']}** ({c['verdict']}). {said} *Reading:* {c['statement']}. "
+            f"*Observable:* {c['observable']}. *Regime:* {c['regime']}. *Rule:* {c['rule']}. "
+            f"*Tolerance:* {c['tolerance']}. *Evidence:* {c['evidence']}")
     return "\n".join(lines) + "\n"

@@ -1,7 +1,7 @@
 """Dissipation suppresses Fermi acceleration: <v_n> saturates, V_sat against (1 - r).
 
 The study (``STUDY``): eps = 2 (at eps = 0.6 particles with r < 1 fall onto the v = pi attractor
-or stick, so there is no plateau to measure), starts uniform in the seed's escape box
+or stick, so there is no plateau to measure), starts uniform in the paper's escape box
 3.85 < phi < 4.15, 2 < v < 4, no holes; the same starts for every physics:
 
 * restitution r < 1 (DESIGN fact 12: v1 - u = -r*(v_in - u)) for several 1 - r;
@@ -68,7 +68,7 @@ from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim
 from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit
 from reports.runs.chunk import check_sample
 
-BOX = ((3.85, 4.15), (2.0, 4.0))  # the seed's escape start box
+BOX = ((3.85, 4.15), (2.0, 4.0))  # the paper's escape start box
 BLOCKS = 64
 RANDOM_PHASE_BETA = -0.5  # our estimate (module docstring), not a published value
 RESOLUTION = 0.25  # half the distance from -1/2 to 0 (no suppression) and to -1
@@ -335,15 +335,23 @@ def dissipation_claims(d):
     sat = saturation_verdict(d.elastic, curves)
     worst = max(curves, key=lambda c: abs(c.slope) / (1.96 * c.slope_err + c.slope_sys))
     u_beta = 1.96 * d.beta_err + d.beta_sys
-    where = (f"eps = {d.eps:g}, {d.particles} starts in the seed's escape box, plateau window "
+    where = (f"eps = {d.eps:g}, {d.particles} starts in the paper's escape box, plateau window "
              f"n in [{d.window[0]:g}, {d.window[1]:g}]")
     return [
         Claim(
             id="dissipation-saturates", figure="dissipation",
-            seed_says="Dissipation suppresses Fermi acceleration: <v> grows, then bends to a "
-                      "constant (de Souza, Simoes, da Silva, Leonel, Math. Probl. Eng. 2009, "
-                      "409857, abstract, linear drag; checked here for restitution and both "
-                      "drag laws)",
+            statement="dissipation suppresses Fermi acceleration: <v> grows, then bends to a "
+                      "constant (the source shows it for linear drag; checked here for "
+                      "restitution and both drag laws)",
+            quote="the average velocity starts growing at first and then bends towards a regime "
+                  "of constant value, thus confirming that the introduction of drag force is a "
+                  "sufficient condition to suppress Fermi acceleration",
+            observable="slope of log<v_n> against log n over the last decade of n, eps = 2",
+            regime="the plateau: n in the last decade of the study",
+            tolerance="a slope compatible with 0 within its uncertainty (1.96 sigma + window "
+                      "systematic) is a plateau",
+            source="de Souza, Simoes, da Silva, Leonel, Math. Probl. Eng. 2009, 409857 "
+                   "(abstract; not the paper)",
             verdict=sat,
             evidence=f"{where}: slope of log<v_n> vs log n, elastic {d.elastic.slope:.3f} +- "
                      f"{d.elastic.slope_err:.3f}; dissipative slopes "
@@ -359,10 +367,14 @@ def dissipation_claims(d):
                  "elastic one grows; refuted if one grows as fast as the elastic curve"),
         Claim(
             id="dissipation-exponent", figure="dissipation",
-            seed_says="V_sat ~ (1 - r)^beta: NO PUBLISHED VALUE FOUND (Livorati, Ladeira, "
-                      "Leonel, PRE 78, 056205 (2008) and the other sources in "
-                      "reports/paper/dissipation.py: only abstracts readable here, none with "
-                      "a number); compared with our random-phase estimate beta = -1/2",
+            statement="V_sat ~ (1 - r)^(-1/2), our random-phase estimate (no published value "
+                      "found: Livorati, Ladeira, Leonel, PRE 78, 056205 (2008) and the other "
+                      "sources in reports/paper/dissipation.py give none in their abstracts)",
+            quote="",
+            observable="least-squares slope of log V_sat against log(1 - r), eps = 2",
+            regime="the plateau of each r",
+            tolerance="|beta + 1/2| within 1.96 sigma + systematic, resolving U <= 1/4",
+            source="this project",
             verdict=exponent_verdict(d.beta, d.beta_err, d.beta_sys),
             evidence=f"{where}: least-squares slope of log V_sat against log(1 - r) for 1 - r "
                      f"in {', '.join(f'{x:g}' for x in d.one_minus_r)} = {d.beta:.3f} +- "
@@ -374,11 +386,15 @@ def dissipation_claims(d):
             rule="|beta + 1/2| <= 1.96 sigma + systematic, with U <= 1/4"),
         Claim(
             id="dissipation-velocity-strip", figure="dissipation",
-            seed_says="Inelastic impacts confine the chaotic orbits to a velocity strip of "
-                      "width ~ 1/(1 - r) (Barroso, Carneiro, Macau, PRE 79, 026206 (2009), "
-                      "abstract: 'bounded by a velocity strip v = +-Gamma/(1 - r)'); in our "
-                      "units its edge is V*(r) ~ 2*abs(eps)/(1 - r), derived in "
-                      "reports/paper/dissipation.py",
+            statement="inelastic impacts confine the chaotic orbits to a velocity strip of width"
+                      " ~ 1/(1 - r); in our units its edge is V*(r) ~ 2 abs(eps)/(1 - r), "
+                      "derived in reports/paper/dissipation.py",
+            quote="bounded by a velocity strip v = +-Gamma/(1 - r)",
+            observable="max |v_n| of the study's orbits against V*(r)",
+            regime="every collision of 10,000 per orbit",
+            tolerance="none: V* is a rigorous bound of the exact dynamics",
+            source="Barroso, Carneiro, Macau, Phys. Rev. E 79, 026206 (2009) (abstract; not the "
+                   "paper)",
             verdict=strip_verdict(d.one_minus_r, d.strip_max, d.eps),
             evidence=f"eps = {d.eps:g}, {d.strip_orbits} orbits of {int(d.n[-1]):,} "
                      "collisions per r from the study's starts: max |v_n| / V*(r) = "

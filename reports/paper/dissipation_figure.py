@@ -45,7 +45,7 @@ def figure_dissipation(d, out_dir):
     ax.set_ylabel("V_sat, velocity")
     ax.set_title("plateau against the restitution loss", fontsize=10)
     ax.legend(fontsize=7)
-    fig.suptitle("Dissipation suppresses Fermi acceleration (seed's escape start box, no holes)",
+    fig.suptitle("Dissipation suppresses Fermi acceleration (paper's escape start box, no holes)",
                  fontsize=11)
     caption(fig, f"{d.particles:,} particles per curve, n <= {int(d.n[-1]):,}; "
                  f"{verified_text(d.verification)}; +- from a bootstrap over {BLOCKS} "
@@ -67,7 +67,7 @@ def dissipation_markdown(d, image):
         "",
         f"![Dissipation]({image})",
         "",
-        f"eps = {d.eps:g}, {d.particles:,} particles from the seed's escape start box, no "
+        f"eps = {d.eps:g}, {d.particles:,} particles from the paper's escape start box, no "
         f"holes, the same starts for every physics; {verified_text(d.verification)} "
         f"(dissipative orbits). Plateau V_sat = mean of <v_n> over the log-spaced grid points "
         f"with n in [{d.window[0]:g}, {d.window[1]:g}]. {d.seconds:.0f} s.",

@@ -12,10 +12,11 @@ import numpy as np
 
 from fastpath.kernels.moments import moments
 from reports.paper.check import Check, agree
-from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim
-from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit, verify_sample
+from reports.paper.register import make_claim
+from reports.paper.rules import SAME, band_verdict
+from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit, verified_text, verify_sample
 
-# Fermi acceleration ensemble (eps = 0.6, the seed's escape start box)
+# Fermi acceleration ensemble (eps = 0.6, the paper's escape start box)
 FERMI_EPS = 0.6
 
 
@@ -93,7 +94,7 @@ def fermi_ensemble(quick=False, particles=None):
 
 
 def fermi_checks(fermi):
-    common = (f"eps = 0.6, {fermi.particles} starts in the seed's escape box, no holes; "
+    common = (f"eps = 0.6, {fermi.particles} starts in the paper's escape box, no holes; "
               "+- = bootstrap over 64 particle blocks")
     return [
         Check("<v> ~ n^beta (per collision)", fermi.beta_n, fermi.beta_n_err, 0.5,
@@ -107,7 +108,6 @@ def fermi_checks(fermi):
 
 
 WINDOW_SHIFT_DECADES = 0.25
-EXPONENT_GAP = 0.5 - 1 / 3  # the two published exponents the check must tell apart
 
 
 def _window_family(x, y, window):
@@ -121,11 +121,12 @@ def _window_family(x, y, window):
 
 
 def fermi_claims(fermi):
-    """Claims ``fermi-n`` (<v> ~ n^(1/2)) and ``fermi-t`` (<v> ~ t^(1/3)).
+    """Claims ``fermi-n`` (<v_n> ~ n^(1/2)) and ``fermi-t`` (t ~ n^(3/2), i.e. <v(t)> ~
+    t^(1/3)), register ``reports.paper.register``.
 
-    Rule: U = 1.96 sigma (bootstrap over particle blocks) + the window family's half-range.
-    confirmed: |beta - expected| <= U and U <= (1/2 - 1/3)/2 (the measurement tells the two
-    published exponents apart); refuted: |beta - expected| > U; inconclusive otherwise.
+    Rule: the slope's interval, 1.96 sigma (bootstrap over particle blocks) plus the window
+    family's half-range on each side, must lie within ``rules.SAME`` (10%) of the exponent:
+    confirmed inside, refuted wholly outside, inconclusive otherwise.
     """
     out = []
     for key, beta, err, expected, x, y, window, unit in (
@@ -135,19 +136,15 @@ def fermi_claims(fermi):
              fermi.t_window, "t")):
         sys = _window_family(x, y, window)
         u = 1.96 * err + sys
-        off = abs(beta - expected)
-        verdict = (INCONCLUSIVE if not math.isfinite(u) else REFUTED if off > u else
-                   CONFIRMED if u <= EXPONENT_GAP / 2 else INCONCLUSIVE)
-        out.append(Claim(
-            id=f"fermi-{key}", figure="fermi",
-            seed_says=f"Fermi acceleration: <v> grows as {unit.split()[0]}^"
-                      f"{'1/2' if key == 'n' else '1/3'} (the seed's Section 3 argument)",
-            verdict=verdict,
-            evidence=f"slope of log<v> against log {unit} over [{window[0]:g}, {window[1]:.3g}]"
-                     f" = {beta:.4f} +- {err:.4f} (bootstrap over 64 particle blocks, "
-                     f"{fermi.particles} particles) +- {sys:.3f} (window family); "
-                     f"|beta - {expected:.4g}| = {off:.4f} against U = {u:.3f}.",
+        band = (expected * (1 - SAME), expected * (1 + SAME))
+        verdict = band_verdict(beta - u, beta + u, *band)
+        out.append(make_claim(
+            f"fermi-{key}", verdict,
+            f"slope of log<v> against log {unit} over [{window[0]:g}, {window[1]:.3g}]"
+            f" = {beta:.4f} +- {err:.4f} (bootstrap over 64 particle blocks, "
+            f"{fermi.particles} particles) +- {sys:.3f} (window family): interval "
+            f"[{beta - u:.4f}, {beta + u:.4f}] against the band [{band[0]:.4f}, {band[1]:.4f}]; "
+            f"{verified_text(fermi.verification)}.",
             particles_per_curve=fermi.particles,
-            statistical={"beta": beta, "sigma": err}, systematic={"beta": sys}, run=None,
-            rule="|beta - expected| <= 1.96 sigma + systematic, resolving 1/2 from 1/3"))
+            statistical={"beta": beta, "sigma": err}, systematic={"beta": sys}))
     return out

@@ -37,7 +37,7 @@ def figure_fermi(fermi, out_dir):
         ax.legend(fontsize=8)
     axes[0].set_title("<v_n> against collisions", fontsize=10)
     axes[1].set_title("<v(t)> against time (v after the last collision before t)", fontsize=10)
-    fig.suptitle("Fermi acceleration at eps = 0.6 from the seed's escape start box, no holes",
+    fig.suptitle("Fermi acceleration at eps = 0.6 from the paper's escape start box, no holes",
                  fontsize=11)
     caption(fig, f"{fermi.particles:,} particles, horizon n <= {int(fermi.n[-1]):,} and "
                   f"t <= {fermi.t[-1]:.3g}, {fermi.collisions:.3g} collisions, {fermi.flagged} "
@@ -55,10 +55,10 @@ def fermi_markdown(fermi, image):
         "",
         f"![Fermi acceleration]({image})",
         "",
-        f"{fermi.particles:,} particles from the seed's escape start box, no holes; "
+        f"{fermi.particles:,} particles from the paper's escape start box, no holes; "
         f"{verified_text(fermi.verification)}.",
         "",
-        "Seed's claim (Section 3): chaotic orbits diffuse in velocity, typical v ~ sqrt(n), "
+        "The paper (Section 3): chaotic orbits diffuse in velocity, typical v ~ sqrt(n), "
         "hence t ~ n^(3/2) and v ~ t^(1/3); eps = 0.6 is below the accelerator modes, so the "
         "diffusion is normal.",
         "",

@@ -1,25 +1,23 @@
-"""The seed's figures from trusted runs, with the seed's claims checked on them.
+"""The paper's figures from trusted runs, with the paper's claims decided on them.
 
 ``paper_figures_section(out_dir, particles=None, quick=False, echo=None, runs_dir=None,
 include_runs=())`` runs (or reuses complete run directories in ``runs_dir``, default
-``out_dir/runs``) the built-in scenes paper-phase-space, paper-escape and paper-transport
-through ``reports.runs.driver.run`` (or takes the larger included paper-scale runs), draws
+``out_dir/runs``) the built-in scenes paper-phase-space, paper-escape, paper-transport,
+escape-second-box and escape-island-start through ``reports.runs.driver.run`` (a complete run of
+paper-escape or paper-transport among ``include_runs`` with more particles replaces the
+default-scale one: the paper-scale runs), runs the sampled studies (``reports.paper.studies``),
+decides every claim of the register (``reports.paper.register``) and draws
 
-    paper_fig1_phase_space   phase space at eps = 0.6                               (seed Fig. 1)
-    paper_fig2_escape        2x2: discrete/continuous time, log-linear/log-log      (seed Fig. 2)
-    paper_fig3_transport     P_ij(t) for h = 0.1, 0.4, 1, 2.2                       (seed Fig. 3)
-    paper_fig4_h1            h = 1, 2x2: discrete/continuous, log-linear/log-log    (seed Fig. 4)
+    paper_fig1_phase_space   phase space at eps = 0.6, centred, holes as strips    (Fig. 1)
+    paper_fig2_escape        discrete left, continuous right, regime laws            (Fig. 2)
+    paper_fig3_transport     all P_ij(t) for h = 0.1, 0.4, 1, 2.2                     (Fig. 3)
+    paper_fig4_h1            h = 1, discrete left, continuous right                  (Fig. 4)
+    paper_survivors          late survivors: where they are, n against t, t/n
     paper_fermi              <v> against n and t at eps = 0.6, log-log
-    paper_dissipation        <v_n> with restitution r < 1 and drag at eps = 2, and V_sat
-                             against (1 - r) (``reports.paper.dissipation``)
+    paper_dissipation        <v_n> with restitution r < 1 and drag at eps = 2
 
-as PNG and PDF in ``out_dir``, and returns the Markdown and the seed's claims (``claims.Claim``),
-each with its verdict, uncertainties and the rule that produced it (in the docstrings of
-``fig2_escape``, ``fig3_transport``, ``fig4_h1``, ``fermi.fermi_claims`` and
-``dissipation``). Survival laws are
-fitted by maximum likelihood on the binned, censored counts (``reports.stats``).
-
-Every figure states its particle count, horizon and the run's verification summary.
+as PNG and PDF in ``out_dir``. Returns (Markdown, claims): the claims as ``Claim``s, in register
+order, then the claims from other publications and this project (dissipation).
 """
 
 from __future__ import annotations
@@ -27,15 +25,19 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from reports.paper.claims import claims_json, claims_markdown
+from reports.paper import studies
 from reports.paper.dissipation import dissipation_claims, dissipation_study
 from reports.paper.dissipation_figure import dissipation_markdown, figure_dissipation
+from reports.paper.escape_claims import escape_analysis, escape_claims
+from reports.paper.escape_regimes import diffusive_onset
 from reports.paper.fermi import fermi_claims, fermi_ensemble
 from reports.paper.fermi_figure import fermi_markdown, figure_fermi
 from reports.paper.fig1_phase_space import figure_phase_space, phase_space_markdown
-from reports.paper.fig2_escape import escape_analysis, escape_claims, escape_markdown, figure_escape
-from reports.paper.fig3_transport import figure_transport, transport_claims, transport_markdown
-from reports.paper.fig4_h1 import figure_h1, h1_analysis, h1_claims, h1_markdown
+from reports.paper.fig2_escape import escape_markdown, figure_escape
+from reports.paper.fig3_transport import figure_transport, transport_markdown
+from reports.paper.fig4_h1 import figure_h1, h1_markdown
+from reports.paper.geometry_claims import escape_hole_claims, transport_hole_claims
+from reports.paper.register import ISLAND_HOLES, SEA_HOLES, entries
 from reports.paper.runs import (
     DEFAULT_PARTICLES,
     PHASE_SPACE_QUICK,
@@ -43,79 +45,132 @@ from reports.paper.runs import (
     ensure_run,
     largest_run,
     read_manifest,
+    run_summary,
     say_nothing,
 )
+from reports.paper.start_claims import (
+    destruction_claim,
+    island_start_claim,
+    other_box_claim,
+    other_density_claim,
+)
+from reports.paper.survivors_figure import figure_survivors
+from reports.paper.transport_claims import transport_analysis, transport_claims
 from reports.runs.scenes import load_scene
 
+EXTRA_QUICK = {"escape-second-box": 2000, "escape-island-start": 500}
+T_DIFFUSIVE = 1 / 3  # <v(t)> ~ t^(1/3)
 
-def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
-                          runs_dir=None, include_runs=()):
-    """Run or reuse the seed's scenes, write the figures (PNG + PDF) into ``out_dir``; returns
-    (Markdown with image links relative to ``out_dir``, the claims). ``particles``: per escape
-    curve and per transport entry hole (default 10**6; quick 2000); the phase-space scene keeps
-    its own count (4000 orbits; quick 200). A complete run of paper-escape or paper-transport
-    among ``include_runs`` with more particles replaces the default-scale run for that figure
-    and its claims (the paper-scale runs)."""
-    echo = echo or say_nothing
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    runs_dir = Path(runs_dir) if runs_dir is not None else out_dir / "runs"
-    runs_dir.mkdir(parents=True, exist_ok=True)
+
+def _runs(out_dir, runs_dir, particles, quick, include_runs, echo):
     n = int(particles) if particles else (QUICK_PARTICLES if quick else DEFAULT_PARTICLES)
-    t0 = time.perf_counter()
-    ps_particles = PHASE_SPACE_QUICK if quick else load_scene("paper-phase-space").particles
-    ps_run = ensure_run("paper-phase-space", runs_dir, ps_particles, echo)
-    runs = {}
+    ps = PHASE_SPACE_QUICK if quick else load_scene("paper-phase-space").particles
+    runs = {"paper-phase-space": ensure_run("paper-phase-space", runs_dir, ps, echo)}
     for scene in ("paper-escape", "paper-transport"):
         runs[scene] = ensure_run(scene, runs_dir, n, echo)
         bigger = largest_run(scene, [runs[scene], *include_runs])
         if bigger is not None and bigger != runs[scene]:
             echo(f"paper figures: {scene} verdicts from the included run {bigger}")
             runs[scene] = bigger
-    esc_run, tr_run = runs["paper-escape"], runs["paper-transport"]
-    echo("paper figures: Fermi acceleration ensemble")
+    for scene, q in EXTRA_QUICK.items():
+        size = q if quick else load_scene(scene).particles
+        runs[scene] = ensure_run(scene, runs_dir, size, echo)
+    return runs
+
+
+def _hole_centre(hole):
+    return float(hole)
+
+
+def decide(out_dir, runs, quick, echo):
+    """Every claim, with what the figures need: (claims, context dict)."""
+    echo("paper figures: Fermi acceleration ensemble (diffusive onset, fermi claims)")
     fermi = fermi_ensemble(bool(quick))
+    t_d = diffusive_onset(fermi.t, fermi.mean_v_t, T_DIFFUSIVE)
+    echo(f"paper figures: escape windows and fits (t_D = {t_d:.3g})")
+    esc = escape_analysis(runs["paper-escape"], t_d)
+    follow, snapshot, smooth = {}, {}, {}
+    for hole in ISLAND_HOLES + SEA_HOLES:
+        if hole not in esc:
+            continue
+        tail = esc[hole]["windows"].n_at.get("tail")
+        snapshot[hole] = int(tail) if tail is not None else None
+        echo(f"paper figures: sampled escape study, phi_c = {hole}")
+        follow[hole] = studies.escape_sample(
+            _hole_centre(hole), bool(quick), "uniform",
+            (snapshot[hole],) if snapshot[hole] else ())
+        smooth[f"phi_c={hole}"] = studies.escape_sample(_hole_centre(hole), bool(quick),
+                                                        "smooth")
+    echo("paper figures: transport analysis and the sampled study of h = 1")
+    tr = transport_analysis(runs["paper-transport"])
+    samples = {entry: studies.transport_sample(1.0, entry, bool(quick)) for entry in (1, 2)}
+    echo("paper figures: island geometry and the island-start studies")
+    claims = escape_hole_claims(quick)
+    claims += escape_claims(esc, runs["paper-escape"], {"follow": follow, "snapshot": snapshot})
+    claims += fermi_claims(fermi)
+    levels = {f"phi_c={h}": a["windows"].level_tail for h, a in esc.items()}
+    claims.append(other_box_claim(runs["paper-escape"], runs["escape-second-box"], levels))
+    claims.append(other_density_claim(runs["paper-escape"], smooth, levels))
+    island = studies.island_box_sample(0.0, bool(quick))
+    box_regular = (int(island[2].regular.sum()), len(island[0]))
+    claims.append(island_start_claim(runs["escape-island-start"], box_regular))
+    claims.append(destruction_claim(island))
+    claims += transport_hole_claims(quick)
+    claims += transport_claims(tr, runs["paper-transport"], samples)
+    order = {e["id"]: i for i, e in enumerate(entries())}
+    claims.sort(key=lambda c: order.get(c.id, len(order)))
+    return claims, {"fermi": fermi, "escape": esc, "transport": tr, "follow": follow,
+                    "snapshot": snapshot, "t_d": t_d}
+
+
+def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
+                          runs_dir=None, include_runs=()):
+    """Run or reuse the runs, decide the claims, write the figures; returns (Markdown with
+    image links relative to ``out_dir``, the claims)."""
+    echo = echo or say_nothing
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    runs_dir = Path(runs_dir) if runs_dir is not None else out_dir / "runs"
+    runs_dir.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    runs = _runs(out_dir, runs_dir, particles, quick, include_runs, echo)
+    claims, ctx = decide(out_dir, runs, quick, echo)
     echo("paper figures: dissipation (restitution and drag at eps = 2)")
     dissipation = dissipation_study(bool(quick))
-    echo("paper figures: survival-law inference (escape)")
-    esc = escape_analysis(esc_run)
-    echo("paper figures: survival-law inference (transport, h = 1)")
-    h1 = h1_analysis(tr_run)
-    echo("paper figures: claims and drawing")
-    esc_claims = escape_claims(esc, esc_run)
-    tr_particles = read_manifest(tr_run)["particles"]
-    figure_phase_space(ps_run, out_dir)
-    figure_escape(esc_run, out_dir, esc)
-    _, dominance = figure_transport(tr_run, out_dir)
-    tr_claims = transport_claims(dominance, tr_run, tr_particles)
-    figure_h1(tr_run, out_dir, h1)
-    h1c = h1_claims(h1, tr_run)
-    figure_fermi(fermi, out_dir)
-    fc = fermi_claims(fermi)
+    claims += dissipation_claims(dissipation)
+    echo("paper figures: drawing")
+    figure_phase_space(runs["paper-phase-space"], out_dir)
+    figure_escape(runs["paper-escape"], out_dir, ctx["escape"])
+    figure_transport(runs["paper-transport"], out_dir, ctx["transport"])
+    figure_h1(runs["paper-transport"], out_dir, ctx["transport"])
+    figure_survivors(runs["paper-phase-space"], out_dir, ctx["escape"], ctx["follow"],
+                     ctx["snapshot"])
+    figure_fermi(ctx["fermi"], out_dir)
     figure_dissipation(dissipation, out_dir)
-    dc = dissipation_claims(dissipation)
     seconds = time.perf_counter() - t0
-
-    def table(claims):
-        return claims_markdown(claims_json(claims))
-
+    esc_n = read_manifest(runs["paper-escape"])["particles"]
+    tr_n = read_manifest(runs["paper-transport"])["particles"]
     md = [
-        "## The seed's figures from trusted runs",
-        "",
+        "## The paper's figures from trusted runs", "",
         "Every curve comes from a `bouncer run` of a built-in scene, with its verification "
-        f"summary. The seed used 10^8 starts per curve; Fig. 2 uses "
-        f"{read_manifest(esc_run)['particles']:,} (`{esc_run.name}`), Figs. 3-4 "
-        f"{tr_particles:,} (`{tr_run.name}`). Every claim below is also in `report.json`.",
-        "",
-        phase_space_markdown(ps_run, "paper_fig1_phase_space.png"),
-        escape_markdown(esc_run, "paper_fig2_escape.png", table(esc_claims)),
-        transport_markdown(tr_run, "paper_fig3_transport.png", table(tr_claims)),
-        h1_markdown("paper_fig4_h1.png", table(h1c)),
-        fermi_markdown(fermi, "paper_fermi.png"),
-        table(fc),
+        f"summary. The paper used 10^8 starts per curve; Fig. 2 uses {esc_n:,} "
+        f"(`{Path(runs['paper-escape']).name}`), Figs. 3-4 {tr_n:,} "
+        f"(`{Path(runs['paper-transport']).name}`). The claims they decide are listed, with "
+        "their quotes, rules and evidence, in the verdicts section above and in "
+        "`report.json`.", "",
+        phase_space_markdown(runs["paper-phase-space"], "paper_fig1_phase_space.png"),
+        escape_markdown(runs["paper-escape"], "paper_fig2_escape.png", ctx["escape"]),
+        transport_markdown(runs["paper-transport"], "paper_fig3_transport.png"),
+        h1_markdown("paper_fig4_h1.png"),
+        "### Late survivors: the mechanism", "",
+        "![Late survivors](paper_survivors.png)", "",
+        "Sampled studies (`reports/paper/studies.py`) record each particle's collisions n and "
+        "time t together and the states of the survivors (claims sec3-n-sqrt-t-*, "
+        "fig2-bounded-velocity-*, fig2-sea-slowed-*).", "",
+        "### The other start sets", "",
+        f"Second start box: {run_summary(runs['escape-second-box'])}. Island start box: "
+        f"{run_summary(runs['escape-island-start'])}.", "",
+        fermi_markdown(ctx["fermi"], "paper_fermi.png"),
         dissipation_markdown(dissipation, "paper_dissipation.png"),
-        table(dc),
-        f"(paper figures: {seconds:.0f} s)",
-        "",
-    ]
-    return "\n".join(md), esc_claims + tr_claims + h1c + fc + dc
+        f"(paper figures: {seconds:.0f} s)", ""]
+    return "\n".join(md), claims

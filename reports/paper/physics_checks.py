@@ -2,23 +2,20 @@
 
 Rows (quantity, measured +- uncertainty, expected, method, agrees?):
 
-1. Fermi acceleration at eps = 0.6 from chaotic-sea starts (the seed's escape box
+1. Fermi acceleration at eps = 0.6 from chaotic-sea starts (the paper's escape box
    3.85 < phi < 4.15, 2 < v < 4, no holes): <v_n> ~ n**(1/2) per collision and <v(t)> ~ t**(1/3)
    in continuous time (v(t) = the velocity after the last collision at or before t). Slopes of
    log<v> against log n (log t) over a window at large n (t), the uncertainty the standard
    deviation over a bootstrap of the particle blocks of ``fastpath.kernels.moments``.
-2. The stretched-exponential exponent of the escape survival in continuous time (the seed argues
-   P ~ exp(-c*sqrt(t)) where the hole blocks the islands): the slope of ln(-ln P) against ln t,
-   and the exponent beta of the three-parameter fit ln P = ln a - c*t**beta (the raw slope is
-   biased upwards by the prefactor a: d ln(-ln P)/d ln t = beta*c*t**beta/(c*t**beta - ln a)).
-   Over the late window 100/N <= P <= 0.03 of the holes whose discrete-time decay is exponential;
-   uncertainty by a multinomial bootstrap of the run's escape histogram (a particle bootstrap).
-3. The rotation angle of small oscillations around the elliptic fixed point (phi, v) = (0, pi):
-   cos(theta) = 1 - 2*eps (DESIGN fact 7). From an orbit started 1e-5 above the fixed point,
+The stretched exponent of the escape survival is not here: it is a claim of the paper, decided
+on its regime by maximum likelihood (claims fig2-t-*, ``reports.paper.escape_claims``).
+
+2. The rotation angle of small oscillations around the elliptic fixed point (phi, v) = (0, pi):
+   cos(theta) = 1 - 2*eps (the linearisation of the fixed point, docs/model.md). From an orbit started 1e-5 above the fixed point,
    the 2x2 matrix M with x_{k+1} = M x_k is fitted to the deviations by least squares and
    cos(theta) = tr(M)/2; the uncertainty is the change when the start is moved 2e-5 away
    (nonlinear terms), plus rounding.
-4. Velocity diffusion at large eps: <(v_n - v_0)**2>/n -> 2 eps**2 C(4 eps) with the
+3. Velocity diffusion at large eps: <(v_n - v_0)**2>/n -> 2 eps**2 C(4 eps) with the
    Rechester-White factor C(K) = 1 - 2 J2 - 2 J1**2 + 2 J2**2 + 2 J3**2 (the Holmes map is the
    standard map in I = 2v with K = 4 eps; the exact map approaches it as v grows), for the exact
    and the Holmes map, random phases and v0 in [1000, 1000 + pi). Uncertainty: the spread over
@@ -41,64 +38,28 @@ from reports.paper.check import physics_table
 from reports.paper.diffusion import DIFFUSION_V0, diffusion_checks, rechester_white
 from reports.paper.fermi import fermi_checks, fermi_ensemble
 from reports.paper.rotation import rotation_checks
-from reports.paper.runs import ensure_run, say_nothing
+from reports.paper.runs import say_nothing
 from reports.paper.sampling import verified_text
-from reports.paper.stretch import stretch_checks
-from reports.runs import rundir
-
-ESCAPE_PARTICLES = {False: 1_000_000, True: 2000}  # as reports.paper.runs
 
 
-def find_escape_run(runs_dir):
-    """The complete paper-escape run with the most particles under ``runs_dir``, or None."""
-    best = None
-    runs_dir = Path(runs_dir)
-    if not runs_dir.is_dir():
-        return None
-    for path in sorted(runs_dir.iterdir()):
-        man = path / rundir.MANIFEST
-        if not man.is_file():
-            continue
-        data = rundir.read_json(man)
-        if data.get("status") == "complete" and data["scene"]["name"] == "paper-escape":
-            if best is None or data["particles"] > best[0]:
-                best = (data["particles"], path)
-    return best[1] if best else None
-
-
-def physics_checks_section(out_dir, quick=False, echo=None, runs_dir=None,
-                           particles=None) -> str:
-    """Markdown with the physics-check table. ``runs_dir`` (default ``out_dir/runs``, as
-    ``paper_figures_section``) is searched for a complete paper-escape run (the largest is
-    used); if there is none, one is run with ``particles`` per hole (default 10**6, quick 2000).
-    """
+def physics_checks_section(out_dir, quick=False, echo=None) -> str:
+    """Markdown with the physics-check table."""
     echo = echo or say_nothing
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    runs_dir = Path(runs_dir) if runs_dir is not None else out_dir / "runs"
     t0 = time.perf_counter()
     echo("physics checks: Fermi acceleration ensemble (eps = 0.6)")
     fermi = fermi_ensemble(bool(quick))
     rows = fermi_checks(fermi)
-    run_dir = find_escape_run(runs_dir)
-    if run_dir is None:
-
-        n = particles or ESCAPE_PARTICLES[bool(quick)]
-        run_dir = ensure_run("paper-escape", runs_dir, n, echo)
-    echo(f"physics checks: stretched exponent from {run_dir}")
-    stretch_rows, stretch_lines, _ = stretch_checks(run_dir)
-    rows += stretch_rows
     echo("physics checks: rotation angle at the elliptic fixed point")
     rows += rotation_checks()
     diff_rows, diff_results = diffusion_checks(quick, echo)
     rows += diff_rows
     seconds = time.perf_counter() - t0
-    manifest = rundir.read_json(Path(run_dir) / rundir.MANIFEST)
-    ver = manifest["verification"]
     md = [
         "## Physics checks against published results",
         "",
-        "Measured quantities against the values the literature (and the seed) predict. "
+        "Measured quantities against the values the literature (and the paper) predict. "
         "`+-` is one standard error (method column says how it is estimated); \"agrees\" means "
         "within 3 standard errors (plus, for the diffusion coefficient, a rough estimate "
         "(2/(pi K))^1.5 of the Rechester-White formula's truncation error).",
@@ -106,10 +67,7 @@ def physics_checks_section(out_dir, quick=False, echo=None, runs_dir=None,
         physics_table(rows),
         "",
         f"Fermi ensemble: {fermi.particles} particles, {fermi.collisions} collisions, "
-        f"{fermi.flagged} stopped at undecidable flights; {verified_text(fermi.verification)}. "
-        f"Escape run: {manifest['particles']} particles per hole, verification: "
-        f"{ver['sampled']} sampled collisions, worst error {ver['worst_error']:.2g} kappa*u, "
-        f"{ver['uncertain_settled']} settled by verify, {ver['overstepped']} overstepped.",
+        f"{fermi.flagged} stopped at undecidable flights; {verified_text(fermi.verification)}.",
         "",
     ]
     devs = ", ".join(f"{100 * (r.d / (2 * r.eps**2 * rechester_white(4 * r.eps)) - 1):+.1f}% "
@@ -128,12 +86,6 @@ def physics_checks_section(out_dir, quick=False, echo=None, runs_dir=None,
            "where their O(eps/v) relative difference exceeds the relative uncertainty of "
            f"D(exact) - D(Holmes): {', '.join(resolve)}; at v0 = {DIFFUSION_V0:g} they agree "
            "within it, as they should.", ""]
-    if stretch_lines:
-        md += ["Stretched exponent per hole (continuous time):", "",
-               "| hole | slope of ln(-ln P) | beta (3-parameter fit) | t window | points |",
-               "|---|---|---|---|---|", *stretch_lines, "",
-               "The raw slope exceeds beta because the prefactor a > 1 of P = a exp(-c t^beta) "
-               "adds -ln a to -ln P: the slope tends to beta only as -ln P >> ln a.", ""]
     md.append(f"(physics checks: {seconds:.0f} s)")
     md.append("")
     return "\n".join(md)

@@ -1,4 +1,4 @@
-"""The runs behind the seed's figures: reused when complete and ``bouncer verify`` passes on
+"""The runs behind the paper's figures: reused when complete and ``bouncer verify`` passes on
 them with this code, else run (``ensure_run``).
 """
 

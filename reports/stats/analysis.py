@@ -3,7 +3,8 @@
 1. Usable range: from the first bin boundary x > 0 (the power law needs x > 0; earlier escapes
    are conditioned away) to the earlier of the upper boundary of the last bin with an escape of
    this curve and the first bin holding a horizon censoring bound (``histogram``).
-2. Regimes by binary segmentation (``regimes``); each regime's law by the rule of
+2. Regimes by binary segmentation (``regimes``; on a grid of at most ``regimes.SEARCH_BINS``
+   merged bins, so its cost is bounded); each regime's law by the rule of
    ``selection``, with that law's parameters (the stretched law's when inconclusive). The
    late-time regime is the window of the headline fit: its three laws with
    profile 95% intervals, the tests, and ``best``.
@@ -88,15 +89,27 @@ def _half_range(v):
     return float(0.5 * (v.max() - v.min()))
 
 
-def analyse(curve):
-    """Result dict of one curve (the ``bouncer fit --json`` object, less ``source``)."""
+def analyse(curve, progress=None):
+    """Result dict of one curve (the ``bouncer fit --json`` object, less ``source``).
+    ``progress(text)``: told of each stage (the regime search, its crossovers, the fits)."""
+    say = progress or (lambda _text: None)
     a0, b0 = usable_range(curve)
-    bounds, splits, late_split_p = rg.segment(curve, a0, b0)
-    regime_list = []
+    grid = rg.search_grid(curve, a0, b0)
+    coarse = rg.merged(curve, grid) if len(grid) < b0 - a0 + 1 else curve
+    say(f"regime search over {b0 - a0} bins" + (f" (on {len(grid) - 1} merged bins)"
+                                                if coarse is not curve else ""))
+    if coarse is curve:
+        bounds, splits, late_split_p = rg.segment(curve, a0, b0, say)
+    else:
+        cb, splits, late_split_p = rg.segment(coarse, 0, len(grid) - 1, say)
+        bounds = [int(grid[k]) for k in cb]
+    say(f"{len(bounds) - 1} regimes; fits with intervals")
+    regime_list, regime_fits = [], []
     for lo, hi in zip(bounds[:-1], bounds[1:], strict=True):
         fits = fit_all(window_of(curve, lo, hi), intervals=False)
         law = choose(fits)[0]
         shown = "stretched_exponential" if law == INCONCLUSIVE else law
+        regime_fits.append(fits[shown])
         regime_list.append({"law": law, "from": float(curve.x[lo]), "to": float(curve.x[hi]),
                             "params": dict(fits[shown].params),
                             "escapes": int(curve.escapes[lo:hi].sum())})
@@ -106,6 +119,7 @@ def analyse(curve):
     best, tests = choose(fits)
     regime_list[-1].update(law=best, params=dict(
         fits["stretched_exponential" if best == INCONCLUSIVE else best].params))
+    regime_fits[-1] = fits["stretched_exponential" if best == INCONCLUSIVE else best]
     models = {}
     for law, f in fits.items():
         entry = {}
@@ -126,11 +140,43 @@ def analyse(curve):
         "escapes_in_window": int(window.escapes.sum()),
         "at_risk_in_window": window.at_risk,
         "regimes": regime_list,
-        "crossovers": rg.crossover_entries(curve, splits),
+        "crossovers": rg.crossover_entries(coarse, splits),
         "late_regime_split_p": late_split_p,
         "systematic": systematic(curve, a, b, a0, b0),
         "_fits": fits,
+        "_regime_fits": regime_fits,
     }
 
 
 __all__ = ["INCONCLUSIVE", "analyse", "fit_all", "systematic", "usable_range"]
+
+
+def _value(v):
+    return "inf" if v is None or (isinstance(v, float) and math.isinf(v)) else f"{v:.4g}"
+
+
+def _param_text(model, name):
+    lo, hi = model.get(f"{name}_ci95", (None, None))
+    return f"{name}={_value(model[name])} [{_value(lo)}, {_value(hi)}]"
+
+
+def best_law_text(result):
+    """The best law of an ``analyse`` result (or its JSON form) in words, with its parameters
+    and 95% intervals. A stretched fit on the boundary beta = 0 is the power law (c is infinite
+    there, alpha = c beta finite), so it is shown as the power law, never as "c = inf, beta = 0";
+    an inconclusive comparison shows both simple laws, not a stretched fit as if it were one."""
+    models, best = result["models"], result["best"]
+    stretched = models["stretched_exponential"]
+    if best == "exponential":
+        return "exponential (" + _param_text(models["exponential"], "gamma") + ")"
+    if best == "power_law":
+        return "power law (" + _param_text(models["power_law"], "alpha") + ")"
+    if best == "stretched_exponential":
+        if not stretched["beta"]:
+            return ("power law (" + _param_text(models["power_law"], "alpha")
+                    + "; the stretched fit sits on its power-law boundary beta = 0)")
+        return ("stretched exponential (" + _param_text(stretched, "c") + ", "
+                + _param_text(stretched, "beta") + ")")
+    return ("inconclusive: neither simple law is rejected and Vuong's test does not choose "
+            "(exponential " + _param_text(models["exponential"], "gamma") + "; power law "
+            + _param_text(models["power_law"], "alpha") + ")")

@@ -50,6 +50,8 @@ PARAMS = {"exponential": ("gamma",), "power_law": ("alpha",),
           "stretched_exponential": ("c", "beta")}
 _GRID = 25        # beta grid points before the golden section
 _GOLDEN = 60      # golden-section steps (0.618**60 ~ 3e-13 of the bracket)
+SEARCH_GOLDEN = 24  # steps when only l matters (0.618**24 ~ 1e-5 of the bracket: l to ~1e-10 of
+                    # its curvature), as in the regime search
 _INV_PHI = 0.6180339887498949
 _LOG_BETA_MIN = math.log(1e-16)  # c's profile searches beta down to here
 
@@ -182,7 +184,7 @@ def _stretched_profile(beta, log_x, e, log_points, weights):
 
 
 @numba.njit(cache=True)
-def _stretched_mle(log_x, e, log_points, weights, beta_max):
+def _stretched_mle(log_x, e, log_points, weights, beta_max, golden):
     """(beta, s, l) of the stretched law: grid over [0, beta_max], then golden section."""
     best, best_l = 0, -math.inf
     for i in range(_GRID):
@@ -195,7 +197,7 @@ def _stretched_mle(log_x, e, log_points, weights, beta_max):
     b2 = lo + _INV_PHI * (hi - lo)
     l1 = _stretched_profile(b1, log_x, e, log_points, weights)[1]
     l2 = _stretched_profile(b2, log_x, e, log_points, weights)[1]
-    for _ in range(_GOLDEN):
+    for _ in range(golden):
         if l1 >= l2:
             hi, b2, l2 = b2, b1, l1
             b1 = hi - _INV_PHI * (hi - lo)
@@ -332,8 +334,10 @@ def _scale_interval(law, w, s_hat, l_hat):
     return tuple(ends)
 
 
-def fit_law(law, w, intervals=True):
-    """Maximum-likelihood ``LawFit`` of ``law`` on window ``w`` (profile 95% intervals)."""
+def fit_law(law, w, intervals=True, golden=_GOLDEN):
+    """Maximum-likelihood ``LawFit`` of ``law`` on window ``w`` (profile 95% intervals).
+    ``golden``: golden-section steps of the stretched law's beta (``SEARCH_GOLDEN`` where only
+    the maximised likelihood is wanted)."""
     if law in ("exponential", "power_law"):
         h = shape(law, w.x, w.start)
         s, lk = _scale_mle(h, w.escapes, _k(law, w))
@@ -346,7 +350,7 @@ def fit_law(law, w, intervals=True):
         raise ValueError(f"law must be one of {', '.join(LAWS)}, got {law!r}")
     log_x = np.log(w.x / w.start)
     log_z = np.log(w.points / w.start)
-    beta, s, lk = _stretched_mle(log_x, w.escapes, log_z, w.weights, BETA_MAX)
+    beta, s, lk = _stretched_mle(log_x, w.escapes, log_z, w.weights, BETA_MAX, golden)
     if not math.isfinite(s):
         raise _no_information(w)
     c = s / (beta * w.start ** beta) if beta > 0 else math.inf

@@ -1,10 +1,15 @@
-"""``bouncer plot RUN_DIR``: the survival curves of a run as in the seed's figures.
+"""``bouncer plot RUN_DIR``: the survival curves of a run as in the paper's figures.
 
 Escape (Fig. 2): P(n) against n (log-log) and P(t) against sqrt(t) (log P). Transport
 (Figs. 3-4): P_ij against t and against n (log-log), one row per hole width. Phase space
 (Fig. 1): log(1 + counts) of the (phi, v) histogram. Velocity: <v_n> against n (log-log), one
-line per curve, +- one standard error shaded. Wilson bands are shaded. With ``fit``,
-the chosen model is fitted over ``window`` to each curve of ``clock`` and drawn dashed.
+line per curve, +- one standard error shaded. Wilson bands are shaded.
+
+With ``fit`` the curves of ``clock`` get the maximum-likelihood fits of ``bouncer fit``
+(``reports.stats``, binned censored counts): ``fit="regimes"`` draws the law of every regime
+``bouncer fit`` finds; a law name (exponential, stretched, power) fits that law over the bins
+of ``window`` (its ends moved to the nearest bin boundaries). Each fitted law is drawn dashed,
+anchored at the data's survival at its window start.
 """
 
 from __future__ import annotations
@@ -17,7 +22,14 @@ import numpy as np
 from reports.runs import rundir
 from reports.runs.recheck import load_run
 from reports.runs.survival import read_survival
-from reports.stats.least_squares import fit_survival
+from reports.stats.analysis import analyse, best_law_text
+from reports.stats.hazard import boundary_index, curve_probability
+from reports.stats.histogram import read_run
+from reports.stats.likelihood import fit_law, window_of
+
+FIT_LAWS = {"exponential": "exponential", "stretched": "stretched_exponential",
+            "power": "power_law"}
+FIT_CHOICES = ("regimes", *FIT_LAWS)
 
 
 def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None):
@@ -29,8 +41,10 @@ def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None)
 
     run_dir = Path(run_dir)
     manifest, scene = load_run(run_dir)
-    if fit and not window:
-        raise ValueError("--fit needs --window LO HI")
+    if fit and fit not in FIT_CHOICES:
+        raise ValueError(f"--fit must be one of {', '.join(FIT_CHOICES)}, got {fit!r}")
+    if fit in FIT_LAWS and not window:
+        raise ValueError(f"--fit {fit} needs --window LO HI (--fit regimes needs none)")
     lines = []
     if scene.kind == "velocity":
         if fit:
@@ -46,6 +60,8 @@ def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None)
         ax.set_title(f"{scene.name}: eps = {scene.eps:g}")
     else:
         data = read_survival(run_dir / "survival.csv")
+        curves = ({(c.curve, c.clock): c for c in read_run(run_dir, clocks=(clock,))}
+                  if fit else {})
         groups = _groups(scene, data)
         clocks = list(scene.clocks)
         fig, axes = plt.subplots(len(groups), len(clocks), squeeze=False,
@@ -62,8 +78,9 @@ def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None)
                     line, = ax.plot(xs[pos], p[pos], label=name, lw=1)
                     ax.fill_between(xs[pos], lo[pos], hi[pos], color=line.get_color(),
                                     alpha=0.2, lw=0)
-                    if fit and ck == clock and (curve is None or curve == name):
-                        lines.append(_fit_line(ax, name, x, p, lo, hi, fit, window, scene, ck))
+                    if fit and ck == clock and (curve is None or curve == name) and (
+                            name, ck) in curves:
+                        lines += _fit_lines(ax, curves[name, ck], fit, window, scene)
                 _axes(ax, scene, ck, title, manifest)
         fig.tight_layout()
     default = {"phase-space": "portrait.png", "velocity": "velocity.png"}.get(scene.kind,
@@ -107,15 +124,36 @@ def _groups(scene, data):
     return [(f"{scene.name} {w}".strip(), ns) for w, ns in by_width.items()]
 
 
-def _fit_line(ax, name, x, p, lo, hi, model, window, scene, clock):
+def _draw(ax, curve, fit, scene):
+    a = boundary_index(curve, fit.window.start)
+    x = np.geomspace(fit.window.start, fit.window.end, 200)
+    p = curve_probability(curve)[a] * np.exp(fit.log_survival(x))
+    xs = np.sqrt(x) if scene.kind == "escape" and curve.clock == "time" else x
+    ax.plot(xs, p, "k--", lw=1)
+
+
+def _fit_lines(ax, curve, fit, window, scene):
+    """Draw the maximum-likelihood fits of one curve; returns the report lines."""
+    name = f"{curve.curve} ({curve.clock})"
     try:
-        f = fit_survival(x, p, lo, hi, model, window)
-    except (ValueError, RuntimeError) as err:
-        return f"{name} ({clock}): no fit: {err}"
-    xf = np.linspace(*window, 200)
-    xs = np.sqrt(xf) if scene.kind == "escape" and clock == "time" else xf
-    ax.plot(xs, f(xf), "k--", lw=1)
-    return f"{name} ({clock}): {f}"
+        if fit == "regimes":
+            result = analyse(curve)
+            out = []
+            for law, regime in zip(result["_regime_fits"], result["regimes"], strict=True):
+                _draw(ax, curve, law, scene)
+                out.append(f"{name}: {regime['law'].replace('_', ' ')} for x in "
+                           f"[{regime['from']:g}, {regime['to']:g}]")
+            out.append(f"{name}: late regime, best {best_law_text(result)}")
+            return out
+        a, b = (boundary_index(curve, w) for w in window)
+        law = fit_law(FIT_LAWS[fit], window_of(curve, min(a, b), max(a, b)))
+    except ValueError as err:
+        return [f"{name}: no fit: {err}"]
+    _draw(ax, curve, law, scene)
+    params = ", ".join(f"{k} = {v:.4g} [{law.ci95[k][0]:.4g}, {law.ci95[k][1]:.4g}]"
+                       for k, v in law.params.items())
+    return [f"{name}: {law.law.replace('_', ' ')} ({params}) by maximum likelihood on "
+            f"[{law.window.start:g}, {law.window.end:g}]"]
 
 
 def _axes(ax, scene, clock, title, manifest):

@@ -1,9 +1,9 @@
 """One regime of an analysed curve in detail, for the report's claims and figures.
 
 ``analysis.analyse`` finds the regimes of a curve (where the decay changes law) and fits the
-late one with intervals. The claims of the seed are also about other regimes, so here any
+late one with intervals. The paper's claims are also about other regimes, so here any
 regime [x_from, x_to] is refitted with 95% profile intervals, its law chosen by the rule of
-``selection`` (with Vuong's exponential-vs-power-law test kept, the seed's dichotomy), its
+``selection`` (with Vuong's exponential-vs-power-law test kept, the paper's dichotomy), its
 systematic half-ranges taken over the window family of ``analysis.systematic``. Fitted laws
 are drawn anchored at the empirical all-cause survival
 
@@ -46,13 +46,40 @@ def bulk_regime(result):
 
 def regime_detail(curve, regime):
     """Fits with 95% intervals, the chosen law and tests and the systematics of one regime."""
-    a, b = bins_of(curve, regime["from"], regime["to"])
+    return window_detail(curve, *bins_of(curve, regime["from"], regime["to"]))
+
+
+def window_detail(curve, a, b):
+    """``regime_detail`` of the window of bins a..b-1 (boundaries x_a..x_b)."""
     fits = fit_all(window_of(curve, a, b), intervals=True)
     best, tests = choose(fits)
     a0, b0 = usable_range(curve)
-    return {"from": regime["from"], "to": regime["to"], "best": best, "tests": tests,
+    return {"from": float(curve.x[a]), "to": float(curve.x[b]), "best": best, "tests": tests,
             "fits": fits, "systematic": systematic(curve, a, b, a0, b0),
-            "escapes": int(curve.escapes[a:b].sum())}
+            "escapes": int(curve.escapes[a:b].sum()), "bins": (a, b)}
+
+
+def residual_excess(curve, fit, min_at_risk=100):
+    """Largest |log S_fit - log S_data| beyond the data's 95% band over the window of ``fit``:
+    max over boundaries of (|log S_fit(x) - log S(x)| - 1.96 sd(log S(x)))_+, with S the
+    life-table survival since the window start and sd its Greenwood error (``figure.life_table``
+    without matplotlib); 0 when the law stays inside the band everywhere. Only boundaries with
+    at least ``min_at_risk`` particles still at risk count (below that log S is too noisy for
+    Greenwood's normal approximation)."""
+    w = fit.window
+    a = int(np.searchsorted(curve.x, w.start))
+    b = a + len(w.escapes)
+    later = (curve.escapes + curve.competing + curve.censored)[::-1].cumsum()[::-1]
+    risk = later[a:b] - 0.5 * curve.competing[a:b]
+    e = curve.escapes[a:b].astype(np.float64)
+    q = np.divide(e, risk, out=np.zeros_like(e), where=risk > 0)
+    s = np.concatenate([[1.0], np.cumprod(1.0 - q)])
+    terms = np.divide(q, risk * (1.0 - q), out=np.zeros_like(q), where=(risk > 0) & (q < 1))
+    sd_log = np.sqrt(np.concatenate([[0.0], np.cumsum(terms)]))
+    risk_at = np.append(risk, later[b] if b < len(later) else 0)
+    keep = (s > 0) & (risk_at >= min_at_risk)
+    dev = np.abs(fit.log_survival(w.x[keep]) - np.log(s[keep])) - 1.96 * sd_log[keep]
+    return float(max(0.0, dev.max())) if keep.any() else math.inf
 
 
 def fitted_curve(curve, regime, law, points=60):

@@ -50,7 +50,9 @@ def test_run_plot_verify(tiny_run, capsys):
     assert (tiny_run / "survival.png").stat().st_size > 0
     assert main(["plot", str(tiny_run), "--fit", "exponential", "--window", "1", "20",
                  "--clock", "collisions"]) == 0
-    assert "a*exp(b*x)" in capsys.readouterr().out
+    assert "exponential (gamma = " in capsys.readouterr().out  # bouncer fit's likelihood
+    assert main(["plot", str(tiny_run), "--fit", "regimes", "--clock", "collisions"]) == 0
+    assert "late regime, best" in capsys.readouterr().out
     assert main(["verify", str(tiny_run)]) == 0
     assert "OK" in capsys.readouterr().out
 

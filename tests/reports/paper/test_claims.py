@@ -1,18 +1,20 @@
-"""Claims as data: verdicts checked, report.json round-trips, the markdown rendered from it."""
+"""Claims as data: the schema, report.json round trips, the markdown rendered from it."""
 
 import json
 import math
 
 import pytest
 
-from reports.paper.claims import Claim, claims_json, claims_markdown, write_report_json
+from reports.paper.claims import FIELDS, Claim, claims_json, claims_markdown, write_report_json
 
 
 def claim(verdict="confirmed", **kw):
-    base = dict(id="fig2-n-phi_c=0", figure="2", seed_says="exponential", verdict=verdict,
-                evidence="Vuong Z = 3.", particles_per_curve=10**8,
-                statistical={"beta": 0.97, "beta_ci95": [0.96, 0.98]},
-                systematic={"beta": math.inf}, run="paper-escape-1e8", rule="Vuong at 0.05")
+    base = dict(id="fig2-t-phi_c=1", figure="2", statement="close to exp(-c sqrt(t))",
+                quote="the rapid decay is instead close to a stretched exponential",
+                observable="beta", regime="intermediate", rule="band", tolerance="0.1",
+                source="paper", verdict=verdict, evidence="beta = 0.56 [0.55, 0.57].",
+                particles_per_curve=10**8, statistical={"beta": 0.56},
+                systematic={"beta": math.inf}, run="paper-escape-1e8")
     base.update(kw)
     return Claim(**base)
 
@@ -22,21 +24,42 @@ def test_an_unknown_verdict_is_refused():
         claim("partly confirmed")
 
 
-def test_report_json_round_trips_and_the_markdown_follows_it(tmp_path):
+def test_a_claim_of_the_paper_needs_its_quote():
+    with pytest.raises(ValueError, match="needs its quote"):
+        claim(quote=" ")
+    assert claim(quote="", source="this project").quote == ""
+
+
+def test_report_json_round_trips_with_exactly_the_schema_and_the_markdown_follows_it(tmp_path):
     claims = [claim(), claim("refuted", id="fig3-h=1"), claim("inconclusive", id="fermi-t")]
     write_report_json(tmp_path / "report.json", claims, quick=True)
     stored = json.loads((tmp_path / "report.json").read_text())
-    assert stored["quick"] is True
-    assert [c["id"] for c in stored["claims"]] == ["fig2-n-phi_c=0", "fig3-h=1", "fermi-t"]
+    assert [list(c) for c in stored["claims"]] == [list(FIELDS)] * 3
     assert stored["claims"][0]["systematic"]["beta"] == "inf"  # JSON has no infinity
     assert stored["claims"] == claims_json(claims)
     md = claims_markdown(stored["claims"])
-    assert "3 claims of the seed: 1 confirmed, 1 refuted, 1 inconclusive." in md
-    assert "| fig3-h=1 | 2 | exponential | **refuted** | 100,000,000 | paper-escape-1e8 |" in md
+    assert md.startswith("3 claims of the paper: 1 confirmed, 1 refuted, 1 inconclusive.")
+    assert "| fig3-h=1 | 2 | **refuted** |" in md
+    # every verdict with its quote; refuted and inconclusive ones first, with their evidence
+    assert md.count("The paper: \"the rapid decay is instead close to a stretched") == 3
+    assert md.index("**fig3-h=1** (refuted)") < md.index("**fermi-t** (inconclusive)") < \
+        md.index("**fig2-t-phi_c=1** (confirmed)")
+    assert "*Evidence:* beta = 0.56" in md
 
 
-def test_claims_beyond_the_seed_are_counted_apart():
-    claims = [claim(), claim("refuted", id="dissipation-exponent", figure="dissipation")]
-    md = claims_markdown(claims_json(claims))
-    assert md.startswith("1 claims of the seed: 1 confirmed, 0 refuted, 0 inconclusive. 1 beyond"
-                         " the seed (dissipation): 0 confirmed, 1 refuted, 0 inconclusive.")
+def test_claims_from_another_section_come_as_dicts_with_the_same_keys():
+    other = dict(zip(FIELDS, ["sec2-fixed-points", "sec2", "elliptic for 0 < eps < 1", "q", "o",
+                              "r", "rule", "t", "paper", "confirmed", "e", None, {}, {}, None],
+                     strict=True))
+    assert claims_json([claim(), other])[1]["id"] == "sec2-fixed-points"
+    with pytest.raises(ValueError, match="keys must be exactly"):
+        claims_json([{**other, "seed_says": "x"}])
+
+
+def test_claims_not_of_the_paper_are_counted_apart():
+    md = claims_markdown(claims_json([claim(), claim("refuted", id="dissipation-exponent",
+                                                     figure="dissipation", quote="",
+                                                     source="this project")]))
+    assert md.startswith("1 claims of the paper: 1 confirmed, 0 refuted, 0 inconclusive. 1 "
+                         "claims from other publications or this project")
+    assert "Source: this project" in md

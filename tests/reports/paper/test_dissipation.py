@@ -96,8 +96,10 @@ def test_claims_and_markdown_from_a_study():
                                       "dissipation-velocity-strip"]
     assert all(c.verdict in VERDICTS for c in claims)
     assert [c.verdict for c in claims] == [CONFIRMED, CONFIRMED, CONFIRMED]
-    assert "NO PUBLISHED VALUE FOUND" in claims[1].seed_says
-    assert "Barroso" in claims[2].seed_says and "0.500 (1 - r = 0.005" in claims[2].evidence
+    # not the paper's claims: each names its source; our own estimate says so
+    assert claims[0].source.startswith("de Souza") and claims[0].quote
+    assert claims[1].source == "this project" and "no published value" in claims[1].statement
+    assert "Barroso" in claims[2].source and "0.500 (1 - r = 0.005" in claims[2].evidence
     md = dissipation_markdown(d, "x.png")
     assert "No published value of beta was found" in md and "r = 0.5: 100.0%" in md
     assert "velocity strip" in md and "0.1: 0.500" in md
