@@ -38,6 +38,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from reports.paper.claims import claims_markdown, write_report_json
+from reports.paper.dynamics import dynamics_section
 from reports.paper.figures import paper_figures_section
 from reports.paper.physics_checks import physics_checks_section
 from reports.precision.bench import ensemble_table, orbit_table, time_ensembles, time_orbits
@@ -49,6 +50,7 @@ from reports.precision.work_precision import (
     work_precision_markdown,
 )
 from reports.runs import rundir
+from reports.runs.manifest import load_provenance
 from reports.runs.provenance import versions
 from reports.runs.recheck import load_run
 from reports.stats.plot import plot_run
@@ -116,20 +118,21 @@ def _precision_sections(out_dir, quick, compare, echo):
 
 def _included_run(out_dir, run_dir, echo):
     manifest, scene = load_run(run_dir)
+    record = load_provenance(run_dir)
     name = Path(run_dir).name
     image = f"included-{name}.png"
     echo(f"included run {run_dir}: plotting")
     plot_run(run_dir, out_dir / image)
     v = manifest["verification"]
+    compute = record.get("compute_s") or math.nan
     return "\n".join([
         f"## Included run: {scene.name}, {manifest['particles']:,} particles per curve", "",
         f"Run directory `{name}` (status {manifest['status']}, seed {manifest['seed']}, "
-        f"{manifest['collisions']:,} collisions, started {manifest.get('started', '?')}, "
-        f"finished {manifest.get('finished', '?')}, {manifest.get('threads')} threads: "
-        f"{manifest.get('wall_time_s', math.nan):.0f} s wall, "
-        f"{manifest.get('collisions_per_s', math.nan):.3g} collisions/s, "
-        f"{manifest.get('wall_time_s', math.nan) / len(manifest['curves']):.0f} s per curve on "
-        "average). Verification: "
+        f"{manifest['collisions']:,} collisions, started {record.get('started', '?')}, "
+        f"finished {record.get('finished') or '?'}, {record.get('threads')} threads: "
+        f"{compute:.0f} s of computation, "
+        f"{record.get('collisions_per_s') or math.nan:.3g} collisions/s, "
+        f"{compute / len(manifest['curves']):.0f} s per curve on average). Verification: "
         f"{v['sampled']} sampled "
         f"collisions recomputed by verify, worst error {v['worst_error']:.3g} kappa*u, "
         f"{v['uncertain_settled']} uncertain collisions settled by verify, {v['overstepped']} "
@@ -178,6 +181,8 @@ def claim_sections(out_dir, particles, quick, echo, include_runs):
         ("paper's figures and claims", lambda: paper_figures_section(
             out_dir, particles=particles, quick=quick, echo=echo, runs_dir=out_dir / "runs",
             include_runs=include_runs)),
+        ("dynamics: periodic orbits, Lyapunov exponents, Fermi acceleration",
+         lambda: dynamics_section(out_dir, quick=quick, echo=echo)),
     ]
 
 
