@@ -11,6 +11,8 @@ reaches a caller.)
 
 from __future__ import annotations
 
+from .numerics.precision import to_user
+
 
 class UndecidableCollision(ArithmeticError):
     """The first collision could not be decided even at the largest precision allowed.
@@ -23,7 +25,7 @@ class UndecidableCollision(ArithmeticError):
     """
 
     def __init__(self, phi, v, eps, dps_reached: int, what: str) -> None:
-        self.phi, self.v, self.eps = phi, v, eps
+        self.phi, self.v, self.eps = to_user(phi), to_user(v), to_user(eps)
         self.dps_reached = dps_reached
         self.what = what
         super().__init__(
@@ -51,7 +53,7 @@ class ChatteringDetected(UndecidableCollision):
     """
 
     def __init__(self, n: int, t, phi, v, eps, w, w_min, dps: int) -> None:
-        self.n, self.t, self.w, self.w_min = n, t, w, w_min
+        self.n, self.t, self.w, self.w_min = n, to_user(t), to_user(w), to_user(w_min)
         what = (f"chattering: after collision {n} (t={_short(t)}) the velocity relative to the "
                 f"plate is w={_short(w)} < {_short(w_min)} and falling: impacts accumulate, but "
                 "no accumulation tail could be proved")

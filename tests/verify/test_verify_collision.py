@@ -45,7 +45,8 @@ def test_orbit_matches_steps():
         for k in range(6):
             phi, v, tau = verify.step(phi, v, 0.6, DPS)
             t += tau
-            assert (orb.phi[k + 1], orb.v[k + 1]) == (phi, v)
+            # the orbit carries the exact impact state, the steps the rounded one
+            assert abs(orb.phi[k + 1] - phi) < TOL and abs(orb.v[k + 1] - v) < TOL
             assert abs(orb.t[k + 1] - t) < TOL * t
 
 

@@ -12,9 +12,10 @@ from hypothesis import example, given, settings
 from mpmath import iv, mp
 
 import verify
-from tests.verify._cases import small_w0_velocity
+from tests.verify._cases import mpmath_dps, small_w0_velocity
 from verify import strategies as vs
 from verify.hard_cases import ALL_CASES, HARD_CASES, OVERFLOW_CASES
+from verify.numerics.inputs import exact_real
 from verify.numerics.phase import reduce_phase
 from verify.numerics.precision import hi, lo, working_dps
 
@@ -26,7 +27,7 @@ def _iv_gap(phi, v, eps, t, dps=120):
     """Independent interval evaluation of d(t), reducing phi at 2000 digits first."""
     with mp.workdps(2000):
         r = mp.mpf(phi) % (2 * mp.pi)
-    with working_dps(dps):
+    with mpmath_dps(dps):
         half = iv.mpf(t) / 2
         val = 2 * iv.mpf(eps) * iv.sin(iv.mpf(r) + half) * iv.sin(half)
         val += iv.mpf(t) * (iv.mpf(v) - half)
@@ -73,7 +74,7 @@ def test_eps_one_uses_the_concave_certificate():
 @pytest.mark.parametrize("phi", [1e12, 1e17, 1e300, -1e300, 1.7976931348623157e308])
 def test_reduce_phase_is_exact_and_its_precision_grows_with_the_exponent(phi):
     with working_dps(60) as prec:
-        red = reduce_phase(mp.mpf(phi), prec)
+        red = reduce_phase(exact_real("phi", phi), prec)
         r_lo, r_hi = lo(red.enclosure), hi(red.enclosure)
     assert red.work_bits >= prec + math.frexp(abs(phi))[1]
     with mp.workdps(2000):

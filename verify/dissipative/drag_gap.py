@@ -14,7 +14,7 @@ velocity ``v``)::
 * ``V`` is monotone during a flight and ``eta`` increasing, so ``eta(V(t))`` lies between
   ``eta(v)`` and ``eta(V(T))`` on ``[0, T]``. Hence ``-d'' <= a = max(1 + eta(v), 0) + |eps|``
   (:meth:`DragGap.curvature_bound`): if ``V`` decreases, ``eta(V) <= eta(v)``; if it
-  increases (linear drag below the terminal velocity), ``1 + eta(V) <= 0``. With ``w0 > 0``,
+  increases (either law below its terminal velocity), ``1 + eta(V) <= 0``. With ``w0 > 0``,
   ``d(t) >= w0*t - a*t**2/2 > 0`` on ``(0, 2*w0/a)``: the analytic start. The paper's
   lower-bound step uses this ``a``.
 * Concavity on ``[0, T]`` (:meth:`DragGap.concave_on`): ``d'' <= -1 - min(eta(v), eta(V(T)))
@@ -30,11 +30,9 @@ velocity ``v``)::
 
 from __future__ import annotations
 
-from mpmath import iv, mp
-
 from ..numerics.first_root import local_candidate, search_first_root
 from ..numerics.phase import reduce_phase
-from ..numerics.precision import NotDecided, hi, lo
+from ..numerics.precision import NotDecided, hi, iv, lo, mp
 from .drag import DragFlight
 
 _HALVINGS = 200  # tries for the opening box of a departure at rest

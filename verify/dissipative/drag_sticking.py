@@ -97,11 +97,11 @@ valid for all departures in the box, the exact one included.
 
 from __future__ import annotations
 
+import threading
 from fractions import Fraction
 from typing import NamedTuple
 
-from mpmath import iv, mp
-
+from ..elastic.gap import departure_speed
 from ..errors import ChatteringDetected, UndecidableCollision
 from ..numerics.first_root import local_candidate, search_first_root
 from ..numerics.phase import reduce_phase
@@ -111,12 +111,15 @@ from ..numerics.precision import (
     default_max_dps,
     escalate,
     hi,
+    iv,
     lo,
     mid,
+    mp,
     working_dps,
 )
 from .drag import LAWS, DragFlight
 from .drag_gap import DragGap
+from .impact import Impact, enclosure_digits, impact_of, landing
 from .sticking import WINDOW, Accumulation, geometric_enclosure
 
 _MAX_DEPTH = 60  # halvings of a box in the sign proofs of the riding force
@@ -150,7 +153,7 @@ def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
     with working_dps(dps + GUARD_DPS) as prec:
         iphi = reduce_phase(phi, prec).enclosure
         ieps, ik, ir = iv.mpf(eps), iv.mpf(k), iv.mpf(r)
-        iw = iv.mpf(v) + ieps * iv.sin(iphi)
+        iw = departure_speed(phi, v, eps, prec)  # w to dps + 10 digits of itself
         ia = _force(ieps, ik, law, iphi)
         if not (lo(iw) > 0 and lo(ia) > 0 and r < 1):
             return None
@@ -270,9 +273,6 @@ def _monotone_end(ieps, ik, law, outer, inner, span, slope_sign, direction):
     return inner
 
 
-_RIDING_CACHE: dict = {}
-
-
 def _riding_at(eps, k, law) -> Riding:
     """:class:`Riding` proved at the current precision (module docstring, 2.), or
     :class:`NotDecided`."""
@@ -289,14 +289,15 @@ def riding(eps, k, law, dps: int, max_dps: int | None = None) -> Riding | None:
     """The sign structure of the riding force (module docstring, 2.): None when the particle
     never leaves the plate (decided exactly), else a :class:`Riding` proved at the first
     precision from ``dps + 10`` digits that decides it (doubled up to ``max_dps``, default
-    ``max(4*dps, 400)``); :class:`UndecidableCollision` beyond. Cached per inputs."""
+    ``max(4*dps, 400)``); :class:`UndecidableCollision` beyond. Cached per inputs and thread."""
     if not leaves_plate_with_drag(eps, k, law):
         return None
     key = (eps, k, law, dps)
-    if key not in _RIDING_CACHE:
-        _RIDING_CACHE[key] = _escalate(lambda wdps: _riding_at(eps, k, law), eps, k, law, dps,
-                                       max_dps, "detachment")
-    return _RIDING_CACHE[key]
+    cache = _caches.ridings
+    if key not in cache:
+        cache[key] = _escalate(lambda wdps: _riding_at(eps, k, law), eps, k, law, dps, max_dps,
+                               "detachment")
+    return cache[key]
 
 
 def _escalate(attempt, eps, k, law, dps, max_dps, what):
@@ -322,54 +323,43 @@ def riding_time(phase, ride: Riding):
 
 
 # --- 3. the flight from detachment ---------------------------------------------------------------
-def drag_detachment_flight(eps, k, law, dps: int, max_dps: int | None = None):
-    """``(ride, lo, hi, wdps)``: the proved enclosure ``(lo, hi)`` of the first root of the gap
-    from detachment (module docstring, 3.) and the :class:`Riding` it started from, both at the
-    working digits ``wdps`` (raised as :func:`verify.certify_flight` does);
-    :class:`UndecidableCollision` at ``max_dps``. The gap is :class:`verify.dissipative.
-    drag_gap.DragGap` from the phase box theta* and the velocity box ``u(theta*)``."""
-    def attempt(wdps):
-        ride = _riding_at(eps, k, law)
-        ith = ride.theta_star
-        ieps = iv.mpf(eps)
-        ctx = DragGap(mid(ith), ith, -ieps * iv.sin(ith), eps, k, law, dps, wdps)
-        left, right, _, _ = search_first_root(ctx, ctx.curvature_bound(), ride.free, None,
-                                              candidate=local_candidate)
-        return ride, left, right, wdps
-
-    return _escalate(attempt, eps, k, law, dps, max_dps, "flight from detachment")
-
-
-_STEP_CACHE: dict = {}
-
-
-def drag_detachment_step(eps, k, law, r, dps: int):
-    """``(phi1, v1, tau)``: the impact ending the flight from detachment (the same after every
-    episode, cached). ``tau`` is the midpoint of the proved enclosure; ``theta = theta* + tau``
-    (theta* the midpoint of its box), ``v_in = V(tau)`` of the flight from ``u(theta*)``,
-    ``u = -eps*sin(theta)``, ``v1 = (1 + r)*u - r*v_in``; phase reduced to ``[0, 2*pi)``; all at
-    the certificate's precision, rounded to ``dps``."""
+def drag_detachment_step(eps, k, law, r, dps: int, max_dps: int | None = None) -> Impact:
+    """The impact ending the flight from detachment (module docstring, 3.), as an
+    :class:`verify.dissipative.impact.Impact` (the same after every episode: cached per
+    thread). The gap is :class:`verify.dissipative.drag_gap.DragGap` from the phase box theta*
+    and the velocity box ``u(theta*)``; the first root's enclosure (to
+    :func:`verify.dissipative.impact.enclosure_digits`) and the box flight's ``V`` over it give
+    the impact (:func:`verify.dissipative.impact.landing`). The precision is raised as
+    :func:`verify.certify_flight` does until the phase and velocity are known to ``dps`` digits;
+    :class:`UndecidableCollision` at ``max_dps``."""
     key = (eps, k, law, r, dps)
-    if key in _STEP_CACHE:
-        return _STEP_CACHE[key]
-    ride, left, right, wdps = drag_detachment_flight(eps, k, law, dps)
-    with working_dps(wdps + GUARD_DPS):
-        tau = (left + right) / 2
-        theta_star = mid(ride.theta_star)
-        theta = theta_star + tau
-        v_star = -eps * mp.sin(theta_star)
-        flight = DragFlight(v_star, k, law)
-        v_in = mid(flight.velocity(tau))
-        u = -eps * mp.sin(theta)
-        v1 = (1 + r) * u - r * v_in
-        two_pi = 2 * mp.pi
-        phi1 = theta - two_pi * mp.floor(theta / two_pi)
-    with working_dps(dps):
-        phi1, v1, tau = +phi1, +v1, +tau
-        if phi1 >= 2 * mp.pi:
-            phi1 = mp.zero
-    _STEP_CACHE[key] = (phi1, v1, tau)
-    return phi1, v1, tau
+    cache = _caches.steps
+    if key not in cache:
+        def attempt(wdps):
+            ride = _riding_at(eps, k, law)
+            ith = ride.theta_star
+            ieps = iv.mpf(eps)
+            ctx = DragGap(mid(ith), ith, -ieps * iv.sin(ith), eps, k, law,
+                          enclosure_digits(wdps), wdps)
+            left, right, _, _ = search_first_root(ctx, ctx.curvature_bound(), ride.free, None,
+                                                  candidate=local_candidate)
+            v_in = ctx.flight.velocity_box(left, right)
+            land = landing(ith, iv.mpf([left, right]), v_in, eps, r)
+            return impact_of(land, eps, left, right, dps)
+
+        cache[key] = _escalate(attempt, eps, k, law, dps, max_dps, "flight from detachment")
+    return cache[key]
+
+
+class _Caches(threading.local):
+    """Per-thread caches (their numbers belong to the thread's own mpmath context)."""
+
+    def __init__(self) -> None:
+        self.ridings: dict = {}
+        self.steps: dict = {}
+
+
+_caches = _Caches()
 
 
 class DragSticking:
@@ -391,7 +381,7 @@ class DragSticking:
     def riding_time(self, phase):
         return riding_time(phase, riding(self.eps, self.k, self.law, self.dps))
 
-    def detachment_step(self):
+    def detachment_step(self) -> Impact:
         return drag_detachment_step(self.eps, self.k, self.law, self.r, self.dps)
 
     def check_chattering(self, n: int, t, phi, v) -> None:

@@ -25,10 +25,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import mpmath
-from mpmath import mp
 
 from ..numerics.inputs import check_dps, exact_real
-from ..numerics.precision import working_dps
+from ..numerics.precision import mp, to_user, working_dps
 
 
 @dataclass(frozen=True)
@@ -71,7 +70,7 @@ def grazing_contact(eps, psi, T, clearance, dps: int = 50) -> GrazingContact:
         v = t - eps * mp.sin(psi)
         w0 = v + eps * mp.sin(phi)
     with working_dps(dps):
-        return GrazingContact(+phi, +v, +t, +psi, +c, +w0)
+        return GrazingContact(*to_user((+phi, +v, +t, +psi, +c, +w0)))
 
 
 def grazing_departure(eps, psi, T, clearance, dps: int = 50) -> tuple[mpmath.mpf, mpmath.mpf]:
