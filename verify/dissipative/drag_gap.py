@@ -69,7 +69,21 @@ class DragGap:
         return disp + plate, vel + self.ieps * iv.sin(self.iphi + ia)
 
     def curvature(self, a, b):
-        """Enclosure of ``d''`` over ``[a, b]`` (``V`` over the box from its ends)."""
+        """Enclosure of the gap's second derivative over ``[a, b]``: the interval value
+        (``V`` over the box from its ends) intersected, on a box of positive width, with the
+        mean-value form (the value at the midpoint ``m`` plus :meth:`third` over the box times
+        ``[a, b] - m``). The interval value overestimates by the box's width (``eta(V)`` and
+        ``eps*cos`` move together along the flight, their enclosures do not), the mean-value
+        form by its square: where the curvature is nearly constant (a flight from detachment
+        with ``E`` next to 1, curvature ~1e-16) only the latter resolves it."""
+        box = self._curvature(a, b)
+        if a == b:
+            return box
+        m = (a + b) / 2
+        centred = self._curvature(m, m) + self.third(a, b) * (iv.mpf([a, b]) - m)
+        return iv.mpf([max(lo(box), lo(centred)), min(hi(box), hi(centred))])
+
+    def _curvature(self, a, b):
         vel = self.flight.velocity_box(a, b)
         return -1 - self.flight.eta(vel) + self.ieps * iv.cos(self.iphi + iv.mpf([a, b]))
 

@@ -28,7 +28,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 from ..numerics.precision import (
-    GUARD_DPS,
     NotDecided,
     hi,
     iv,
@@ -61,17 +60,24 @@ def landing(iphi, itau, v_in, eps, r) -> Landing:
     return Landing(phi1, u + w1, w1)
 
 
+def excess_digits(land: Landing, eps, dps: int) -> int:
+    """0 when the enclosures are narrow enough for :func:`rounded` (phase width at most
+    ``10**-(dps+1)``, velocity width at most ``10**-(dps+1)*max(|v1|, |eps|)``), else by how
+    many digits (rounded up, plus one) they are too wide: the digits to add to the flight
+    time's enclosure, whose width they follow."""
+    tol = mp.mpf(10) ** -(dps + 1)
+    scale = max(abs(mid(land.v1)), abs(eps))
+    ratio = max((hi(land.phi1) - lo(land.phi1)) / tol, (hi(land.v1) - lo(land.v1)) / (tol * scale))
+    return 0 if ratio <= 1 else int(mp.ceil(mp.log10(ratio))) + 1
+
+
 def rounded(land: Landing, eps, dps: int):
     """``(phi1, v1)`` rounded to ``dps`` digits, ``phi1`` in ``[0, 2*pi)``; both within
     ``10**-dps`` of the exact values, ``phi1`` absolutely and ``v1`` relative to
     ``max(|v1|, |eps|)``: the enclosures' widths must be at most a tenth of that
     (:class:`NotDecided` otherwise, so that the caller works at a higher precision)."""
-    tol = mp.mpf(10) ** -(dps + 1)
-    scale = max(abs(mid(land.v1)), abs(eps))
-    if not (hi(land.phi1) - lo(land.phi1) <= tol
-            and hi(land.v1) - lo(land.v1) <= tol * scale):
-        raise NotDecided("the impact's phase or velocity is not known to the digits asked",
-                         needed=0)
+    if excess_digits(land, eps, dps):
+        raise NotDecided("the impact's phase or velocity is not known to the digits asked")
     phi1, v1 = mid(land.phi1), mid(land.v1)
     two_pi = 2 * mp.pi
     if phi1 < 0:
@@ -113,12 +119,23 @@ class Impact(NamedTuple):
     elapsed: object
 
 
-def enclosure_digits(wdps: int) -> int:
-    """Relative digits of a flight time enclosed at ``wdps`` working digits for its impact:
-    ``wdps - GUARD_DPS + 3``, so that the first attempt (``dps + 10`` digits) encloses the
-    time to ``10**-(dps+3)`` (the velocity's width is the time's times ``~(1 + 2|eps|)``) and
-    every raise of the precision tightens it too."""
-    return wdps - GUARD_DPS + 3
+def detachment_impact(search, landing_of, eps, digits, dps: int):
+    """``(Impact, digits)`` of a flight from detachment: ``search(digits)`` encloses the flight
+    time to ``digits`` relative digits (``(left, right)``), ``landing_of(left, right)`` is its
+    :class:`Landing`; where the impact is too wide for ``dps`` digits the flight time is
+    enclosed once more with the digits :func:`excess_digits` asks for (the enclosure's digits
+    are not tied to the working precision: deciding signs ``10**-digits`` from the root needs
+    the working precision to exceed them by the digits of the root's condition number). The
+    digits used are returned, to start from there at a higher precision; :class:`NotDecided`
+    when the second try is still too wide."""
+    for _ in range(2):
+        left, right = search(digits)
+        land = landing_of(left, right)
+        extra = excess_digits(land, eps, dps)
+        if not extra:
+            return impact_of(land, eps, left, right, dps), digits
+        digits += extra
+    raise NotDecided("the impact's phase or velocity is not known to the digits asked")
 
 
 def impact_of(land: Landing, eps, left, right, dps: int) -> Impact:

@@ -77,7 +77,7 @@ from ..numerics.precision import (
     mp,
     working_dps,
 )
-from .impact import Impact, enclosure_digits, impact_of, landing
+from .impact import Impact, detachment_impact, landing
 
 WINDOW = 2  # the window H of the rigorous enclosure of an accumulation, in units of T0
 
@@ -215,22 +215,30 @@ def detachment_box(eps):
 def detachment_step(eps, r, dps: int, max_dps: int | None = None) -> Impact:
     """The impact ending the flight from detachment (module docstring), as an
     :class:`verify.dissipative.impact.Impact`: the proved enclosure of the first root of the
-    detachment gap (to :func:`verify.dissipative.impact.enclosure_digits`), the impact of
+    detachment gap (:func:`verify.dissipative.impact.detachment_impact`), the impact of
     :func:`verify.dissipative.impact.landing` from theta*, with ``v_in = sqrt(eps**2 - 1) -
     tau``; the precision is raised (as :func:`verify.certify_flight` does) until the phase and
     velocity are known to ``dps`` digits. :class:`UndecidableCollision` when it stays undecided
     at ``max_dps`` (default ``max(4*dps, 400)``: ``|eps|`` within ~10**(-dps/2) of 1, where
     d(t_c) ~ (8/3)*(|eps| - 1)**2 is below the working precision)."""
     max_dps = default_max_dps(dps) if max_dps is None else max_dps
+    digits = [dps + 3]  # the flight time's relative digits, kept from attempt to attempt
 
     def attempt(wdps):
-        ctx = DetachedGap(eps, enclosure_digits(wdps), wdps)
-        free = lo(2 * iv.atan2(ctx.s, 1))  # lo(t_c): d > 0 on (0, free]
-        left, right, _, _ = search_first_root(ctx, 1 + abs(eps), free, None,
-                                              candidate=local_candidate)
         theta, speed = detachment_box(eps)
-        itau = iv.mpf([left, right])
-        return impact_of(landing(theta, itau, speed - itau, eps, r), eps, left, right, dps)
+
+        def search(enclosure_digits):
+            ctx = DetachedGap(eps, enclosure_digits, wdps)
+            free = lo(2 * iv.atan2(ctx.s, 1))  # lo(t_c): d > 0 on (0, free]
+            return search_first_root(ctx, 1 + abs(eps), free, None,
+                                     candidate=local_candidate)[:2]
+
+        def landing_of(left, right):
+            itau = iv.mpf([left, right])
+            return landing(theta, itau, speed - itau, eps, r)
+
+        hit, digits[0] = detachment_impact(search, landing_of, eps, digits[0], dps)
+        return hit
 
     def undecidable(wdps, why):
         with working_dps(wdps):

@@ -30,7 +30,7 @@ from .precision import NotDecided, hi, iv, lo, mp
 
 MAX_STEPS = 100_000  # candidate steps per search: beyond it, ValueError (out of budget)
 MAX_BOXES = 20_000  # Taylor boxes per flight (a few seconds): beyond it, ValueError
-_LOCAL_GROWTH = 30  # windows [t, t + 4**j * s] tried by the local candidate step
+_LOCAL_GROWTH = 30  # windows [t, t + L] tried by one local candidate step (L grows >= 4x)
 
 
 class Gap(Protocol):
@@ -110,10 +110,10 @@ def local_candidate(gap: Gap, curv, t):
 
     From ``t`` the step ``s`` (larger root of ``d + d'*s - a*s**2/2``) never passes a root if
     ``a >= -d''`` on ``[t, t+s]``. ``a`` is taken from the ``iv`` enclosure of ``d''`` over
-    ``[t, t+L]``, and ``L`` is raised to the step until the step fits inside it (else the
-    global ``curv``): where ``|d''|`` is small near the root (a departure at rest, a
-    near-triple root just above ``|eps| = 1``) this is far faster than the global bound, which
-    crawls there. Only ``gap.point`` values decide the stop.
+    ``[t, t+L]``, and ``L`` is raised (at least 4 times, to the step if the step is longer)
+    until the step fits inside it (else the global ``curv``): where ``|d''|`` is small near
+    the root (a departure at rest, a near-triple root just above ``|eps| = 1``) this is far
+    faster than the global bound, which crawls there. Only ``gap.point`` values decide the stop.
     """
     tol = mp.mpf(10) ** (-(gap.wdps - 4))
     for _ in range(MAX_STEPS):
@@ -121,9 +121,8 @@ def local_candidate(gap: Gap, curv, t):
         if g <= 0:
             return t
         s = lower_step(g, p, curv)
-        length = s
+        length = 4 * s
         for _ in range(_LOCAL_GROWTH):
-            length *= 4
             try:
                 a = max(hi(-gap.curvature(t, t + length)), mp.zero)
             except NotDecided:
@@ -132,6 +131,9 @@ def local_candidate(gap: Gap, curv, t):
             s = max(s, length if s_loc is None else min(s_loc, length))
             if s_loc is not None and s_loc <= length:
                 break
+            # the step reaches past the window: the next window is 4 times longer, or as long
+            # as this step (a longer window only lowers the bound's step)
+            length = 4 * length if s_loc is None else max(4 * length, s_loc)
         t += s
         if s <= t * tol:
             return t
