@@ -64,8 +64,6 @@ class ChunkResult:
 # numba's workqueue threading layer must not be entered by two threads at once (a Dask worker
 # with several threads would); one kernel at a time per process, each parallel inside
 _KERNEL_LOCK = threading.Lock()
-# mpmath's working precision is process-wide: one verify computation at a time
-_VERIFY_LOCK = threading.Lock()
 
 
 def _dissipative_kernel():
@@ -134,8 +132,7 @@ def settle(phi, v, eps, physics=None):
     """The collision float64 could not decide, by ``verify.step`` (with the scene's ``physics``
     keywords, none for the elastic model): floats (phi1, v1, tau)."""
     try:
-        with _VERIFY_LOCK:
-            phi1, v1, tau = verify.step(phi, v, eps, dps=VERIFY_DPS, **(physics or {}))
+        phi1, v1, tau = verify.step(phi, v, eps, dps=VERIFY_DPS, **(physics or {}))
     except (verify.UndecidableCollision, ValueError) as err:
         raise RunFailed(f"verify could not settle the flagged collision from phi={phi!r},"
                         f" v={v!r}: {err}") from None
@@ -354,9 +351,8 @@ def verify_rows(rows, eps, physics=None):
         _, _, _, n, phi, v, phi1, v1, tau = row[:9]
         try:
             # the elastic call is the one it always was (no physics argument)
-            with _VERIFY_LOCK:
-                tau_ref, error, overstep = (check_sample(phi, v, tau, eps, physics) if physics
-                                            else check_sample(phi, v, tau, eps))
+            tau_ref, error, overstep = (check_sample(phi, v, tau, eps, physics) if physics
+                                        else check_sample(phi, v, tau, eps))
         except (verify.UndecidableCollision, ValueError) as err:
             raise RunFailed(f"verify could not decide sampled collision {int(n)} from "
                             f"phi={phi!r}, v={v!r} that fastpath converged: {err}") from None

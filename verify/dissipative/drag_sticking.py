@@ -343,9 +343,7 @@ def _escalate(attempt, eps, k, law, dps, max_dps, what):
     max_dps = default_max_dps(dps) if max_dps is None else max_dps
 
     def undecidable(wdps, why):
-        with working_dps(wdps):
-            return UndecidableCollision(mp.nan, mp.nan, eps, wdps,
-                                        f"{what} with drag={k} ({law}): {why}")
+        return UndecidableCollision(None, None, eps, wdps, f"{what} with drag={k} ({law}): {why}")
 
     return escalate(attempt, dps, max_dps, undecidable)
 
