@@ -366,3 +366,24 @@ def test_vanishing_drag_reproduces_the_no_drag_orbit(law):
     tol = 100 * k * (1 + free.t[j2]) ** 2 + 8 * d50 * len(free.t) * (1 + free.t[j2]) * 100
     assert abs(drag.t[j1] - free.t[j2]) <= tol
     assert abs(drag.v[j1] - free.v[j2]) <= 10 * tol
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("eps", [0.8944280854271067, 0.894427190999916],
+                         ids=["E=1+1e-6", "E=1+1e-16"])
+def test_linear_drag_just_past_the_detachment_threshold_runs_to_the_end(eps):
+    """Linear drag k = 0.5, r = 0.5 from (4, 3) at E = |eps|*sqrt(1 + k**2) just above 1: the
+    arc where the riding force a < 0 is 2.8e-3 (resp. 2.8e-8) wide with min a ~ -1e-6
+    (resp. -1e-16), the flight from detachment a hop of that arc's length, the chatter after it
+    lands where a is still tiny. The orbit makes its collisions, every episode ending at the
+    closed-form theta* (no ChatteringDetected, no undecidable riding force)."""
+    k = 0.5
+    orb = verify.orbit(4.0, 3.0, eps, 100, dps=30, drag=k, drag_law="linear", restitution=0.5)
+    assert orb.stopped == "collisions" and len(orb.phi) == 101 and len(orb.sticking) >= 2
+    with mp.workdps(60):
+        theta = _closed_linear(eps, k)
+        for t_start, t_end in orb.sticking:
+            assert t_start < t_end
+            off = (mp.mpf(4.0) + t_end - theta) % (2 * mp.pi)
+            assert min(off, 2 * mp.pi - off) < 1e-25
+

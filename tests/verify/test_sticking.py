@@ -148,3 +148,19 @@ def test_eps_1_5_r_0_8_from_4_3_sticks_and_detaches():
         for _, t_end in orb.sticking:
             d = (phi0 + t_end - theta_star) % (2 * mp.pi)
             assert min(d, 2 * mp.pi - d) <= 8 * D50 * (1 + t_end)
+
+
+def test_a_plate_just_above_eps_one_detaches_and_the_orbit_runs_on():
+    """eps = 1 + 1e-10, r = 0.5 from (4, 3): the particle sticks, leaves at
+    theta* = 2*pi - arccos(1/eps) (1.4e-5 before 2*pi) with u = sqrt(eps**2 - 1) ~ 1.4e-5, and
+    the flight from there (5.7e-5 long, d' ~ 1e-14 at its root) is certified: the orbit makes
+    its collisions, every episode ending at theta*."""
+    eps = 1 + 1e-10
+    orb = verify.orbit(4.0, 3.0, eps, 100, dps=30, restitution=0.5)
+    assert orb.stopped == "collisions" and len(orb.phi) == 101 and len(orb.sticking) >= 2
+    with mp.workdps(40):
+        theta_star = 2 * mp.pi - mp.acos(1 / mp.mpf(eps))
+        for t_start, t_end in orb.sticking:
+            assert t_start < t_end
+            off = (mp.mpf(4.0) + t_end - theta_star) % (2 * mp.pi)
+            assert min(off, 2 * mp.pi - off) < 1e-25

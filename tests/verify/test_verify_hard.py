@@ -5,6 +5,7 @@ the hard-case table."""
 from __future__ import annotations
 
 import math
+import time
 from collections import Counter
 
 import pytest
@@ -54,6 +55,54 @@ def test_triple_root_family_is_certified_at_two_x(case):
     lo_, hi_ = cert.enclosure
     assert lo_ < 2 * mp.mpf(v) < hi_  # d(2x) = 0 exactly for the float inputs
     assert (hi_ - lo_) / hi_ <= REL
+
+
+_TRIPLE_XS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
+_ABOVE_ONE = (1.0 + 2.0**-52, 1.0 + 1e-12, 1.0 + 1e-9, 1.0 + 1e-6)
+
+
+def _exact_w0(phi, v, eps):
+    with mpmath_dps(60):
+        return mp.mpf(v) + mp.mpf(eps) * mp.sin(mp.mpf(phi))
+
+
+def test_near_triple_roots_just_above_eps_one_are_certified_in_milliseconds():
+    """phi = -x, v = x (and phi = fl(pi - x) for eps < 0), x = 1e-3 .. 1e-8, |eps| = 1 + 2**-52
+    .. 1 + 1e-6: d has a near-triple root at 2x where d'' ~ |eps| - 1 is tiny (the global
+    curvature bound 1 + |eps| would make the candidate search crawl). Each departure is either
+    rejected as no departure (w0 <= 0, checked independently) or certified: d > 0 before the
+    enclosure (interval evaluations on a grid and at its lower end) and < 0 at its upper end,
+    all 48 within seconds in total (18 are departures)."""
+    start = time.perf_counter()
+    certified = 0
+    for x in _TRIPLE_XS:
+        for size in _ABOVE_ONE:
+            for phi, eps in ((-x, size), (math.pi - x, -size)):
+                if _exact_w0(phi, x, eps) <= 0:
+                    with pytest.raises(ValueError, match="no departure"):
+                        verify.certify_flight(phi, x, eps, DPS)
+                    continue
+                cert = verify.certify_flight(phi, x, eps, DPS)
+                _assert_certified(phi, x, eps, cert)
+                lo_ = cert.enclosure[0]
+                assert all(_iv_gap(phi, x, eps, lo_ * k / 32)[0] > 0 for k in range(1, 32))
+                certified += 1
+    assert certified == 18  # the departures of the table (w0 > 0 exactly)
+    assert time.perf_counter() - start < 20  # each flight takes milliseconds
+
+
+def test_a_near_triple_root_above_eps_one_is_its_first_root():
+    """eps = -(1 + 2**-52) at phi = fl(pi - 1e-4), v = 1e-4: the flight lands just before
+    2e-4 (the phase's rounding by -3.3e-16 moves this ill-conditioned root by 4e-7); the root
+    found independently (mpmath's findroot at 60 digits) and no earlier sign change."""
+    phi, v, eps = 3.141492653589793, 0.0001, -1.0000000000000002
+    tau = verify.flight_time(phi, v, eps, dps=30)
+    with mpmath_dps(60):
+        d = lambda t: mp.mpf(eps) * (mp.cos(phi) - mp.cos(phi + t)) + t * (v - t / 2)  # noqa
+        root = mp.findroot(d, mp.mpf(2e-4) * (1 - mp.mpf(1e-3)))
+        assert abs(tau - root) < 1e-29 * root
+        assert all(d(root * k / 64) > 0 for k in range(1, 64))
+    assert 1.99e-4 < tau < 2e-4
 
 
 @pytest.mark.parametrize("eps", [1.0 - 1e-12, 1.0 - 1e-6, 1.0, -1.0, 1.0 + 1e-12, 1.0 + 1e-6])
