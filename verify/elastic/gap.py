@@ -15,9 +15,21 @@ from __future__ import annotations
 
 import mpmath
 
+from ..errors import UndecidableCollision
 from ..numerics.inputs import check_state
 from ..numerics.phase import reduce_phase
-from ..numerics.precision import GUARD_DPS, hi, iv, lo, mp, to_user, working_dps, working_prec
+from ..numerics.precision import (
+    NotDecided,
+    default_max_dps,
+    escalate,
+    hi,
+    iv,
+    lo,
+    mp,
+    to_user,
+    working_dps,
+    working_prec,
+)
 
 _W0_ROUNDS = 6  # precision doublings while the sign of w0 is undecided
 
@@ -78,10 +90,28 @@ def departure_speed(phi, v, eps, prec: int):
 
 
 def gap(phi, v, eps, tau, dps: int = 50) -> mpmath.mpf:
-    """The gap ``d(tau)`` at ``dps`` digits (inputs taken as exact binary values, validated by
-    :func:`verify.numerics.inputs.check_state`: a departure ``w0 > 0`` and ``tau > 0``)."""
+    """The gap ``d(tau)`` of the elastic flight from ``(phi, v)``, to ``dps`` digits.
+
+    Parameters: the departure ``phi``, ``v``, ``eps`` and the time ``tau > 0`` (exact binary
+    values, validated by :func:`verify.numerics.inputs.check_state`: a departure ``w0 > 0``);
+    ``dps`` the digits of the result. Accuracy: relative error below ``10**-dps`` (an interval
+    enclosure, the working precision raised until its relative width allows it, the phase
+    reduced exactly); 0 where ``d(tau)`` is exactly 0; :class:`verify.UndecidableCollision`
+    where ``d(tau)`` cannot be separated from 0 at ``max(4*dps, 400)`` digits. Safe to call
+    from any thread.
+    """
     phi, v, eps, tau, dps = check_state(phi, v, eps, tau=tau, dps=dps)
-    with working_dps(dps + GUARD_DPS) as prec:
-        val = mp_gap(reduce_phase(phi, prec).value, v, eps, tau)
-    with working_dps(dps):
-        return to_user(+val)
+
+    def attempt(wdps):
+        d = iv_gap(reduce_phase(phi, mp.prec).enclosure, iv.mpf(v), iv.mpf(eps), iv.mpf(tau))
+        if lo(d) == 0 == hi(d):
+            return mp.zero
+        if not hi(d) - lo(d) <= mp.mpf(10) ** -(dps + 1) * min(abs(lo(d)), abs(hi(d))):
+            raise NotDecided(f"d(tau) is not separated from 0 (within {mp.nstr(hi(d) - lo(d), 3)})")
+        with working_dps(dps):
+            return +((lo(d) + hi(d)) / 2)
+
+    def undecidable(wdps, why):
+        return UndecidableCollision(phi, v, eps, wdps, str(why))
+
+    return to_user(escalate(attempt, dps, default_max_dps(dps), undecidable))
