@@ -105,7 +105,7 @@ from typing import NamedTuple
 from ..elastic.gap import departure_speed
 from ..errors import ChatteringDetected, UndecidableCollision
 from ..numerics.first_root import local_candidate, search_first_root
-from ..numerics.phase import reduce_phase
+from ..numerics.phase import reduce_phase, time_until
 from ..numerics.precision import (
     GUARD_DPS,
     NotDecided,
@@ -351,10 +351,7 @@ def _escalate(attempt, eps, k, law, dps, max_dps, what):
 def riding_time(phase, ride: Riding):
     """Time riding the plate from ``phase`` (where a > 0 is proved) to the next theta*:
     ``(theta* - phase) mod 2*pi`` in ``(0, 2*pi]`` at the current precision."""
-    two_pi = 2 * mp.pi
-    d = mid(ride.theta_star) - phase
-    d -= two_pi * mp.floor(d / two_pi)
-    return d if d > 0 else two_pi
+    return time_until(mid(ride.theta_star), phase)
 
 
 # --- 3. the flight from detachment ---------------------------------------------------------------

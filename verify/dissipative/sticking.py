@@ -64,7 +64,7 @@ import mpmath
 from ..elastic.gap import departure_speed
 from ..errors import UndecidableCollision
 from ..numerics.first_root import local_candidate, search_first_root
-from ..numerics.phase import reduce_phase
+from ..numerics.phase import reduce_phase, time_until
 from ..numerics.precision import (
     GUARD_DPS,
     NotDecided,
@@ -251,10 +251,7 @@ def detachment_step(eps, r, dps: int, max_dps: int | None = None) -> Impact:
 def time_to_detachment(phase, eps):
     """Time riding the plate from the accumulation phase to theta*: ``(theta* - phase) mod
     2*pi`` in ``(0, 2*pi]`` at the current precision."""
-    two_pi = 2 * mp.pi
-    d = detachment_phase(eps) - phase
-    d -= two_pi * mp.floor(d / two_pi)
-    return d if d > 0 else two_pi
+    return time_until(detachment_phase(eps), phase)
 
 
 class RestitutionSticking:

@@ -51,3 +51,12 @@ def reduce_phase(phi: mpmath.mpf, prec: int) -> ReducedPhase:
         r_lo, r_hi = lo(r), hi(r)
     enclosure = iv.mpf([r_lo, r_hi])  # outward rounding to the caller's precision
     return ReducedPhase(+((r_lo + r_hi) / 2), enclosure, k, bits)
+
+
+def time_until(target, phase):
+    """The time from ``phase`` to the next phase congruent to ``target``: ``(target - phase)
+    mod 2*pi`` in ``(0, 2*pi]`` (a whole period when they coincide), at the current precision."""
+    two_pi = 2 * mp.pi
+    d = target - phase
+    d -= two_pi * mp.floor(d / two_pi)
+    return d if d > 0 else two_pi
