@@ -5,19 +5,46 @@ from __future__ import annotations
 import mpmath
 from mpmath.libmp import dps_to_prec
 
-from ..numerics.inputs import check_state
+from ..numerics.inputs import check_dps, check_state
 from ..numerics.phase import reduce_phase
 from ..numerics.precision import hi, iv, lo, mid, mp, to_user, working_prec
 
-KAPPA_DPS = 20  # digits of the condition number unless asked
+KAPPA_BITS = 64  # bits of the condition number unless digits are asked for
 _KAPPA_ROUNDS = 11  # precision doublings before d'(tau) counts as 0 (x2048)
 
 
-def kappa(phi, v, eps, tau, reduced: bool = True, dps: int = KAPPA_DPS,
+def kappa(phi, v, eps, tau, reduced: bool = True, dps: int | None = None,
           max_bits: int | None = None):
     """:func:`condition_number` on validated exact values (this thread's context), without
     the validation. ``max_bits``: stop raising the precision there (a cheap estimate)."""
-    target = dps_to_prec(dps)
+    target = KAPPA_BITS if dps is None else dps_to_prec(dps)
+    enclosure = _enclosure(phi, v, eps, tau, reduced, target, max_bits)
+    if enclosure is None or not mp.isfinite(hi(enclosure)):
+        return mp.inf
+    with working_prec(target + 16):
+        centre = mid(enclosure)
+        if dps is None:
+            # the formula in 64-bit arithmetic (what kappa always was), kept where the
+            # enclosure proves it within 2**-58 (a few of its last bits): figures recorded
+            # with it stand
+            point = _point_value(phi, v, eps, tau, reduced)
+            if mp.isfinite(point) and abs(point - centre) <= mp.ldexp(point, 6 - KAPPA_BITS):
+                return point
+    with working_prec(target):
+        return +centre
+
+
+def _point_value(phi, v, eps, tau, reduced):
+    with working_prec(KAPPA_BITS):
+        red = reduce_phase(phi, mp.prec).value
+        num = abs(v) + tau + abs(eps) * (1 + abs(red if reduced else phi) + tau)
+        den = abs(v - tau + eps * mp.sin(red + tau))
+        return mp.inf if den == 0 else num / den
+
+
+def _enclosure(phi, v, eps, tau, reduced, target, max_bits):
+    """An interval of relative width below ``2**-(target + 4)`` holding kappa, ``[inf, inf]``
+    where ``d'(tau) = 0`` exactly, None where ``d'(tau)`` stays unseparated from 0."""
     bits = target
     for _ in range(_KAPPA_ROUNDS):
         with working_prec(bits + 16):
@@ -27,20 +54,19 @@ def kappa(phi, v, eps, tau, reduced: bool = True, dps: int = KAPPA_DPS,
             size = abs(red.value) if reduced else abs(phi)
             num = abs(iv.mpf(v)) + it + abs(iv.mpf(eps)) * (1 + iv.mpf(size) + it)
             if hi(den) == 0:
-                return mp.inf
+                return iv.mpf([mp.inf, mp.inf])
             if lo(den) > 0:
                 k = num / den
                 if hi(k) - lo(k) <= lo(k) * mp.ldexp(1, -target - 4):
-                    with working_prec(target):
-                        return +mid(k)
+                    return k
         if max_bits is not None and bits >= max_bits:
             break
         bits *= 2
-    return mp.inf
+    return None
 
 
 def condition_number(phi, v, eps, tau, *, reduced: bool = True,
-                     dps: int = KAPPA_DPS) -> mpmath.mpf:
+                     dps: int | None = None) -> mpmath.mpf:
     """``kappa = (|v| + tau + |eps|*(1 + |phi_r| + tau)) / |v - tau + eps*sin(phi+tau)|``.
 
     A float64 method's relative error in ``tau`` is expected to be ``<= k*kappa*2**-53`` for a
@@ -59,10 +85,16 @@ def condition_number(phi, v, eps, tau, *, reduced: bool = True,
     phases are used as given), as by an integrator that reduces its phases exactly (verify,
     fastpath), so that a huge ``phi`` does not inflate kappa; ``reduced=False`` takes
     ``phi_r = phi`` as given, for an integrator that adds ``phi + t`` in floating point;
-    ``dps`` the digits of the result (default 20).
+    ``dps`` the digits of the result (default: a 64-bit value).
 
-    Accuracy: the exact formula's value rounded to ``dps`` digits (an interval enclosure
-    refined to a relative width below ``2**-(bits + 4)`` first). Safe to call from any thread.
+    Accuracy: an interval enclosure of the exact formula's value is refined to a relative
+    width below ``2**-(bits + 4)``. With ``dps``, its midpoint rounded to ``dps`` digits. By
+    default, the formula evaluated in 64-bit arithmetic where the enclosure proves that value
+    within ``2**-58`` of the exact one (so figures recorded with it stand), else the enclosure's
+    midpoint at 64 bits: a relative error below ``2**-58`` either way. Safe to call from any
+    thread.
     """
-    phi, v, eps, tau, dps = check_state(phi, v, eps, tau=tau, dps=dps)
+    phi, v, eps, tau, _ = check_state(phi, v, eps, tau=tau)
+    if dps is not None:
+        dps = check_dps(dps)
     return to_user(kappa(phi, v, eps, tau, reduced=bool(reduced), dps=dps))
