@@ -64,6 +64,10 @@ class ChunkResult:
 # numba's workqueue threading layer must not be entered by two threads at once (a Dask worker
 # with several threads would); one kernel at a time per process, each parallel inside
 _KERNEL_LOCK = threading.Lock()
+# verify is thread-safe, but check_sample's own arithmetic (the error's quotient, and
+# dissipative_kappa's mpmath.mp.workdps) uses mpmath's process-wide precision: one sample
+# check at a time
+_SAMPLE_LOCK = threading.Lock()
 
 
 def _dissipative_kernel():
@@ -351,8 +355,9 @@ def verify_rows(rows, eps, physics=None):
         _, _, _, n, phi, v, phi1, v1, tau = row[:9]
         try:
             # the elastic call is the one it always was (no physics argument)
-            tau_ref, error, overstep = (check_sample(phi, v, tau, eps, physics) if physics
-                                        else check_sample(phi, v, tau, eps))
+            with _SAMPLE_LOCK:
+                tau_ref, error, overstep = (check_sample(phi, v, tau, eps, physics) if physics
+                                            else check_sample(phi, v, tau, eps))
         except (verify.UndecidableCollision, ValueError) as err:
             raise RunFailed(f"verify could not decide sampled collision {int(n)} from "
                             f"phi={phi!r}, v={v!r} that fastpath converged: {err}") from None
