@@ -75,9 +75,10 @@ class DragGap:
         ``[a, b] - m``). The interval value overestimates by the box's width (``eta(V)`` and
         ``eps*cos`` move together along the flight, their enclosures do not), the mean-value
         form by its square: where the curvature is nearly constant (a flight from detachment
-        with ``E`` next to 1, curvature ~1e-16) only the latter resolves it."""
+        with ``E`` next to 1, curvature ~1e-16) only the latter resolves it. (Computed only
+        where the interval value leaves the sign undecided.)"""
         box = self._curvature(a, b)
-        if a == b:
+        if a == b or not lo(box) <= 0 <= hi(box):  # the sign is decided: enough as it is
             return box
         m = (a + b) / 2
         centred = self._curvature(m, m) + self.third(a, b) * (iv.mpf([a, b]) - m)
