@@ -3,12 +3,17 @@
 Layout: :mod:`verify.numerics` (precision, exact inputs and phase reduction, the first-root
 search), :mod:`verify.elastic` (the paper's flight: gap, certificate, condition number),
 :mod:`verify.dissipative` (physics description, drag laws, chattering and sticking), and the
-public entry points :mod:`verify.flight`, :mod:`verify.collision` (the map), :mod:`verify.jacobian`,
-:mod:`verify.orbit`; :mod:`verify.check` tests a user's integrator. Never imports ``fastpath``:
+public entry points :mod:`verify.flight`, :mod:`verify.collision` (the map),
+:mod:`verify.jacobian`, :mod:`verify.orbit`; :mod:`verify.check` tests a user's integrator
+(``verify.check.load_callable`` loads one from ``module:name``). Never imports ``fastpath``:
 the reference is worth something only if it shares no code with the integrator it checks.
+Every public function is safe to call from any thread (:mod:`verify.numerics.precision`).
 """
 
-from .check import CheckReport, Failure, assert_integrator, check_integrator, load_callable
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _version
+
+from .check import CheckReport, Failure, assert_integrator, check_integrator
 from .collision import step
 from .dynamics import NotCertified, periodic_orbit
 from .elastic.conditioning import condition_number
@@ -40,5 +45,10 @@ __all__ = [
     "Failure",
     "assert_integrator",
     "check_integrator",
-    "load_callable",
+    "__version__",
 ]
+
+try:
+    __version__ = _version("bouncer-verify")
+except PackageNotFoundError:  # run from a source tree that was never installed
+    __version__ = "0+unknown"

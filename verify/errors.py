@@ -11,6 +11,8 @@ reaches a caller.)
 
 from __future__ import annotations
 
+from .numerics.precision import to_user
+
 
 class UndecidableCollision(ArithmeticError):
     """The first collision could not be decided even at the largest precision allowed.
@@ -19,17 +21,20 @@ class UndecidableCollision(ArithmeticError):
     digits: a near-tangency (``d`` has a local minimum indistinguishable from 0: graze or not),
     a departure velocity ``w0`` indistinguishable from 0, or a root that cannot be separated.
     The message names the state, the precision reached and what stayed undecided. Attributes:
-    ``phi``, ``v``, ``eps`` (the state), ``dps_reached``, ``what``.
+    ``phi``, ``v``, ``eps`` (the state; ``phi`` and ``v`` are None where no single departure
+    is concerned, e.g. the proof of where a particle riding the plate leaves it),
+    ``dps_reached``, ``what``.
     """
 
     def __init__(self, phi, v, eps, dps_reached: int, what: str) -> None:
-        self.phi, self.v, self.eps = phi, v, eps
+        self.phi, self.v, self.eps = to_user(phi), to_user(v), to_user(eps)
         self.dps_reached = dps_reached
         self.what = what
-        super().__init__(
-            f"flight from phi={_short(phi)}, v={_short(v)}, eps={_short(eps)} is undecidable "
-            f"at {dps_reached} digits: {what}"
-        )
+        if phi is None or v is None:  # no single departure state (the riding force's roots)
+            where = f"the motion at eps={_short(eps)}"
+        else:
+            where = f"flight from phi={_short(phi)}, v={_short(v)}, eps={_short(eps)}"
+        super().__init__(f"{where} is undecidable at {dps_reached} digits: {what}")
 
 
 def _short(x) -> str:
@@ -51,7 +56,7 @@ class ChatteringDetected(UndecidableCollision):
     """
 
     def __init__(self, n: int, t, phi, v, eps, w, w_min, dps: int) -> None:
-        self.n, self.t, self.w, self.w_min = n, t, w, w_min
+        self.n, self.t, self.w, self.w_min = n, to_user(t), to_user(w), to_user(w_min)
         what = (f"chattering: after collision {n} (t={_short(t)}) the velocity relative to the "
                 f"plate is w={_short(w)} < {_short(w_min)} and falling: impacts accumulate, but "
                 "no accumulation tail could be proved")

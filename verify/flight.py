@@ -3,7 +3,8 @@
 :func:`certify_flight` validates the inputs, picks the certificate for the physics (the elastic
 gap of :mod:`verify.elastic.certificate`, or the drag gap of :mod:`verify.dissipative.drag_gap`)
 and runs it with :func:`verify.numerics.precision.escalate`, which raises the working precision
-until the proof succeeds or :class:`verify.UndecidableCollision` is raised.
+until the proof succeeds or :class:`verify.UndecidableCollision` is raised. :func:`certify` is
+the same on validated values, for verify's own use (the map, the Jacobian, the orbit loop).
 """
 
 from __future__ import annotations
@@ -13,11 +14,11 @@ from dataclasses import dataclass
 import mpmath
 
 from .dissipative.drag_gap import drag_attempt
-from .dissipative.physics import check_physics
+from .dissipative.physics import Physics, check_physics
 from .elastic.certificate import elastic_attempt
 from .errors import UndecidableCollision
 from .numerics.inputs import check_dps, check_state, w0_is_zero
-from .numerics.precision import default_max_dps, escalate, working_dps
+from .numerics.precision import default_max_dps, escalate, to_user, working_dps
 
 
 @dataclass(frozen=True)
@@ -26,9 +27,11 @@ class FlightCertificate:
 
     ``tau``: midpoint of the enclosure, rounded to ``dps`` digits. ``enclosure``: ``(lo, hi)``
     exact ``mpf`` with ``d(lo) > 0 > d(hi)`` proved in interval arithmetic, so the smallest
-    positive root lies in ``(lo, hi)``. ``free_until``: ``d > 0`` is proved on
-    ``(0, free_until]`` (equal to ``lo``). ``dps_used``: working digits of the successful attempt.
-    ``boxes``: interval evaluations (points and boxes) the proof examined.
+    positive root lies in ``(lo, hi)``; its relative half-width is at most ``10**-dps``, so
+    ``tau`` is within ``1.2*10**-dps*tau`` of the root (with the rounding to ``dps`` digits).
+    ``free_until``: ``d > 0`` is proved on ``(0, free_until]`` (equal to ``lo``). ``dps_used``:
+    working digits of the successful attempt. ``boxes``: interval evaluations (points and
+    boxes) the proof examined.
     """
 
     tau: mpmath.mpf
@@ -37,49 +40,69 @@ class FlightCertificate:
     dps_used: int
     boxes: int
 
+    def for_user(self) -> FlightCertificate:
+        """The same certificate with its numbers as ``mpmath.mp`` numbers (for a caller)."""
+        return FlightCertificate(to_user(self.tau), to_user(self.enclosure),
+                                 to_user(self.free_until), self.dps_used, self.boxes)
 
-def certify_flight(phi, v, eps, dps: int = 50, max_dps: int | None = None, *, drag=0.0,
-                   drag_law: str = "linear", restitution=1.0) -> FlightCertificate:
-    """Certify the smallest positive root of the gap ``d`` (see the module docstrings of
-    :mod:`verify.elastic.certificate` and :mod:`verify.dissipative.drag_gap`).
 
-    Inputs are taken as exact binary values and checked by
-    :func:`verify.numerics.inputs.check_state`: ``ValueError`` for NaN/inf/non-real inputs, a
-    bad ``dps`` or ``max_dps``, or ``w0 = v + eps*sin(phi) <= 0``; :class:`UndecidableCollision`
-    when the first root cannot be decided at ``max_dps`` digits (default ``max(4*dps, 400)``).
-
-    Physics (keyword-only, :func:`verify.dissipative.physics.check_physics`): ``drag`` k >= 0
-    with ``drag_law`` "linear" or "quadratic" (:mod:`verify.dissipative.drag`); ``restitution``
-    does not change a flight and is only validated. Without drag the elastic certificate runs,
-    except for a departure at rest, ``w0 = 0`` exactly, which it rejects and which goes to the
-    drag certificate with ``k = 0``.
-    """
-    phys = check_physics(drag, drag_law, restitution)
-    state = check_state(phi, v, eps, dps=dps, w0_zero_ok=True)
-    phi, v, eps, dps = state.phi, state.v, state.eps, state.dps
-    max_dps = default_max_dps(dps) if max_dps is None else check_dps(max_dps, "max_dps")
-    if max_dps < dps:
-        raise ValueError(f"max_dps must be >= dps, got max_dps={max_dps}, dps={dps}")
+def certify(phi, v, eps, phys: Physics, dps: int, max_dps: int | None = None,
+            digits: int | None = None) -> FlightCertificate:
+    """Certify the flight from the validated exact departure ``(phi, v, eps)`` (values of this
+    thread's context). ``digits`` (default ``dps``): the enclosure's relative half-width is at
+    most ``10**-digits``; ``tau`` is its midpoint rounded to ``dps`` digits. The values of the
+    certificate are this thread's (see :meth:`FlightCertificate.for_user`)."""
+    digits = dps if digits is None else digits
+    max_dps = default_max_dps(digits) if max_dps is None else max_dps
     elastic = phys.drag == 0 and not w0_is_zero(phi, v, eps)
 
     def attempt(wdps):
         if elastic:
-            lo_, hi_, free, boxes = elastic_attempt(phi, v, eps, dps, wdps)
+            lo_, hi_, free, boxes = elastic_attempt(phi, v, eps, digits, wdps)
         else:
-            lo_, hi_, free, boxes = drag_attempt(phi, v, eps, phys, dps, wdps)
+            lo_, hi_, free, boxes = drag_attempt(phi, v, eps, phys, digits, wdps)
         return lo_, hi_, free, boxes, wdps, (lo_ + hi_) / 2
 
     def undecidable(wdps, why):
         return UndecidableCollision(phi, v, eps, wdps, str(why))
 
-    lo_, hi_, free, boxes, wdps, mid = escalate(attempt, dps, max_dps, undecidable)
+    lo_, hi_, free, boxes, wdps, mid = escalate(attempt, digits, max_dps, undecidable)
     with working_dps(dps):
         tau = +mid
     return FlightCertificate(tau, (lo_, hi_), free, wdps, boxes)
 
 
-def flight_time(phi, v, eps, dps: int = 50, *, drag=0.0, drag_law: str = "linear",
-                restitution=1.0) -> mpmath.mpf:
-    """Certified smallest positive root of ``d`` at ``dps`` digits: ``certify_flight(...).tau``."""
-    return certify_flight(phi, v, eps, dps, drag=drag, drag_law=drag_law,
-                          restitution=restitution).tau
+def certify_flight(phi, v, eps, dps: int = 50, max_dps: int | None = None, *, drag=0.0,
+                   drag_law: str = "linear") -> FlightCertificate:
+    """Certify the smallest positive root of the gap ``d`` (see the module docstrings of
+    :mod:`verify.elastic.certificate` and :mod:`verify.dissipative.drag_gap`).
+
+    Parameters: ``phi``, ``v``, ``eps`` the departure (phase, velocity, plate amplitude), each
+    taken as its exact binary value (:func:`verify.numerics.inputs.exact_real`); ``dps`` the
+    digits of ``tau`` (relative error below ``1.2*10**-dps``: the enclosure's half-width plus
+    the rounding); ``max_dps`` the largest working
+    precision tried (default ``max(4*dps, 400)``); ``drag`` k >= 0 and ``drag_law`` "linear" or
+    "quadratic" (:mod:`verify.dissipative.drag`). A flight does not depend on the restitution.
+
+    ``ValueError`` for NaN/inf/non-real inputs, a bad ``dps`` or ``max_dps``, or
+    ``w0 = v + eps*sin(phi) <= 0`` (no departure); :class:`verify.UndecidableCollision` when
+    the first root cannot be decided at ``max_dps`` digits. Without drag the elastic
+    certificate runs, except for a departure at rest, ``w0 = 0`` exactly, which goes to the
+    drag certificate with ``k = 0``. Safe to call from any thread.
+    """
+    phys = check_physics(drag, drag_law)
+    state = check_state(phi, v, eps, dps=dps, w0_zero_ok=True)
+    dps = state.dps
+    max_dps = default_max_dps(dps) if max_dps is None else check_dps(max_dps, "max_dps")
+    if max_dps < dps:
+        raise ValueError(f"max_dps must be >= dps, got max_dps={max_dps}, dps={dps}")
+    return certify(state.phi, state.v, state.eps, phys, dps, max_dps).for_user()
+
+
+def flight_time(phi, v, eps, dps: int = 50, *, drag=0.0, drag_law: str = "linear") -> mpmath.mpf:
+    """Certified smallest positive root of ``d`` at ``dps`` digits: ``certify_flight(...).tau``.
+
+    Parameters as for :func:`certify_flight`: the departure ``phi``, ``v``, ``eps``, the digits
+    ``dps`` (relative error of the result below ``1.2*10**-dps``), ``drag`` and ``drag_law``.
+    """
+    return certify_flight(phi, v, eps, dps, drag=drag, drag_law=drag_law).tau

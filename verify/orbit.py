@@ -6,43 +6,58 @@ import numbers
 from dataclasses import dataclass
 
 import mpmath
-from mpmath import mp
 
-from .collision import step
+from .collision import impact
 from .dissipative.physics import check_physics
 from .dissipative.sticking_model import sticking_model
 from .numerics.inputs import check_state
-from .numerics.precision import GUARD_DPS, working_dps
+from .numerics.precision import GUARD_DPS, mp, to_user, working_dps
 
 
 @dataclass(frozen=True)
 class Orbit:
-    """Collision phases ``phi``, velocities ``v`` after each collision, cumulative times ``t``
-    (``t[0] = 0``); tuples of ``mpf`` of length ``n + 1``. ``phi[0]`` is the input phase as
-    given (unreduced); later phases lie in ``[0, 2*pi)``.
+    """Successive collisions of the exact map: the same fields as ``fastpath.Orbit`` where they
+    mean the same (``phi``, ``v``, ``t``, ``model``, ``eps``, ``sticking``, ``stopped``), as
+    tuples of ``mpf`` (``mpmath.mp`` numbers).
 
-    ``sticking``: ``(t_start, t_end)`` pairs of sticking episodes
-    (:mod:`verify.dissipative.sticking`): the particle rides the plate from the accumulation time
-    ``t_start`` and leaves at ``t_end`` (``mp.inf``: never, stuck for good). ``stopped``:
-    ``"collisions"`` (made the ``n`` collisions) or ``"stuck"`` (stuck for good before that).
-    ``phi``/``v``/``t`` record the impacts computed; a summed tail is not an entry, and the entry
-    after an episode is the impact ending the flight from detachment.
+    ``phi``: collision phases, ``phi[0]`` the input phase as given (unreduced), later ones in
+    ``[0, 2*pi)``; ``v``: velocities after each collision; ``t``: cumulative times
+    (``t[0] = 0``); length ``n + 1`` unless the orbit ended early. ``model``: ``"exact"`` (the
+    exact map; fastpath also has ``"holmes"``). ``eps``: the amplitude (exact). ``sticking``:
+    ``(t_start, t_end)`` pairs of sticking episodes (:mod:`verify.dissipative.sticking`): the
+    particle rides the plate from the accumulation time ``t_start`` and leaves at ``t_end``
+    (``mp.inf``: never, stuck for good). ``stopped``: ``"collisions"`` (made the ``n``
+    collisions) or ``"stuck"`` (stuck for good before that). ``phi``/``v``/``t`` record the
+    impacts computed; a summed tail is not an entry, and the entry after an episode is the
+    impact ending the flight from detachment. ``dps``: the digits of every entry. (fastpath's
+    ``iterations`` and ``status`` have no counterpart: verify raises where it cannot decide.)
     """
 
     phi: tuple[mpmath.mpf, ...]
     v: tuple[mpmath.mpf, ...]
     t: tuple[mpmath.mpf, ...]
+    model: str
+    eps: mpmath.mpf
     sticking: tuple[tuple[mpmath.mpf, mpmath.mpf], ...] = ()
     stopped: str = "collisions"
+    dps: int = 50
 
 
 def orbit(phi0, v0, eps, n: int, dps: int = 50, *, drag=0.0, drag_law: str = "linear",
           restitution=1.0) -> Orbit:
-    """Iterate :func:`verify.step` ``n`` times from ``(phi0, v0)``.
+    """Iterate the map of :func:`verify.step` ``n`` times from ``(phi0, v0)``.
 
-    ``t[k] = tau_0 + ... + tau_{k-1}``.
+    Parameters: the start ``phi0``, ``v0`` and ``eps`` (exact binary values; a departure),
+    ``n`` the number of collisions, ``dps`` the digits of every entry, and the physics
+    keywords of :func:`verify.step` (``drag``, ``drag_law``, ``restitution``).
 
-    Each step is certified for its (rounded to ``dps`` digits) input state.
+    ``t[k] = tau_0 + ... + tau_{k-1}`` (summed from the flight times' enclosures). Each entry
+    is within ``10**-dps`` of the exact impact of the exact state carried from the previous
+    one (as :func:`verify.step`); the state carried to the next flight is not the rounded
+    entry but the exact midpoint of the impact's enclosure, with the relative velocity
+    ``w = v + eps*sin(phi)`` kept to ``dps`` digits of itself
+    (:func:`verify.dissipative.impact.carried_state`), so a tiny ``w`` (a restitution of
+    ``1e-40``, a chattering run) stays a departure.
 
     Restitution ``r < 1`` (the sticking models of :mod:`verify.dissipative.sticking_model`):
     after each impact, when the impacts from it accumulate (relative velocity ``w`` down to
@@ -60,41 +75,45 @@ def orbit(phi0, v0, eps, n: int, dps: int = 50, *, drag=0.0, drag_law: str = "li
     With drag, should ``w`` fall below ``w_min = 10**(-dps//2) * (1 + |v| + |eps|)`` (far below
     where the tail is summed) with no tail summed and ``d''(0) < 0`` proved,
     :class:`verify.ChatteringDetected`. Undecidable steps raise
-    :class:`verify.UndecidableCollision`.
+    :class:`verify.UndecidableCollision`. Safe to call from any thread.
     """
     phys = check_physics(drag, drag_law, restitution)
     phi, v, eps_, _, dps = check_state(phi0, v0, eps, dps=dps, names=("phi0", "v0", "eps"),
                                        w0_zero_ok=not phys.is_default)
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 0:
         raise ValueError(f"n must be a non-negative integer, got n={n!r}")
-    kwargs = {} if phys.is_default else phys.keywords()
     model = sticking_model(eps_, phys, dps)
     phis, vs, ts, episodes = [phi], [v], [mp.zero], []
     t = mp.zero
+    state = (phi, v)
     detached = False
+    stopped = "collisions"
     for k in range(int(n)):
         if detached:
-            phi, v, tau = model.detachment_step()
+            hit = model.detachment_step()
             detached = False
         else:
-            phi, v, tau = step(phi, v, eps, dps, **kwargs)
+            hit = impact(*state, eps_, phys, dps)
+        state = hit.state
         with working_dps(dps + GUARD_DPS):
-            t = t + tau
-        phis.append(phi)
-        vs.append(v)
+            t = t + hit.elapsed
+        phis.append(hit.phi1)
+        vs.append(hit.v1)
         ts.append(t)
         if model is None:
             continue
-        acc = model.accumulation(phi, v)
+        acc = model.accumulation(*state)
         if acc is None:
-            model.check_chattering(k + 1, t, phi, v)
+            model.check_chattering(k + 1, t, *state)
             continue
         with working_dps(dps + GUARD_DPS):
             t_acc = t + acc.tail
             if not model.leaves_plate():
                 episodes.append((t_acc, mp.inf))
-                return Orbit(tuple(phis), tuple(vs), tuple(ts), tuple(episodes), "stuck")
+                stopped = "stuck"
+                break
             t = t_acc + model.riding_time(acc.phase)
         episodes.append((t_acc, t))
         detached = True
-    return Orbit(tuple(phis), tuple(vs), tuple(ts), tuple(episodes))
+    return Orbit(to_user(tuple(phis)), to_user(tuple(vs)), to_user(tuple(ts)), "exact",
+                 to_user(eps_), to_user(tuple(tuple(e) for e in episodes)), stopped, dps)

@@ -26,10 +26,10 @@ from __future__ import annotations
 import math
 
 from hypothesis import strategies as st
-from mpmath import mp
 
 from .elastic.grazing import grazing_contact
 from .numerics.float64 import TWO_PI
+from .numerics.precision import mp, to_user, working_dps
 
 __all__ = [
     "clearances",
@@ -50,8 +50,8 @@ _LINEAR_W0_FLOOR = 1e-3  # below this, w0 is drawn log-uniformly
 
 def exact_w0(phi: float, v: float, eps: float):
     """``v + eps*sin(phi)`` of the float inputs, at 50 digits (an ``mpf``)."""
-    with mp.workdps(_W0_DPS):
-        return mp.mpf(v) + mp.mpf(eps) * mp.sin(mp.mpf(phi))
+    with working_dps(_W0_DPS):
+        return to_user(mp.mpf(v) + mp.mpf(eps) * mp.sin(mp.mpf(phi)))
 
 
 def _is_departure(phi: float, v: float, eps: float) -> bool:
@@ -362,7 +362,7 @@ def _huge_phase(draw, eps_s, exponents, w0_s):
     exponent = draw(st.integers(*exponents))
     phi = sign * draw(st.floats(1.0, 10.0, exclude_max=True)) * 10.0 ** exponent
     eps, w0 = draw(eps_s), draw(w0_s)
-    with mp.workdps(_W0_DPS):  # mpmath reduces huge phases exactly (libm does too)
+    with working_dps(_W0_DPS):  # mpmath reduces huge phases exactly (libm does too)
         v = float(w0 - mp.mpf(eps) * mp.sin(mp.mpf(phi)))
     return (phi, v, eps) if _is_departure(phi, v, eps) else None
 

@@ -12,8 +12,9 @@ def local(jobs):
     """The chunks here, two in flight, yielded in order.
 
     ``run_chunk`` is a pure function of its arguments; numba's kernels run one at a time
-    (``chunk._KERNEL_LOCK``) and so do verify's computations (``chunk._VERIFY_LOCK``: mpmath's
-    precision is process-wide). So one chunk's verification sample (Python, holding the GIL)
+    (``chunk._KERNEL_LOCK``), and so do the sample checks (``chunk._SAMPLE_LOCK``: their own
+    arithmetic uses mpmath's process-wide precision; verify itself is safe from any thread).
+    So one chunk's verification sample (Python, holding the GIL)
     runs while the next chunk's kernel runs (numba threads, without the GIL), and the results
     are those of the chunks one after another.
     """

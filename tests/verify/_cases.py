@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 
+import mpmath
 import numpy as np
 from mpmath import mp
+
+from verify.numerics.inputs import exact_real
 
 
 def small_w0_velocity(phi: float, eps: float, w0: float) -> float:
@@ -38,3 +42,21 @@ STATES = [
     ]
     if v + eps * math.sin(phi) > 1e-9
 ]
+
+
+@contextmanager
+def mpmath_dps(dps: int):
+    """Set mpmath's own ``mp`` and ``iv`` to ``dps`` digits for a test's independent
+    computations (verify never touches them: it works in its own per-thread contexts)."""
+    old_mp, old_iv = mpmath.mp.prec, mpmath.iv.prec
+    mpmath.mp.dps = mpmath.iv.dps = dps
+    try:
+        yield mpmath.mp.prec
+    finally:
+        mpmath.mp.prec, mpmath.iv.prec = old_mp, old_iv
+
+
+def internal(*xs):
+    """Exact values in verify's own (per-thread) context, for calling verify's internals (which
+    compute in that context and expect its numbers)."""
+    return tuple(exact_real("x", x) for x in xs)

@@ -14,14 +14,17 @@ import re
 
 import numpy as np
 import pytest
-from mpmath import iv, mp
+from mpmath import mp
 
 import verify
+from tests.verify._cases import internal
 from verify.elastic import certificate
 from verify.elastic.gap import iv_gap, iv_gap_prime, mp_gap
 from verify.numerics import first_root
 from verify.numerics.phase import reduce_phase
-from verify.numerics.precision import NotDecided, hi, lo, working_dps
+from verify.numerics.precision import NotDecided, escalate, hi, lo, working_dps
+from verify.numerics.precision import iv as viv
+from verify.numerics.precision import mp as vmp
 
 NUMBER = r"(-?[0-9.]+(?:e[-+][0-9]+)?)"
 
@@ -46,22 +49,39 @@ def _short_flight_with_huge_phase():
     kappa ~ eps*|phi|/w0 ~ 5e66, while w0 > 0 is already decided at 60 digits."""
     phi, eps = mp.mpf(2) ** 40, mp.mpf(0.5)
     with mp.workprec(400):
-        v = -eps * mp.sin(reduce_phase(phi, 400).value) + mp.mpf(10) ** -55
+        v = -eps * mp.sin(phi % (2 * mp.pi)) + mp.mpf(10) ** -55
     with mp.workprec(190):
         v = +v
     return phi, v, eps
 
 
-def test_precision_hint_jumps_past_the_doubling():
-    """The first attempt (60 digits) decides w0 > 0 but not the sign change of d; the retry
-    takes max(2*60, hint) digits with hint = dps + 10 + ceil(log10(kappa)) = 127 > 120."""
+def test_escalation_takes_the_larger_of_doubling_and_the_hint():
+    """``escalate`` retries at ``max(2*wdps, needed)``: a hint above the doubling is taken, one
+    below it is not; the first attempt is at ``dps + 10``."""
+    tried = []
+
+    def attempt(wdps):
+        tried.append(wdps)
+        if len(tried) == 1:
+            raise NotDecided("first", needed=150)
+        if len(tried) == 2:
+            raise NotDecided("second", needed=10)
+        return wdps
+
+    assert escalate(attempt, 50, 1000, lambda wdps, why: AssertionError(why)) == 300
+    assert tried == [60, 150, 300]
+
+
+def test_precision_hint_follows_the_condition_number():
+    """The hint for a sign left undecided near ``c`` is ``dps + 10 + ceil(log10(kappa))``,
+    kappa from the reduced phase (here phi = 2**40, w0 = 1e-55: kappa ~ 1e55, not ~1e67)."""
     phi, v, eps = _short_flight_with_huge_phase()
-    cert = verify.certify_flight(phi, v, eps, dps=50)
-    with working_dps(60):  # as the certifier computes it (at 64 bits d' would cancel)
-        kappa = verify.condition_number(phi, v, eps, cert.tau)
-    hint = 50 + 10 + int(mp.ceil(mp.log10(kappa)))
-    assert hint > 120
-    assert cert.dps_used == hint
+    tau = verify.certify_flight(phi, v, eps, dps=50).tau
+    kappa = verify.condition_number(phi, v, eps, tau)
+    assert 1e54 < kappa < 1e57
+    with working_dps(60):
+        hint = certificate._needed_dps(*internal(phi, v, eps, tau), 50)
+    assert hint == 50 + 10 + int(mp.ceil(mp.log10(kappa)))
 
 
 def test_concave_undecided_message_states_the_candidate_and_delta():
@@ -86,16 +106,27 @@ def test_concave_undecided_message_states_the_candidate_and_delta():
 
 def _count_interval_evaluations(monkeypatch):
     """Count the calls of iv_gap (a point: d, with d' in the box loop) and iv_gap_second
-    (a box) made through certificate's module globals."""
-    calls = {"n": 0}
+    (a box) made through the elastic certificate's module globals by the proof (the candidate
+    search's own curvature enclosures are not part of the proof and are not counted)."""
+    calls = {"n": 0, "searching": False}
     for name in ("iv_gap", "iv_gap_second"):
         real = getattr(certificate, name)
 
         def counted(*args, _real=real):
-            calls["n"] += 1
+            calls["n"] += not calls["searching"]
             return _real(*args)
 
         monkeypatch.setattr(certificate, name, counted)
+    real_candidate = certificate.local_candidate
+
+    def candidate(*args):
+        calls["searching"] = True
+        try:
+            return real_candidate(*args)
+        finally:
+            calls["searching"] = False
+
+    monkeypatch.setattr(certificate, "local_candidate", candidate)
     return calls
 
 
@@ -309,9 +340,10 @@ def test_undecided_w0_message_states_the_enclosure_width():
     phi, v, eps = _w0_near_zero("1e-1000")
     with pytest.raises(verify.UndecidableCollision) as info:
         verify.certify_flight(phi, v, eps, dps=20, max_dps=60)
+    phi, v, eps = internal(phi, v, eps)
     with working_dps(60) as prec:
-        w0 = iv.mpf(v) + iv.mpf(eps) * iv.sin(reduce_phase(phi, prec).enclosure)
-        width = mp.nstr(hi(w0) - lo(w0), 3)
+        w0 = viv.mpf(v) + viv.mpf(eps) * viv.sin(reduce_phase(phi, prec).enclosure)
+        width = vmp.nstr(hi(w0) - lo(w0), 3)
     assert info.value.what == f"w0 = v + eps*sin(phi) is within {width} of 0: departure or not"
 
 
@@ -320,7 +352,7 @@ def test_general_graze_message_and_hint():
     straddles 0; the message states its size and the candidate, the hint exceeds dps + 10."""
     g = verify.grazing_contact(3.0, 0.2, 4.0, 0, dps=500)
     with working_dps(40), pytest.raises(NotDecided) as info:
-        certificate.elastic_attempt(g.phi, g.v, mp.mpf(3), 30, 40)
+        certificate.elastic_attempt(*internal(g.phi, g.v, 3), 30, 40)
     what = info.value.what
     m = re.fullmatch(rf"d has a minimum within {NUMBER} of 0 near tau={NUMBER}"
                      rf"(?: \(\|d'\| <= {NUMBER} there\))?: graze or not", what)
@@ -335,7 +367,7 @@ def test_general_graze_message_and_hint():
 
 def _box_loop_context():
     g = verify.grazing_contact(3.0, 0.2, 4.0, 1e-3)
-    return g, certificate.elastic_gap(g.phi, g.v, mp.mpf(3), 30, 40)
+    return g, certificate.elastic_gap(*internal(g.phi, g.v, 3), 30, 40)
 
 
 @pytest.mark.parametrize("force", ["no box proved", "no progress"])
@@ -344,28 +376,32 @@ def test_box_loop_gives_up_undecided_with_message_and_hint(monkeypatch, force):
     progress (the proposed box rounds to nothing) must end in ``_Undecided`` naming the stuck
     point, with the precision hint, never in a silent success or a budget error."""
     if force == "no box proved":
-        monkeypatch.setattr(first_root, "taylor_lower", lambda d0, p, q, h: mp.mpf(0))
+        monkeypatch.setattr(first_root, "taylor_lower", lambda d0, p, q, h: vmp.mpf(0))
     else:
-        monkeypatch.setattr(first_root, "_first_zero", lambda d0, p, q: mp.mpf(0))
+        monkeypatch.setattr(first_root, "_first_zero", lambda d0, p, q: vmp.mpf(0))
     with working_dps(40):
         g, ctx = _box_loop_context()
-        a = g.T / 2
+        (contact,) = internal(g.T)
+        a = contact / 2
         with pytest.raises(NotDecided) as info:
-            first_root.prove_positive(ctx, a, g.T)
-        ia = iv.mpf(a)
+            first_root.prove_positive(ctx, a, contact)
+        ia = viv.mpf(a)
         expected = first_root._unresolved(a, iv_gap(ctx.iphi, ctx.iv_v, ctx.ieps, ia),
                                        iv_gap_prime(ctx.iphi, ctx.iv_v, ctx.ieps, ia))
     assert info.value.what == expected
-    assert info.value.needed == certificate._needed_dps(g.phi, g.v, mp.mpf(3), a, 30) > 40
+    with working_dps(40):
+        needed = certificate._needed_dps(*internal(g.phi, g.v, 3), a, 30)
+    assert info.value.needed == needed > 40
 
 
 def test_box_loop_refusal_at_a_root_states_where():
     """d(a) <= 0 at a point of the stretch: the message names that point and |d|, |d'| there."""
     g = verify.grazing_contact(3.0, 0.2, 4.0, 0, dps=500)
     with working_dps(40):
-        ctx = certificate.elastic_gap(g.phi, g.v, mp.mpf(3), 30, 40)
+        ctx = certificate.elastic_gap(*internal(g.phi, g.v, 3), 30, 40)
+        (contact,) = internal(g.T)
         with pytest.raises(NotDecided) as info:
-            first_root.prove_positive(ctx, g.T / 2, g.T * (1 + mp.mpf(10) ** -5))
+            first_root.prove_positive(ctx, contact / 2, contact * (1 + vmp.mpf(10) ** -5))
     m = re.fullmatch(rf"d has a minimum within {NUMBER} of 0 near tau={NUMBER} "
                      rf"\(\|d'\| <= {NUMBER} there\): graze or not", info.value.what)
     assert m, info.value.what
@@ -385,7 +421,7 @@ def _budget_message(message, phi, v, eps):
     m = re.fullmatch(_BUDGET.format(n=NUMBER), message)
     assert m, message
     assert [m.group(i) for i in (3, 4, 5)] == [mp.nstr(mp.mpf(x), 8) for x in (phi, v, eps)]
-    assert _significant_digits(m.group(2)) == 8 and mp.mpf(m.group(2)) > 0
+    assert mp.nstr(mp.mpf(m.group(2)), 8) == m.group(2) and mp.mpf(m.group(2)) > 0
     return m.group(1), mp.mpf(m.group(2))
 
 
@@ -417,17 +453,17 @@ def test_candidate_behind_the_proved_part_is_refused(monkeypatch):
         offered.append(t / 2)
         return t / 2
 
-    monkeypatch.setattr(certificate, "global_candidate", behind)
+    monkeypatch.setattr(certificate, "local_candidate", behind)
     with pytest.raises(verify.UndecidableCollision) as info:
         verify.certify_flight(g.phi, g.v, 3.0, dps=30, max_dps=40)
     with working_dps(40):
-        c = mp.nstr(offered[-1], 20)
+        c = vmp.nstr(offered[-1], 20)
     assert info.value.what == f"candidate tau={c} is behind the proved part"
 
 
 def test_concave_bracket_budget_message(monkeypatch):
     monkeypatch.setattr(certificate, "_MAX_BISECTIONS", 3)
-    monkeypatch.setattr(certificate, "_newton_from_right", lambda ctx, t: mp.mpf(0))
+    monkeypatch.setattr(certificate, "_newton_from_right", lambda ctx, t: vmp.mpf(0))
     with pytest.raises(verify.UndecidableCollision) as info:
         verify.certify_flight(4.0, 3.0, 0.6, dps=30, max_dps=40)
     assert info.value.what == "no enclosure of the root in 3 bracket steps"
@@ -446,7 +482,7 @@ def test_concave_candidate_just_off_the_root(monkeypatch, side):
     def first_off(ctx, t):
         calls.append(t)
         if len(calls) == 1:
-            return 2 * mp.mpf(x) * (1 + side * mp.mpf(1.5) * mp.mpf(10) ** -50)
+            return 2 * vmp.mpf(x) * (1 + side * vmp.mpf(1.5) * vmp.mpf(10) ** -50)
         return real(ctx, t)
 
     monkeypatch.setattr(certificate, "_newton_from_right", first_off)
@@ -461,9 +497,9 @@ def _candidate_with_an_end_on(root, side):
     working precision (searched among the neighbours of root/(1 + side*10**-dps))."""
 
     def candidate(ctx, t):
-        scale = mp.mpf(10) ** (-ctx.dps)
+        scale = vmp.mpf(10) ** (-ctx.dps)
         c0 = root / (1 + side * scale)
-        ulp = mp.mpf(2) ** (mp.mag(c0) - mp.prec)
+        ulp = vmp.mpf(2) ** (vmp.mag(c0) - vmp.prec)
         for k in range(-8, 9):
             c = c0 + k * ulp
             if c + side * (c * scale) == root:
@@ -479,7 +515,7 @@ def test_concave_check_point_exactly_on_the_root(monkeypatch, side):
     whose check point is exactly 2 decides no sign there (the attempt is undecided); the next
     attempt encloses 2 strictly."""
     real, calls = certificate._newton_from_right, []
-    on_root = _candidate_with_an_end_on(mp.mpf(2), side)
+    on_root = _candidate_with_an_end_on(vmp.mpf(2), side)
 
     def first_on_root(ctx, t):
         calls.append(t)
@@ -498,20 +534,20 @@ def _early_candidate():
     with mp.workdps(80):
         f = lambda t: mp_gap(g.phi, g.v, mp.mpf(3), t)  # noqa: E731
         r1 = mp.findroot(f, g.T - mp.sqrt(2e-3 / (3 * mp.cos(0.2) - 1)))
-        early = r1 * (1 - mp.mpf(10) ** -3)
-        assert 0 < f(early) < 1e-2
+        (early,) = internal(r1 * (1 - mp.mpf(10) ** -3))
+        assert 0 < f(mp.mpf(early)) < 1e-2
     return g, r1, early
 
 
 def _offer_first(monkeypatch, early):
     """Make ``early`` the first candidate of the search; the later ones are the real ones."""
-    real, calls = certificate.global_candidate, []
+    real, calls = certificate.local_candidate, []
 
     def first_early(ctx, curv, t):
         calls.append(t)
         return early if len(calls) == 1 else real(ctx, curv, t)
 
-    monkeypatch.setattr(certificate, "global_candidate", first_early)
+    monkeypatch.setattr(certificate, "local_candidate", first_early)
     return calls
 
 
@@ -547,7 +583,7 @@ def test_box_budget_counts_every_box_of_the_flight(monkeypatch):
     budget = proofs[0] + 1 + proofs[1]  # boxes at the check: proof to left, d(right), across
     assert max(proofs[:2]) < budget - 1 < proofs[2]
     with working_dps(60):
-        right = mp.nstr(early + early * mp.mpf(10) ** -50, 8)
+        right = vmp.nstr(early + early * vmp.mpf(10) ** -50, 8)
     reached = {}
     for limit in (budget - 1, budget):  # the check at the near-tangency fails, then passes
         _offer_first(monkeypatch, early)
@@ -588,10 +624,10 @@ def test_box_loop_budget_is_per_stretch(monkeypatch):
     assert len(proofs) == 1 and proofs[0] > 2
     monkeypatch.setattr(first_root, "MAX_BOXES", proofs[0])
     with working_dps(60):
-        ctx = certificate.elastic_gap(g.phi, g.v, mp.mpf(3), 50, 60)
-        free = lo(ctx.iv_v + ctx.ieps * iv.sin(ctx.iphi)) / 4
-        tau = verify.certify_flight(g.phi, g.v, 3.0).tau
-        left = tau * (1 - mp.mpf(10) ** -50)
+        ctx = certificate.elastic_gap(*internal(g.phi, g.v, 3), 50, 60)
+        free = lo(ctx.iv_v + ctx.ieps * viv.sin(ctx.iphi)) / 4
+        (tau,) = internal(verify.certify_flight(g.phi, g.v, 3.0).tau)
+        left = tau * (1 - vmp.mpf(10) ** -50)
         assert real_prove(ctx, free, left) == proofs[0]
 
 
@@ -603,7 +639,7 @@ def test_general_graze_message_when_the_stretch_is_proved(monkeypatch, psi, t_gu
     g = verify.grazing_contact(3.0, psi, t_guess, 0, dps=500)
     monkeypatch.setattr(first_root, "prove_positive", lambda ctx, a, end: 1)
     with working_dps(40), pytest.raises(NotDecided) as info:
-        certificate.elastic_attempt(g.phi, g.v, mp.mpf(3), 30, 40)
+        certificate.elastic_attempt(*internal(g.phi, g.v, 3), 30, 40)
     m = re.fullmatch(rf"d has a minimum within {NUMBER} of 0 near tau={NUMBER}: graze or not",
                      info.value.what)
     assert m, info.value.what
@@ -620,10 +656,11 @@ def test_general_graze_message_when_the_stretch_is_proved(monkeypatch, psi, t_gu
 
 def _v_cancelling_w0_end(phi, eps, wdps, end):
     """v with ``end(w0) == 0`` for ``w0 = iv(v) + iv(eps)*iv.sin(phi)`` at ``wdps`` digits."""
+    phi, eps = internal(phi, eps)
     with working_dps(wdps) as prec:
-        plate = iv.mpf(eps) * iv.sin(reduce_phase(phi, prec).enclosure)
+        plate = viv.mpf(eps) * viv.sin(reduce_phase(phi, prec).enclosure)
         v = -end(plate)
-        w0 = iv.mpf(v) + plate
+        w0 = viv.mpf(v) + plate
     assert end(w0) == 0 and lo(w0) < hi(w0)
     return v
 
@@ -657,11 +694,11 @@ def test_certify_candidate_at_eps_one_uses_the_concave_criterion():
     below the resolution of 25 digits: the concave criterion cannot prove it (False), the box
     criterion of ``|eps| > 1`` would accept it without evaluating ``d(lo)``. At 40 digits the
     same enclosure is proved (it is right)."""
-    phi, eps, dps = mp.mpf(1), mp.mpf(1), 15
+    (phi, eps), dps = internal(1, 1), 15
     with working_dps(dps + 10) as prec:
-        sine = iv.sin(reduce_phase(phi, prec).enclosure)
+        sine = viv.sin(reduce_phase(phi, prec).enclosure)
         v = -lo(sine) + (hi(sine) - lo(sine))  # w0 ~ 1e-26: one ulp of the sine above 0
-        w0 = iv.mpf(v) + iv.sin(reduce_phase(phi, prec).enclosure)
+        w0 = viv.mpf(v) + viv.sin(reduce_phase(phi, prec).enclosure)
         lo_ = lo(w0) / 2
         assert lo(w0) > 0 and lo(certificate.elastic_gap(phi, v, eps, dps, dps + 10).d(lo_)) <= 0
     hi_ = mp.mpf(2) ** -60
@@ -677,19 +714,19 @@ def _search_at_four(end, eps0):
     a candidate whose right end ``c + c*10**-50`` is exactly 4. Returns the context, the
     candidate and the enclosure of d(4); the first root is within rounding of 4 (d' ~ -4.3 for
     eps ~ 2, ~ -2.3 for eps ~ 0.5)."""
-    dps, wdps, four = 50, 60, mp.mpf(4)
+    dps, wdps, four = 50, 60, vmp.mpf(4)
     with working_dps(wdps):
         for k in range(64):
-            eps = mp.mpf(eps0) + k * mp.mpf(2) ** -40
-            half = iv.mpf(four) / 2
-            plate = 2 * iv.mpf(eps) * iv.sin(half) * iv.sin(half)
-            with mp.workprec(1000):
+            eps = vmp.mpf(eps0) + k * vmp.mpf(2) ** -40
+            half = viv.mpf(four) / 2
+            plate = 2 * viv.mpf(eps) * viv.sin(half) * viv.sin(half)
+            with vmp.workprec(1000):
                 v = 2 - end(plate) / 4
-            if mp.mpf(v) == v:  # exact at 60 digits: the cancellation is exact
+            if vmp.mpf(v) == v:  # exact at 60 digits: the cancellation is exact
                 break
-        ctx = certificate.elastic_gap(mp.zero, v, eps, dps, wdps)
-        scale = mp.mpf(10) ** -dps
-        c = next(c for c in (four / (1 + scale) + j * mp.eps * 4 for j in range(-5, 6))
+        ctx = certificate.elastic_gap(vmp.zero, v, eps, dps, wdps)
+        scale = vmp.mpf(10) ** -dps
+        c = next(c for c in (four / (1 + scale) + j * vmp.eps * 4 for j in range(-5, 6))
                  if c + c * scale == four)
         d4 = ctx.d(four)
         assert end(d4) == 0 and lo(d4) < hi(d4)
@@ -707,11 +744,11 @@ def test_search_needs_a_strict_sign_at_the_candidate(end, eps0, concave):
     (its enclosure's size there), not elsewhere."""
     ctx, c, d4 = _search_at_four(end, eps0)
     with working_dps(ctx.wdps), pytest.raises(NotDecided) as err:
-        first_root.search_first_root(ctx, 1 + abs(ctx.eps), lo(ctx.iv_v) / (1 + abs(ctx.eps)), None,
-                        concave_from=(lambda right: True) if concave else None,
-                        candidate=lambda ctx, curv, t: c)
+        first_root.search_first_root(ctx, 1 + abs(ctx.eps), lo(ctx.iv_v) / (1 + abs(ctx.eps)),
+                                     None, concave_from=(lambda right: True) if concave else None,
+                                     candidate=lambda ctx, curv, t: c)
     size = max(abs(lo(d4)), abs(hi(d4)))
-    assert err.value.what == (f"d has a minimum within {mp.nstr(size, 3)} of 0 near "
+    assert err.value.what == (f"d has a minimum within {vmp.nstr(size, 3)} of 0 near "
                               "tau=4.0: graze or not")
 
 
@@ -720,4 +757,4 @@ def test_precision_hint_at_an_exact_zero_of_the_slope():
     of the parabola); the precision hint is then the guard precision, not an overflow."""
     assert verify.condition_number(0.0, 1.0, 0.0, 1.0) == mp.inf
     with working_dps(60):
-        assert certificate._needed_dps(mp.zero, mp.one, mp.zero, mp.one, 50) == 60
+        assert certificate._needed_dps(vmp.zero, vmp.one, vmp.zero, vmp.one, 50) == 60

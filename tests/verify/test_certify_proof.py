@@ -5,13 +5,15 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from mpmath import iv, mp
+from mpmath import mp
 
 import verify
+from tests.verify._cases import internal
 from verify.elastic import certificate
 from verify.elastic.gap import iv_gap, iv_gap_prime, iv_gap_second, mp_gap
 from verify.numerics import first_root
-from verify.numerics.precision import NotDecided, lo, working_dps
+from verify.numerics.precision import NotDecided, lo, to_user, working_dps
+from verify.numerics.precision import iv as viv
 
 WDPS = 40  # digits of the interval evaluations in the box-bound test
 REF_DPS = 60  # digits of the brute-force sampling (WDPS + 20)
@@ -20,12 +22,13 @@ REF_DPS = 60  # digits of the brute-force sampling (WDPS + 20)
 def _box_bound(phi, v, eps, a, h):
     """The proof step's lower bound of d on [a, a+h] and its three inputs (d, d', min d'')."""
     with working_dps(WDPS):
-        ctx = certificate.elastic_gap(mp.mpf(phi), mp.mpf(v), mp.mpf(eps), WDPS - 10, WDPS)
-        ia = iv.mpf(a)
+        ctx = certificate.elastic_gap(*internal(phi, v, eps), WDPS - 10, WDPS)
+        a, h = internal(a, h)
+        ia = viv.mpf(a)
         d_a = lo(iv_gap(ctx.iphi, ctx.iv_v, ctx.ieps, ia))
         p_a = lo(iv_gap_prime(ctx.iphi, ctx.iv_v, ctx.ieps, ia))
-        q = lo(iv_gap_second(ctx.iphi, ctx.ieps, iv.mpf([a, a + h])))
-        return first_root.taylor_lower(d_a, p_a, q, h), d_a, p_a, q
+        q = lo(iv_gap_second(ctx.iphi, ctx.ieps, viv.mpf([a, a + h])))
+        return to_user(first_root.taylor_lower(d_a, p_a, q, h)), *to_user((d_a, p_a, q))
 
 
 def _random_boxes(n, seed=12):
@@ -119,17 +122,19 @@ def test_certify_candidate_concave(phi, v, eps):
 def test_general_certifier_refuses_a_candidate_at_the_second_root(monkeypatch):
     g, r1, r2 = _two_roots()
     assert abs(verify.certify_flight(g.phi, g.v, 3.0).tau - r1) < mp.mpf(10) ** -45 * r1
-    monkeypatch.setattr(certificate, "global_candidate", lambda ctx, curv, t: r2)
+    (r2,) = internal(r2)
+    monkeypatch.setattr(certificate, "local_candidate", lambda ctx, curv, t: r2)
     with pytest.raises(verify.UndecidableCollision):
         verify.certify_flight(g.phi, g.v, 3.0, dps=30, max_dps=60)
 
 
 def test_general_certifier_refuses_a_candidate_that_is_no_root(monkeypatch):
     g, r1, _ = _two_roots()
-    monkeypatch.setattr(certificate, "global_candidate", lambda ctx, curv, t: g.T)  # d(T) = -1e-3
+    contact, half_r1 = internal(g.T, r1 / 2)
+    monkeypatch.setattr(certificate, "local_candidate", lambda ctx, curv, t: contact)  # d = -1e-3
     with pytest.raises(verify.UndecidableCollision):
         verify.certify_flight(g.phi, g.v, 3.0, dps=30, max_dps=60)
-    monkeypatch.setattr(certificate, "global_candidate", lambda ctx, curv, t: r1 / 2)  # d > 0 there
+    monkeypatch.setattr(certificate, "local_candidate", lambda ctx, curv, t: half_r1)  # d > 0
     with pytest.raises(verify.UndecidableCollision):
         verify.certify_flight(g.phi, g.v, 3.0, dps=30, max_dps=60)
 
@@ -137,16 +142,17 @@ def test_general_certifier_refuses_a_candidate_that_is_no_root(monkeypatch):
 def test_general_certifier_survives_one_wrong_candidate(monkeypatch):
     """A candidate before the root that is not one (d > 0): the proof covers it and goes on."""
     g, r1, _ = _two_roots()
-    real = certificate.global_candidate
+    real = certificate.local_candidate
     offered = []
+    (half_r1,) = internal(r1 / 2)
 
     def first_wrong(ctx, curv, t):
         if not offered:
             offered.append(t)
-            return r1 / 2
+            return half_r1
         return real(ctx, curv, t)
 
-    monkeypatch.setattr(certificate, "global_candidate", first_wrong)
+    monkeypatch.setattr(certificate, "local_candidate", first_wrong)
     assert abs(verify.certify_flight(g.phi, g.v, 3.0).tau - r1) < mp.mpf(10) ** -45 * r1
 
 
@@ -166,11 +172,13 @@ def test_concave_certifier_corrects_a_wrong_candidate(monkeypatch, wrong):
 def test_prove_positive_refuses_a_stretch_containing_a_root():
     g, r1, _ = _two_roots()
     with working_dps(60):
-        ctx = certificate.elastic_gap(g.phi, g.v, mp.mpf(3), 50, 60)
-        free = r1 / 4
-        first_root.prove_positive(ctx, free, r1 * (1 - mp.mpf(10) ** -40))
+        ctx = certificate.elastic_gap(*internal(g.phi, g.v, 3), 50, 60)
+        with mp.workdps(80):
+            below, above, free = internal(r1 * (1 - mp.mpf(10) ** -40),
+                                          r1 * (1 + mp.mpf(10) ** -40), r1 / 4)
+        first_root.prove_positive(ctx, free, below)
         with pytest.raises(NotDecided):
-            first_root.prove_positive(ctx, free, r1 * (1 + mp.mpf(10) ** -40))
+            first_root.prove_positive(ctx, free, above)
 
 
 def test_search_budget_ends_in_a_value_error(monkeypatch):

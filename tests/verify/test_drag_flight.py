@@ -38,8 +38,13 @@ def naive_motion(v, k, law, t):
             return mp.log(mp.cos(a - s * t) / mp.cos(a)) / k, mp.tan(a - s * t) / s
         top = mp.log(1 / mp.cos(a)) / k
         return top - mp.log(mp.cosh(s * t - a)) / k, -mp.tanh(s * t - a) / s
-    a = mp.atanh(-s * v)
-    return -mp.log(mp.cosh(a + s * t) / mp.cosh(a)) / k, -mp.tanh(a + s * t) / s
+    if -s * v < 1:
+        a = mp.atanh(-s * v)
+        return -mp.log(mp.cosh(a + s * t) / mp.cosh(a)) / k, -mp.tanh(a + s * t) / s
+    if -s * v == 1:  # at the terminal velocity: V stays -1/s
+        return v * t, v
+    a = mp.acoth(-s * v)  # below it: V = -coth(a + s*t)/s decelerates towards -1/s
+    return -mp.log(mp.sinh(a + s * t) / mp.sinh(a)) / k, -mp.coth(a + s * t) / s
 
 
 def naive_gap(phi, v, eps, k, law, t):
@@ -48,9 +53,8 @@ def naive_gap(phi, v, eps, k, law, t):
         return y + mp.mpf(eps) * (mp.cos(mp.mpf(phi)) - mp.cos(mp.mpf(phi) + mp.mpf(t)))
 
 
-MOTIONS = [(law, v, k, t) for law in LAWS for v in (3.0, 0.5, 1e-3, -0.3)
-           for k in (0.0, 1e-30, 1e-8, 0.1, 2.0) for t in (1e-9, 0.3, 2.0, 7.5)
-           if not (law == "quadratic" and v < 0 and k * v * v >= 1)]
+MOTIONS = [(law, v, k, t) for law in LAWS for v in (3.0, 0.5, 1e-3, -0.3, -2.0, -30.0)
+           for k in (0.0, 1e-30, 1e-8, 0.1, 2.0, 0.25) for t in (1e-9, 0.3, 2.0, 7.5)]
 
 
 @pytest.mark.parametrize(("law", "v", "k", "t"), MOTIONS)
@@ -190,20 +194,44 @@ def test_no_departure_at_rest_is_rejected(eps):
 
 # --- validation ------------------------------------------------------------------------------
 
-@pytest.mark.parametrize(("kwargs", "named"), [
-    ({"restitution": 1.5}, "restitution=1.5"), ({"restitution": 0.0}, "restitution=0.0"),
-    ({"restitution": math.nan}, "restitution=nan"), ({"drag": -1.0}, "drag=-1.0"),
-    ({"drag": math.inf}, "drag=inf"), ({"drag_law": "cubic"}, "drag_law='cubic'"),
-])
-@pytest.mark.parametrize("func", [verify.certify_flight, verify.flight_time, verify.step])
+_BAD_DRAG = [({"drag": -1.0}, "drag=-1.0"), ({"drag": math.inf}, "drag=inf"),
+             ({"drag_law": "cubic"}, "drag_law='cubic'")]
+_BAD_RESTITUTION = [({"restitution": 1.5}, "restitution=1.5"),
+                    ({"restitution": 0.0}, "restitution=0.0"),
+                    ({"restitution": math.nan}, "restitution=nan")]
+
+
+_FLIGHT_FUNCS = (verify.certify_flight, verify.flight_time, verify.step)
+
+
+@pytest.mark.parametrize(("func", "kwargs", "named"),
+                         [(f, *bad) for f in _FLIGHT_FUNCS for bad in _BAD_DRAG]
+                         + [(verify.step, *bad) for bad in _BAD_RESTITUTION])
 def test_bad_physics_is_a_value_error_naming_it(func, kwargs, named):
     with pytest.raises(ValueError, match=named.replace("(", r"\(")):
         func(4.0, 3.0, 0.6, **kwargs)
 
 
-def test_quadratic_departure_below_terminal_velocity_is_rejected():
-    with pytest.raises(ValueError, match="terminal velocity"):
-        verify.certify_flight(1.5, -1.2, 1.5, drag=1.0, drag_law="quadratic")
+@pytest.mark.parametrize("func", [verify.certify_flight, verify.flight_time])
+def test_a_flight_takes_no_restitution(func):
+    """The restitution acts at the impact, not during a flight: the flight functions do not
+    accept it (rather than accepting and ignoring it)."""
+    with pytest.raises(TypeError, match="restitution"):
+        func(4.0, 3.0, 0.6, restitution=0.5)
+
+
+@pytest.mark.parametrize(("phi", "v", "eps", "k"), [
+    (1.5, -1.2, 1.5, 1.0), (1.5, -5.0, 6.0, 1.0), (1.5, -2.0, 2.5, 0.25), (1.2, -30.0, 40.0, 0.01),
+])
+def test_quadratic_departure_below_terminal_velocity_is_certified(phi, v, eps, k):
+    """Below the terminal velocity -1/sqrt(k) (here v*sqrt(k) = -1.2, -5, -1 exactly, -3) the
+    particle decelerates towards it (the coth branch); the first root is certified and lies
+    where the textbook form of the gap changes sign, with the form positive before it."""
+    cert = verify.certify_flight(phi, v, eps, drag=k, drag_law="quadratic")
+    lo_, hi_ = cert.enclosure
+    assert naive_gap(phi, v, eps, k, "quadratic", lo_) > 0 > naive_gap(phi, v, eps, k,
+                                                                      "quadratic", hi_)
+    assert all(naive_gap(phi, v, eps, k, "quadratic", lo_ * j / 64) > 0 for j in range(1, 64))
 
 
 def test_certificate_refuses_the_landing_after_a_root_pair(monkeypatch):

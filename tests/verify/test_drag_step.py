@@ -41,9 +41,9 @@ def test_default_physics_never_reaches_the_drag_code(monkeypatch, phi, v, eps):
 
     monkeypatch.setattr(flight, "drag_attempt", forbidden)
     for law in ("linear", "quadratic"):
-        kw = {"drag": 0.0, "drag_law": law, "restitution": 1.0}
+        kw = {"drag": 0.0, "drag_law": law}
         assert verify.certify_flight(phi, v, eps, **kw) == before[0]
-        assert verify.step(phi, v, eps, **kw) == before[1]
+        assert verify.step(phi, v, eps, **kw, restitution=1.0) == before[1]
     assert verify.certify_flight(phi, v, eps) == before[0]
 
 
@@ -60,18 +60,40 @@ def test_restitution_one_with_drag_zero_is_the_elastic_map_and_limits():
 
 
 def test_orbit_with_drag_and_restitution():
+    """Each entry is the step from the previous one: the orbit carries the exact impact state,
+    the step starts from the entry rounded to 50 digits, so they agree to ~50 digits (this
+    orbit's map has derivatives of order 1)."""
     orb = verify.orbit(1.0, 2.0, 0.6, 4, drag=0.05, restitution=0.9)
     assert orb.sticking == () and orb.stopped == "collisions" and len(orb.v) == 5
-    phi, v = orb.phi[0], orb.v[0]
     for j in range(4):
-        phi1, v1, tau = verify.step(phi, v, 0.6, drag=0.05, restitution=0.9)
-        assert (phi1, v1) == (orb.phi[j + 1], orb.v[j + 1])
-        phi, v = phi1, v1
+        phi1, v1, tau = verify.step(orb.phi[j], orb.v[j], 0.6, drag=0.05, restitution=0.9)
+        with mp.workdps(60):
+            assert abs(phi1 - orb.phi[j + 1]) < mp.mpf(10) ** -47
+            assert abs(v1 - orb.v[j + 1]) < mp.mpf(10) ** -47
+            assert abs(orb.t[j] + tau - orb.t[j + 1]) < mp.mpf(10) ** -47
 
 
-def test_default_orbit_has_the_default_new_fields():
+def test_orbit_has_fastpaths_field_names():
+    """The fields fastpath.Orbit has and that mean the same here, with their values."""
     orb = verify.orbit(4.0, 3.0, 0.6, 2)
     assert orb.sticking == () and orb.stopped == "collisions"
+    assert orb.model == "exact" and orb.eps == mp.mpf(0.6) and orb.dps == 50
+    assert len(orb.phi) == len(orb.v) == len(orb.t) == 3
+
+
+def test_a_tiny_restitution_keeps_the_orbit_a_departure():
+    """r = 1e-40 leaves each impact with w ~ 1e-40*|w_in|: rounded to 30 digits, (phi1, v1)
+    would not depart; the orbit carries the exact state, sums the tail at once, rides the plate
+    and leaves it at theta* (|eps| = 1.5 > 1), impact after impact."""
+    orb = verify.orbit(4.0, 3.0, 1.5, 10, dps=30, restitution=1e-40)
+    assert orb.stopped == "collisions" and len(orb.phi) == 11
+    assert len(orb.sticking) >= 3
+    with mp.workdps(40):
+        theta_star = 2 * mp.pi - mp.acos(1 / mp.mpf(1.5))
+        for t_start, t_end in orb.sticking:
+            assert t_start < t_end
+            off = (mp.mpf(4.0) + t_end - theta_star) % (2 * mp.pi)
+            assert min(off, 2 * mp.pi - off) < 1e-25
 
 
 def test_chattering_with_drag_accumulates_and_sticks_not_a_hang():

@@ -46,6 +46,7 @@ from fastpath.dissipative.short_flight import drag_short_window
 from fastpath.dissipative.sticking import drag_detachment_phase
 from fastpath.elastic.gap import departure
 from fastpath.physics import LINEAR, QUADRATIC
+from tests.verify._cases import internal
 from verify.dissipative.drag_sticking import drag_accumulation, leaves_plate_with_drag, riding
 
 U = 2.0**-53
@@ -98,7 +99,7 @@ def _fastpath_phase_tol(eps, k, law, theta_star):
 @pytest.mark.parametrize("eps, k", [(1.5, 0.1), (0.9, 0.6), (-1.2, 0.3), (3.0, 2.0),
                                     (1.0, 1e-3), (-0.8, 1.0)])
 def test_linear_detachment_box_holds_the_closed_form(eps, k):
-    ride = riding(mp.mpf(eps), mp.mpf(k), "linear", 50)
+    ride = riding(*internal(eps, k), "linear", 50)
     with mp.workdps(80):
         theta = _closed_linear(eps, k)
         lo_, hi_ = mp.mpf(ride.theta_star.a), mp.mpf(ride.theta_star.b)
@@ -116,7 +117,7 @@ def test_linear_detachment_box_holds_the_closed_form(eps, k):
 @pytest.mark.parametrize("eps, k", [(1.5, 0.1), (0.9, 1.0), (-1.5, 0.3), (0.8, 3.0),
                                     (1.1, 0.2), (-0.95, 0.8)])
 def test_quadratic_detachment_box_holds_the_root_and_fastpath_agrees(eps, k):
-    ride = riding(mp.mpf(eps), mp.mpf(k), "quadratic", 50)
+    ride = riding(*internal(eps, k), "quadratic", 50)
     with mp.workdps(80):
         lo_, hi_ = mp.mpf(ride.theta_star.a), mp.mpf(ride.theta_star.b)
         root = mp.findroot(lambda x: _force(x, eps, k, "quadratic"), (lo_ + hi_) / 2)
@@ -134,12 +135,12 @@ def test_never_detaches_is_decided_exactly_at_the_threshold():
     k_star = math.sqrt(1.0 / (eps * eps) - 1.0)
     for k in (math.nextafter(k_star, 0), k_star, math.nextafter(k_star, 2)):
         exact = Fraction(eps) ** 2 * (1 + Fraction(k) ** 2) > 1
-        assert leaves_plate_with_drag(mp.mpf(eps), mp.mpf(k), "linear") == exact
-    assert riding(mp.mpf(0.5), mp.mpf(0.5), "linear", 50) is None
-    assert not leaves_plate_with_drag(mp.mpf(1.0), mp.mpf(0.25), "quadratic")
-    assert leaves_plate_with_drag(mp.mpf(1.0), mp.mpf(1.0), "quadratic")
+        assert leaves_plate_with_drag(*internal(eps, k), "linear") == exact
+    assert riding(*internal(0.5, 0.5), "linear", 50) is None
+    assert not leaves_plate_with_drag(*internal(1.0, 0.25), "quadratic")
+    assert leaves_plate_with_drag(*internal(1.0, 1.0), "quadratic")
     with pytest.raises(verify.UndecidableCollision, match="detachment"):
-        riding(mp.mpf(1.0), mp.mpf(1.0), "quadratic", 20, max_dps=80)
+        riding(*internal(1.0, 1.0), "quadratic", 20, max_dps=80)
 
 
 # --- orbits ---------------------------------------------------------------------------------
@@ -180,7 +181,7 @@ def test_eps_1_5_r_0_8_sticks_detaches_at_theta_star_and_agrees_with_fastpath(la
     TIMES[law] = time.perf_counter() - start
     assert ref.stopped == "collisions" and len(ref.sticking) >= 2
     d30 = mp.mpf(10) ** -30
-    ride = riding(mp.mpf(eps), mp.mpf(k), law, 30)
+    ride = riding(*internal(eps, k), law, 30)
     with mp.workdps(40):
         theta_star = (mp.mpf(ride.theta_star.a) + mp.mpf(ride.theta_star.b)) / 2
         if law == "linear":
@@ -228,7 +229,7 @@ def test_other_signs_and_drag_made_detachment_agree_with_fastpath(law, eps, k):
     v0 = w0 - eps * math.sin(phi0)
     ref = verify.orbit(phi0, v0, eps, 40, dps=30, drag=k, drag_law=law, restitution=r)
     assert ref.stopped == "collisions" and len(ref.sticking) >= 2
-    ride = riding(mp.mpf(eps), mp.mpf(k), law, 30)
+    ride = riding(*internal(eps, k), law, 30)
     d30 = mp.mpf(10) ** -30
     with mp.workdps(40):
         theta_star = (mp.mpf(ride.theta_star.a) + mp.mpf(ride.theta_star.b)) / 2
@@ -253,7 +254,7 @@ def test_chatter_next_to_theta_star_rides_only_until_theta_star(law):
     episode starts before theta* and ends exactly there (t_end = theta* - phi0), never inside the
     arc where the plate pulls away; fastpath agrees."""
     eps, k, r = 1.5, 0.1, 0.5
-    ride = riding(mp.mpf(eps), mp.mpf(k), law, 30)
+    ride = riding(*internal(eps, k), law, 30)
     theta_star = float((mp.mpf(ride.theta_star.a) + mp.mpf(ride.theta_star.b)) / 2)
     phi0 = theta_star - 0.05
     v0 = 2e-4 - eps * math.sin(phi0)
@@ -279,7 +280,7 @@ def test_chatter_next_to_theta_star_rides_only_until_theta_star(law):
                    "iteration of the impacts to 1e-28)")
 def test_fastpath_accumulation_bound_next_to_theta_star():
     eps, k, r, law = 1.5, 0.1, 0.5, "linear"
-    ride = riding(mp.mpf(eps), mp.mpf(k), law, 30)
+    ride = riding(*internal(eps, k), law, 30)
     phi0 = float((mp.mpf(ride.theta_star.a) + mp.mpf(ride.theta_star.b)) / 2) - 0.05
     v0 = 2e-4 - eps * math.sin(phi0)
     t_acc = verify.orbit(phi0, v0, eps, 45, dps=30, drag=k, drag_law=law,
@@ -325,8 +326,8 @@ def test_dps_50_against_70_and_the_proved_tail_enclosure(law, k):
     # the tail from the last impact before it: proved enclosure, measured model constant
     j = impacts  # t[impacts] is the last impact before the tail
     with mp.workdps(60):
-        acc = drag_accumulation(lo_res.phi[j], lo_res.v[j], mp.mpf(eps), mp.mpf(k), law,
-                                mp.mpf(r), 50)
+        phi_j, v_j, eps_, k_, r_ = internal(lo_res.phi[j], lo_res.v[j], eps, k, r)
+        acc = drag_accumulation(phi_j, v_j, eps_, k_, law, r_, 50)
     ref = verify.orbit(lo_res.phi[j], lo_res.v[j], eps, 40, dps=70, drag=k, drag_law=law,
                        restitution=r)
     tail70 = ref.sticking[0][0]
@@ -368,3 +369,24 @@ def test_vanishing_drag_reproduces_the_no_drag_orbit(law):
     tol = 100 * k * (1 + free.t[j2]) ** 2 + 8 * d50 * len(free.t) * (1 + free.t[j2]) * 100
     assert abs(drag.t[j1] - free.t[j2]) <= tol
     assert abs(drag.v[j1] - free.v[j2]) <= 10 * tol
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("eps", [0.8944280854271067, 0.894427190999916],
+                         ids=["E=1+1e-6", "E=1+1e-16"])
+def test_linear_drag_just_past_the_detachment_threshold_runs_to_the_end(eps):
+    """Linear drag k = 0.5, r = 0.5 from (4, 3) at E = |eps|*sqrt(1 + k**2) just above 1: the
+    arc where the riding force a < 0 is 2.8e-3 (resp. 2.8e-8) wide with min a ~ -1e-6
+    (resp. -1e-16), the flight from detachment a hop of that arc's length, the chatter after it
+    lands where a is still tiny. The orbit makes its collisions, every episode ending at the
+    closed-form theta* (no ChatteringDetected, no undecidable riding force)."""
+    k = 0.5
+    orb = verify.orbit(4.0, 3.0, eps, 100, dps=30, drag=k, drag_law="linear", restitution=0.5)
+    assert orb.stopped == "collisions" and len(orb.phi) == 101 and len(orb.sticking) >= 2
+    with mp.workdps(60):
+        theta = _closed_linear(eps, k)
+        for t_start, t_end in orb.sticking:
+            assert t_start < t_end
+            off = (mp.mpf(4.0) + t_end - theta) % (2 * mp.pi)
+            assert min(off, 2 * mp.pi - off) < 1e-25
+

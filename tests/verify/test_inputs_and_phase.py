@@ -9,7 +9,9 @@ the documented fields of a ``ReducedPhase``.
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
+import numpy as np
 import pytest
 from mpmath import mp
 
@@ -86,3 +88,40 @@ def test_reduction_bits_never_subtracts_for_small_phases():
     """prec + max(0, exponent) + guard: a phase below 1 adds no bits."""
     assert reduction_bits(mp.mpf(0.25), 53) == 53 + _GUARD_BITS
     assert reduction_bits(mp.mpf(2) ** 100, 53) == 53 + 101 + _GUARD_BITS
+
+
+def test_rationals_with_a_power_of_two_denominator_are_taken_exactly():
+    """Fraction(3, 8) and Fraction(2**60 + 1, 2**62) are binary numbers: taken exactly (the
+    second is not a float64), so the flight is that of the mpf of the same value."""
+    assert verify.flight_time(Fraction(3, 8), 3, 0.6) == verify.flight_time(0.375, 3.0, 0.6)
+    wide = Fraction(2**60 + 1, 2**62)
+    with mp.workprec(200):
+        exact = mp.mpf(2**60 + 1) / 2**62
+    assert exact_real("phi", wide) == exact
+    assert verify.flight_time(wide, 3.0, 0.6) == verify.flight_time(exact, 3.0, 0.6)
+    assert verify.flight_time(wide, 3.0, 0.6) != verify.flight_time(float(wide), 3.0, 0.6)
+
+
+@pytest.mark.parametrize("bad", [Fraction(1, 3), Fraction(-7, 10)])
+def test_rationals_that_are_not_binary_numbers_are_rejected(bad):
+    with pytest.raises(ValueError, match="must be a binary number"):
+        verify.flight_time(1.0, 3.0, bad)
+
+
+def test_long_double_is_taken_exactly():
+    """np.longdouble carries more bits than float64 where the platform has them: the flight is
+    that of its exact value (not of its rounding to float64)."""
+    third = np.longdouble(1) / np.longdouble(3)
+    num, den = third.as_integer_ratio()
+    with mp.workprec(200):
+        exact = mp.mpf(num) / den
+    assert exact_real("phi", third) == exact
+    assert verify.flight_time(third, 3.0, 0.6) == verify.flight_time(exact, 3.0, 0.6)
+    if exact != float(third):  # an 80-bit or 128-bit long double
+        assert verify.flight_time(third, 3.0, 0.6) != verify.flight_time(float(third), 3.0, 0.6)
+
+
+@pytest.mark.parametrize("bad", [np.longdouble("inf"), np.float32("nan")])
+def test_non_finite_numpy_floats_are_rejected(bad):
+    with pytest.raises(ValueError, match="must be finite"):
+        verify.flight_time(bad, 3.0, 0.6)

@@ -18,9 +18,17 @@ import pytest
 from mpmath import mp
 
 import verify
+from tests.verify._cases import internal
 from verify.dissipative.sticking import accumulation, detachment_phase, detachment_step
+from verify.numerics.precision import to_user, working_dps
 
 D50 = mp.mpf(10) ** -50
+
+
+def _detachment_step(eps, r, dps=50):
+    """``(phi1, v1, tau)`` of the impact ending the flight from detachment, as mpmath numbers."""
+    hit = detachment_step(*internal(eps, r), dps)
+    return to_user((hit.phi1, hit.v1, hit.tau))
 
 
 def _start(theta, w, eps):
@@ -50,7 +58,7 @@ def test_tail_enclosure_contains_the_tail_from_more_impacts():
     phi0, v0 = _start(2.0, 1e-3, eps)
     orb = verify.orbit(phi0, v0, eps, 400, dps=50, restitution=r)
     k = next(k for k, t in enumerate(orb.t) if t > orb.sticking[0][0]) - 1
-    acc = accumulation(orb.phi[k], orb.v[k], mp.mpf(eps), mp.mpf(r), 50)
+    acc = accumulation(*internal(orb.phi[k], orb.v[k], eps, r), 50)
     ref = verify.orbit(orb.phi[k], orb.v[k], eps, 400, dps=70, restitution=r)
     tail = ref.sticking[0][0]
     assert acc.enclosure[0] <= tail <= acc.enclosure[1]
@@ -60,9 +68,9 @@ def test_tail_enclosure_contains_the_tail_from_more_impacts():
 def test_tail_is_not_summed_before_w_is_tiny():
     eps, r = 1.5, 0.8
     phi0, v0 = _start(2.0, 1e-6, eps)
-    assert accumulation(phi0, v0, mp.mpf(eps), mp.mpf(r), 50) is None  # q*T0 ~ 1e-18 > 1e-50
+    assert accumulation(*internal(phi0, v0, eps, r), 50) is None  # q*T0 ~ 1e-18 > 1e-50
     phi0, v0 = _start(0.3, 1e-20, eps)  # eps*cos(0.3) > 1: the plate pulls away, no tail
-    assert accumulation(phi0, v0, mp.mpf(eps), mp.mpf(r), 50) is None
+    assert accumulation(*internal(phi0, v0, eps, r), 50) is None
 
 
 @pytest.mark.parametrize("eps, r, theta", [(1.5, 0.8, math.pi), (3.0, 0.5, math.pi),
@@ -82,7 +90,7 @@ def test_detaches_at_2pi_minus_arccos_one_over_eps(eps, r, theta):
         t_start, t_end = orb.sticking[0]
         j = next(k for k, t in enumerate(orb.t) if t > t_end)
         assert orb.t[j - 1] < t_start
-        phi1, v1, tau = detachment_step(mp.mpf(eps), mp.mpf(r), 50)
+        phi1, v1, tau = _detachment_step(eps, r)
         assert (orb.phi[j], orb.v[j]) == (phi1, v1)
         assert abs(orb.t[j] - (t_end + tau)) <= 4 * D50 * orb.t[j]
 
@@ -90,7 +98,7 @@ def test_detaches_at_2pi_minus_arccos_one_over_eps(eps, r, theta):
 @pytest.mark.parametrize("eps", [1.5, -1.5, 3.0, 1.01])
 def test_flight_from_detachment_is_the_first_root_of_the_closed_form(eps):
     """tau > t_c = 2*arccos(1/|eps|), d(tau) = 0 at 50 digits, d > 0 on a grid before it."""
-    _, _, tau = detachment_step(mp.mpf(eps), mp.mpf(0.5), 50)
+    _, _, tau = _detachment_step(eps, 0.5)
     with mp.workdps(70):
         s = mp.sqrt(mp.mpf(eps) ** 2 - 1)
 
@@ -102,7 +110,8 @@ def test_flight_from_detachment_is_the_first_root_of_the_closed_form(eps):
         assert tau > 2 * mp.acos(1 / mp.mpf(abs(eps)))
         assert all(d(tau * k / 400) > 0 for k in range(1, 400))
         # theta* + tau with v = sqrt(eps**2 - 1) from theta*: the elastic gap form agrees
-        theta = detachment_phase(mp.mpf(eps))
+        with working_dps(70):
+            theta = to_user(detachment_phase(*internal(eps)))
         gap = s * tau - tau**2 / 2 + eps * (mp.cos(theta) - mp.cos(theta + tau))
         assert abs(gap) <= 100 * D50 * (1 + abs(eps)) * tau
 
@@ -139,3 +148,19 @@ def test_eps_1_5_r_0_8_from_4_3_sticks_and_detaches():
         for _, t_end in orb.sticking:
             d = (phi0 + t_end - theta_star) % (2 * mp.pi)
             assert min(d, 2 * mp.pi - d) <= 8 * D50 * (1 + t_end)
+
+
+def test_a_plate_just_above_eps_one_detaches_and_the_orbit_runs_on():
+    """eps = 1 + 1e-10, r = 0.5 from (4, 3): the particle sticks, leaves at
+    theta* = 2*pi - arccos(1/eps) (1.4e-5 before 2*pi) with u = sqrt(eps**2 - 1) ~ 1.4e-5, and
+    the flight from there (5.7e-5 long, d' ~ 1e-14 at its root) is certified: the orbit makes
+    its collisions, every episode ending at theta*."""
+    eps = 1 + 1e-10
+    orb = verify.orbit(4.0, 3.0, eps, 100, dps=30, restitution=0.5)
+    assert orb.stopped == "collisions" and len(orb.phi) == 101 and len(orb.sticking) >= 2
+    with mp.workdps(40):
+        theta_star = 2 * mp.pi - mp.acos(1 / mp.mpf(eps))
+        for t_start, t_end in orb.sticking:
+            assert t_start < t_end
+            off = (mp.mpf(4.0) + t_end - theta_star) % (2 * mp.pi)
+            assert min(off, 2 * mp.pi - off) < 1e-25

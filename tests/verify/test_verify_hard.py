@@ -5,6 +5,7 @@ the hard-case table."""
 from __future__ import annotations
 
 import math
+import time
 from collections import Counter
 
 import pytest
@@ -12,9 +13,10 @@ from hypothesis import example, given, settings
 from mpmath import iv, mp
 
 import verify
-from tests.verify._cases import small_w0_velocity
+from tests.verify._cases import mpmath_dps, small_w0_velocity
 from verify import strategies as vs
 from verify.hard_cases import ALL_CASES, HARD_CASES, OVERFLOW_CASES
+from verify.numerics.inputs import exact_real
 from verify.numerics.phase import reduce_phase
 from verify.numerics.precision import hi, lo, working_dps
 
@@ -26,7 +28,7 @@ def _iv_gap(phi, v, eps, t, dps=120):
     """Independent interval evaluation of d(t), reducing phi at 2000 digits first."""
     with mp.workdps(2000):
         r = mp.mpf(phi) % (2 * mp.pi)
-    with working_dps(dps):
+    with mpmath_dps(dps):
         half = iv.mpf(t) / 2
         val = 2 * iv.mpf(eps) * iv.sin(iv.mpf(r) + half) * iv.sin(half)
         val += iv.mpf(t) * (iv.mpf(v) - half)
@@ -55,6 +57,54 @@ def test_triple_root_family_is_certified_at_two_x(case):
     assert (hi_ - lo_) / hi_ <= REL
 
 
+_TRIPLE_XS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
+_ABOVE_ONE = (1.0 + 2.0**-52, 1.0 + 1e-12, 1.0 + 1e-9, 1.0 + 1e-6)
+
+
+def _exact_w0(phi, v, eps):
+    with mpmath_dps(60):
+        return mp.mpf(v) + mp.mpf(eps) * mp.sin(mp.mpf(phi))
+
+
+def test_near_triple_roots_just_above_eps_one_are_certified_in_milliseconds():
+    """phi = -x, v = x (and phi = fl(pi - x) for eps < 0), x = 1e-3 .. 1e-8, |eps| = 1 + 2**-52
+    .. 1 + 1e-6: d has a near-triple root at 2x where d'' ~ |eps| - 1 is tiny (the global
+    curvature bound 1 + |eps| would make the candidate search crawl). Each departure is either
+    rejected as no departure (w0 <= 0, checked independently) or certified: d > 0 before the
+    enclosure (interval evaluations on a grid and at its lower end) and < 0 at its upper end,
+    all 48 within seconds in total (18 are departures)."""
+    start = time.perf_counter()
+    certified = 0
+    for x in _TRIPLE_XS:
+        for size in _ABOVE_ONE:
+            for phi, eps in ((-x, size), (math.pi - x, -size)):
+                if _exact_w0(phi, x, eps) <= 0:
+                    with pytest.raises(ValueError, match="no departure"):
+                        verify.certify_flight(phi, x, eps, DPS)
+                    continue
+                cert = verify.certify_flight(phi, x, eps, DPS)
+                _assert_certified(phi, x, eps, cert)
+                lo_ = cert.enclosure[0]
+                assert all(_iv_gap(phi, x, eps, lo_ * k / 32)[0] > 0 for k in range(1, 32))
+                certified += 1
+    assert certified == 18  # the departures of the table (w0 > 0 exactly)
+    assert time.perf_counter() - start < 20  # each flight takes milliseconds
+
+
+def test_a_near_triple_root_above_eps_one_is_its_first_root():
+    """eps = -(1 + 2**-52) at phi = fl(pi - 1e-4), v = 1e-4: the flight lands just before
+    2e-4 (the phase's rounding by -3.3e-16 moves this ill-conditioned root by 4e-7); the root
+    found independently (mpmath's findroot at 60 digits) and no earlier sign change."""
+    phi, v, eps = 3.141492653589793, 0.0001, -1.0000000000000002
+    tau = verify.flight_time(phi, v, eps, dps=30)
+    with mpmath_dps(60):
+        d = lambda t: mp.mpf(eps) * (mp.cos(phi) - mp.cos(phi + t)) + t * (v - t / 2)  # noqa
+        root = mp.findroot(d, mp.mpf(2e-4) * (1 - mp.mpf(1e-3)))
+        assert abs(tau - root) < 1e-29 * root
+        assert all(d(root * k / 64) > 0 for k in range(1, 64))
+    assert 1.99e-4 < tau < 2e-4
+
+
 @pytest.mark.parametrize("eps", [1.0 - 1e-12, 1.0 - 1e-6, 1.0, -1.0, 1.0 + 1e-12, 1.0 + 1e-6])
 @pytest.mark.parametrize("phi, v", [(-0.01, 0.01), (4.0, 3.0), (0.3, None), (2.0, 50.0)])
 def test_eps_near_one_is_certified(phi, v, eps):
@@ -73,7 +123,7 @@ def test_eps_one_uses_the_concave_certificate():
 @pytest.mark.parametrize("phi", [1e12, 1e17, 1e300, -1e300, 1.7976931348623157e308])
 def test_reduce_phase_is_exact_and_its_precision_grows_with_the_exponent(phi):
     with working_dps(60) as prec:
-        red = reduce_phase(mp.mpf(phi), prec)
+        red = reduce_phase(exact_real("phi", phi), prec)
         r_lo, r_hi = lo(red.enclosure), hi(red.enclosure)
     assert red.work_bits >= prec + math.frexp(abs(phi))[1]
     with mp.workdps(2000):

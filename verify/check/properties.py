@@ -50,7 +50,7 @@ class Checker:
         except UndecidableCollision:
             return None
         with mp.workdps(WORK_DPS):
-            kappa = condition_number(phi, v, eps, cert.tau)
+            kappa = condition_number(phi, v, eps, cert.tau, reduced=False)
         if not mp.isfinite(kappa):
             return None
         return cert.tau, kappa
@@ -124,7 +124,7 @@ class Checker:
         m = round(v / math.pi)
         with mp.workdps(WORK_DPS):
             tau_exact = 2 * mpf(v)  # exact root of the float input up to ~eps*(v-pi*m)**2/v
-            kappa = condition_number(phi, v, eps, tau_exact)
+            kappa = condition_number(phi, v, eps, tau_exact, reduced=False)
             tau_tol, phi1_tol, v1_tol = map_tolerances(self.k, phi, v, eps, tau_exact, kappa)
             phi1_exact = tau_exact % (2 * mp.pi)
             v1_exact = tau_exact - mpf(v) - 2 * mpf(eps) * mp.sin(tau_exact)
@@ -198,7 +198,7 @@ class Checker:
                               "step")
         with mp.workdps(WORK_DPS):
             P, V, E, P1, V1, T = (mpf(x) for x in (phi, v, eps, phi1, v1, tau))
-            kappa = condition_number(phi, v, eps, tau)
+            kappa = condition_number(phi, v, eps, tau, reduced=False)
             if not mp.isfinite(kappa):
                 return DISCARD
             tau_tol, phi1_tol, v1_tol = map_tolerances(self.k, phi, v, eps, T, kappa)
@@ -229,7 +229,7 @@ class Checker:
                               bad.message)
         with mp.workdps(WORK_DPS):
             T = mpf(tau)
-            kappa = condition_number(phi, v, eps, tau)
+            kappa = condition_number(phi, v, eps, tau, reduced=False)
             slack = self.k * kappa * U * T if mp.isfinite(kappa) else mp.inf
             bound = 4 * abs(mpf(eps)) / T
             dev = abs(T - 2 * mpf(v))

@@ -1,6 +1,8 @@
 """The tolerance model: errors in units of ``kappa*u`` (``u = 2**-53``, ``kappa`` =
-:func:`verify.condition_number`), the tolerances of a float64 step's ``(tau, phi1, v1)``, the
-rounding of a float phase, and the central-difference Jacobian's step and tolerance."""
+:func:`verify.condition_number` of the phase as given, ``reduced=False``: a user's integrator
+may add ``phi + t`` in floating point), the tolerances of a float64 step's ``(tau, phi1, v1)``,
+the rounding of an exactly reduced float phase, and the central-difference Jacobian's step and
+tolerance."""
 
 from __future__ import annotations
 
@@ -23,21 +25,31 @@ def kappa_numerator(phi, v, eps, tau):
     return abs(mpf(v)) + tau + abs(mpf(eps)) * (1 + abs(mpf(phi)) + tau)
 
 
-def phase_rounding(k, phi, tau) -> float:
-    """Rounding of a float phase (phi + tau) mod 2*pi beside the tau error: k/2 ulps of
-    |phi| + tau + 2*pi (a sum and up to two reductions, each a few ulps; 8 ulps at k = 16)."""
-    return k / 2 * math.ulp(abs(float(phi)) + abs(float(tau)) + TWO_PI)
+def phase_rounding(k) -> float:
+    """Rounding of a float phase ``phi1 = (phi + tau) mod 2*pi`` beside the flight time's error:
+    ``k/2`` ulps of ``4*pi``. An integrator that reduces ``phi`` and ``tau`` modulo 2*pi exactly
+    (as verify and fastpath do) adds two reduced phases (< 4*pi together) and reduces once:
+    a few ulps of 4*pi, at any ``|phi|`` and any ``tau`` (8 ulps = 1.4e-14 at k = 16). It is
+    not ulps of ``|phi| + tau``: those grow with the flight and pass, unnoticed, the loss of
+    the departure phase in a rounded sum ``phi + tau`` (at ``tau ~ 2**51`` they exceed 2*pi)."""
+    return k / 2 * math.ulp(2 * TWO_PI)
 
 
-def map_tolerances(k, phi, v, eps, tau, kappa):
-    """(tau, phi1, v1) tolerances of a float64 step (the fastpath suite's derivation, with k):
-    phi1 carries the tau error and the phase rounding; v1 = tau - v - 2*eps*sin(phi1) carries
-    the tau error with weight 1 + 2|eps|, the phase rounding with weight 2|eps| and k/4 ulps of
-    its terms."""
+def map_tolerances(k, phi, v, eps, tau, kappa, tau_error=None):
+    """(tau, phi1, v1) tolerances of a float64 step (the fastpath suite's derivation, with k).
+
+    ``tau``: ``k*kappa*u*tau``. ``phi1``: the flight time's error plus :func:`phase_rounding`;
+    where the integrator's step has returned its ``tau``, pass ``tau_error = tau_step -
+    tau_exact`` (the error it made): then ``phi1`` is held to that error plus the rounding of
+    the exact reduced phase, so a phase that lost more than its own flight time's error (a
+    rounded sum ``phi + tau``) fails even where ``k*kappa*u*tau`` exceeds 2*pi; without it,
+    ``k*kappa*u*tau`` stands for the error. ``v1 = tau - v - 2*eps*sin(phi1)`` carries the tau
+    tolerance with weight ``1 + 2|eps|``, the phase rounding with weight ``2|eps|`` and ``k/4``
+    ulps of its terms."""
     tau_tol = float(k * kappa * U * tau) if mp.isfinite(kappa) else math.inf
-    phase = phase_rounding(k, phi, tau)
+    phase = phase_rounding(k)
     e2 = 2.0 * abs(float(eps))
-    phi1_tol = tau_tol + phase
+    phi1_tol = (tau_tol if tau_error is None else abs(float(tau_error))) + phase
     v1_tol = (1.0 + e2) * tau_tol + e2 * phase + k / 4 * math.ulp(
         abs(float(tau)) + abs(float(v)) + e2
     )

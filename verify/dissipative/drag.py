@@ -18,9 +18,13 @@ The particle obeys ``y'' = -1 - eta(y')`` with ``eta(V) = k*V`` ("linear") or ``
              Y = ln(cos(atan(s*v) - B)/cos(atan(s*v)))/k = (x/k)*L(x),
              x/k = (sin(B)/s)*(v - tan(B/2)/s)
              [A = atan(s*v): cos(A-B)/cos(A) - 1 = sin(B)*(tan(A) - tan(B/2))]
-      falling from the start (-1/s < v <= 0; V = -tanh(atanh(-s*v) + B)/s):
+      falling from the start (v <= 0; V = -tanh(atanh(-s*v) + B)/s above the terminal
+      velocity -1/s, V = -coth(acoth(-s*v) + B)/s at or below it: the same formulas):
              V = (v - tanh(B)/s) / (1 - k*v*tanh(B)/s)
-             Y = -ln(cosh(A+B)/cosh(A))/k = -(x/k)*L(x),  x/k = (sinh(B)/s)*(tanh(B/2)/s - v)
+             Y = -ln(cosh(B)*(1 - s*v*tanh(B)))/k = -(x/k)*L(x),
+             x/k = (sinh(B)/s)*(tanh(B/2)/s - v)
+             [cosh(A+B)/cosh(A) = sinh(A'+B)/sinh(A') = cosh(B)*(1 - s*v*tanh(B)) for
+              A = atanh(-s*v), A' = acoth(-s*v); 1 - s*v*tanh(B) > 0 for every v <= 0]
       falling after the top (v > 0, t >= t_top): the v = 0 formulas at t - t_top, plus
              Y(t_top) = log1p(k*v**2)/(2*k) = (v**2/2)*L(k*v**2).
 
@@ -28,8 +32,8 @@ Every quotient by ``s`` or ``k`` is formed from ``sin(B)/s``-type factors that a
 cancellation (``sin``, ``tan`` to full relative precision; ``sinh`` by its series for small
 arguments), so ``k -> 0`` gives ``V = v - t``, ``Y = t*(v - t/2)`` smoothly; ``k = 0`` is exactly
 that. A quadratic-drag departure at or below the terminal velocity (``v <= -1/s``, possible only
-after an impact with ``k*eps**2 > 1``) is rejected with ``ValueError``: its ``coth`` branch is not
-implemented.
+after an impact with ``k*eps**2 > 1``) decelerates towards ``-1/s``; the formulas above hold
+for it unchanged (every ``v`` is accepted).
 
 Rigour: only ``iv``'s outward-rounded primitives (``exp``, ``ln``, ``sin``, ``cos``, ``tan``,
 ``sqrt``, ``atan2``) and arithmetic are used; series are summed in ``iv`` and their truncation is
@@ -46,12 +50,11 @@ from __future__ import annotations
 from fractions import Fraction
 
 import mpmath
-from mpmath import iv, mp
 
 from ..numerics.inputs import check_dps, exact_real
-from ..numerics.precision import GUARD_DPS, NotDecided, hi, lo, working_dps
+from ..numerics.precision import GUARD_DPS, NotDecided, hi, iv, lo, mp, to_user, working_dps
 
-_SERIES_MAX = mp.mpf(1) / 2  # series below this |argument|, closed forms above
+_SERIES_MAX = 0.5  # series below this |argument|, closed forms above (compared exactly)
 
 
 def _hull(a, b):
@@ -299,7 +302,8 @@ def _rising(flight, it):
 
 
 def _falling(flight, it, v):
-    """Falling from velocity ``v`` (``-1/s < v <= 0``) for the time ``it`` (an interval)."""
+    """Falling from velocity ``v <= 0`` (above, at or below the terminal velocity ``-1/s``) for
+    the time ``it`` (an interval)."""
     s = flight.s
     b = s * it
     cosh_b = (iv.exp(b) + iv.exp(-b)) / 2
@@ -333,15 +337,6 @@ class DragFlight:
         self.s = iv.sqrt(self.iv_k)
         self.t_top = None
         if self.law is QuadraticDrag and k > 0:
-            if not hasattr(v, "_mpf_"):
-                if hi(v) < 0 and not hi(self.iv_k * v * v) < 1:
-                    raise NotDecided("departure box at or below the terminal velocity")
-            elif v < 0 and k * v * v >= 1:  # exact: at or below the terminal velocity -1/s
-                raise ValueError(
-                    "quadratic drag: departure at or below the terminal velocity "
-                    f"(v <= -1/sqrt(k)) is not supported, got v={mp.nstr(self.v, 17)}, "
-                    f"drag={mp.nstr(k, 17)}"
-                )
             self.t_top = self.law.top_time(self)
 
     # --- the drag force --------------------------------------------------------------------
@@ -386,4 +381,4 @@ def motion(v, t, drag, drag_law: str = "linear", dps: int = 50) -> tuple[mpmath.
         disp, vel = DragFlight(v_, k, law).motion(t_)
         y, u = (lo(disp) + hi(disp)) / 2, (lo(vel) + hi(vel)) / 2
     with working_dps(dps):
-        return +y, +u
+        return to_user((+y, +u))

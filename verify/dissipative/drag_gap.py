@@ -14,7 +14,7 @@ velocity ``v``)::
 * ``V`` is monotone during a flight and ``eta`` increasing, so ``eta(V(t))`` lies between
   ``eta(v)`` and ``eta(V(T))`` on ``[0, T]``. Hence ``-d'' <= a = max(1 + eta(v), 0) + |eps|``
   (:meth:`DragGap.curvature_bound`): if ``V`` decreases, ``eta(V) <= eta(v)``; if it
-  increases (linear drag below the terminal velocity), ``1 + eta(V) <= 0``. With ``w0 > 0``,
+  increases (either law below its terminal velocity), ``1 + eta(V) <= 0``. With ``w0 > 0``,
   ``d(t) >= w0*t - a*t**2/2 > 0`` on ``(0, 2*w0/a)``: the analytic start. The paper's
   lower-bound step uses this ``a``.
 * Concavity on ``[0, T]`` (:meth:`DragGap.concave_on`): ``d'' <= -1 - min(eta(v), eta(V(T)))
@@ -30,11 +30,9 @@ velocity ``v``)::
 
 from __future__ import annotations
 
-from mpmath import iv, mp
-
 from ..numerics.first_root import local_candidate, search_first_root
 from ..numerics.phase import reduce_phase
-from ..numerics.precision import NotDecided, hi, lo
+from ..numerics.precision import NotDecided, hi, iv, lo, mp
 from .drag import DragFlight
 
 _HALVINGS = 200  # tries for the opening box of a departure at rest
@@ -71,7 +69,22 @@ class DragGap:
         return disp + plate, vel + self.ieps * iv.sin(self.iphi + ia)
 
     def curvature(self, a, b):
-        """Enclosure of ``d''`` over ``[a, b]`` (``V`` over the box from its ends)."""
+        """Enclosure of the gap's second derivative over ``[a, b]``: the interval value
+        (``V`` over the box from its ends) intersected, on a box of positive width, with the
+        mean-value form (the value at the midpoint ``m`` plus :meth:`third` over the box times
+        ``[a, b] - m``). The interval value overestimates by the box's width (``eta(V)`` and
+        ``eps*cos`` move together along the flight, their enclosures do not), the mean-value
+        form by its square: where the curvature is nearly constant (a flight from detachment
+        with ``E`` next to 1, curvature ~1e-16) only the latter resolves it. (Computed only
+        where the interval value leaves the sign undecided.)"""
+        box = self._curvature(a, b)
+        if a == b or not lo(box) <= 0 <= hi(box):  # the sign is decided: enough as it is
+            return box
+        m = (a + b) / 2
+        centred = self._curvature(m, m) + self.third(a, b) * (iv.mpf([a, b]) - m)
+        return iv.mpf([max(lo(box), lo(centred)), min(hi(box), hi(centred))])
+
+    def _curvature(self, a, b):
         vel = self.flight.velocity_box(a, b)
         return -1 - self.flight.eta(vel) + self.ieps * iv.cos(self.iphi + iv.mpf([a, b]))
 

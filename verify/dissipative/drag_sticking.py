@@ -68,14 +68,15 @@ Where it can leave, the detachment phase theta* and the end theta_2 of the arc w
 isolated in iv (:func:`_isolate`): boxes Theta*, Theta_2 with a(lo) > 0 > a(hi), a' < 0 on
 Theta* (one simple falling root) and a(lo) < 0 < a(hi), a' > 0 on Theta_2. Candidates (not
 rigorous): linear theta* = beta' - alpha, theta_2 = beta' + alpha, alpha = arccos(1/E) =
-atan(sqrt(E**2 - 1)) (the closed form of the brief: theta* = atan(k) - arccos(1/E) mod 2*pi for
+atan(sqrt(E**2 - 1)) (the closed form: theta* = atan(k) - arccos(1/E) mod 2*pi for
 eps > 0, + pi for eps < 0); quadratic by bisection of f - 1 on its increasing branch
 [theta'_min, theta'_max] and decreasing branch [theta'_max, theta'_min + 2*pi] (theta'_max =
 arccos(1/(2ke)), theta'_min = -arccos(-1/(2ke)) if 2ke > 1, else 0 and -pi; f' =
 sin*(2k*e**2*c - e) on sin > 0, |sin|*(e + 2k*e**2*c) on sin < 0). Then :func:`_prove_arc`
 proves a < 0 on (theta*, theta_2) and a > 0 on (theta_2, theta* + 2*pi) in iv: monotone pieces
 next to each root (a' of one sign on [lo(Theta), hi(Theta) + delta], a vanishing at the root
-inside) and boxes with a proved sign in between. So the sign of a over a whole period is
+inside) and boxes with a proved sign in between (:func:`_has_sign`: the interval value of a,
+or its mean-value form). So the sign of a over a whole period is
 PROVED: a ride that starts where a > 0 (the accumulation phase, where a >= a_lo > 0 is proved by
 step 1) lasts until the next theta* (:func:`riding_time`), and never ends in the middle of the
 arc where the plate already pulls away. Undecided (E within ~10**-wdps of 1, where the two
@@ -97,26 +98,29 @@ valid for all departures in the box, the exact one included.
 
 from __future__ import annotations
 
+import threading
 from fractions import Fraction
 from typing import NamedTuple
 
-from mpmath import iv, mp
-
+from ..elastic.gap import departure_speed
 from ..errors import ChatteringDetected, UndecidableCollision
 from ..numerics.first_root import local_candidate, search_first_root
-from ..numerics.phase import reduce_phase
+from ..numerics.phase import reduce_phase, time_until
 from ..numerics.precision import (
     GUARD_DPS,
     NotDecided,
     default_max_dps,
     escalate,
     hi,
+    iv,
     lo,
     mid,
+    mp,
     working_dps,
 )
 from .drag import LAWS, DragFlight
 from .drag_gap import DragGap
+from .impact import Impact, detachment_impact, landing
 from .sticking import WINDOW, Accumulation, geometric_enclosure
 
 _MAX_DEPTH = 60  # halvings of a box in the sign proofs of the riding force
@@ -148,21 +152,11 @@ def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
     (proved) and ``phase`` (theta + T) are returned at that precision.
     """
     with working_dps(dps + GUARD_DPS) as prec:
-        iphi = reduce_phase(phi, prec).enclosure
-        ieps, ik, ir = iv.mpf(eps), iv.mpf(k), iv.mpf(r)
-        iw = iv.mpf(v) + ieps * iv.sin(iphi)
-        ia = _force(ieps, ik, law, iphi)
-        if not (lo(iw) > 0 and lo(ia) > 0 and r < 1):
+        model = _tail_model(phi, v, eps, k, law, r, prec)
+        if model is None or not model.q * model.t0 <= mp.mpf(10) ** (-dps):
             return None
-        w, a = mid(iw), mid(ia)
-        u = -eps * mp.sin(mid(iphi))
-        c, a2, p2 = LAWS[law].tail_terms(eps, k, u)
-        jerk = c * eps * mp.cos(mid(iphi)) - eps * mp.sin(mid(iphi))
-        t0 = 2 * w / (a * (1 - r))
-        q = t0**2 * (jerk**2 / a**2 + abs(jerk) * c / a + c**2 + a2 / a + p2 * a)
-        if not q * t0 <= mp.mpf(10) ** (-dps):
-            return None
-        enclosure = _enclosure(iphi, iw, ieps, ik, law, ir, WINDOW * t0)
+        iphi, iw, w, a, jerk, c, t0, q = model
+        enclosure = _enclosure(iphi, iw, iv.mpf(eps), iv.mpf(k), law, iv.mpf(r), WINDOW * t0)
         if enclosure is None:
             return None
         tail = t0 + jerk * t0**2 / (3 * a) - c * t0**2 / 6
@@ -173,6 +167,38 @@ def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
                 f"(phi={phi}, v={v}, drag={k}, {law})"
             )
         return Accumulation(tail, enclosure, mid(iphi) + tail)
+
+
+class _TailModel(NamedTuple):
+    """The accumulation model's terms after an impact (module docstring, 1.): the phase and
+    ``w`` enclosures, ``w``, the riding force ``a``, ``J``, ``c = eta'(u)``, ``T0`` and
+    ``q`` (the tail's relative second-order term over ``T0``)."""
+
+    iphi: object
+    iw: object
+    w: object
+    a: object
+    jerk: object
+    c: object
+    t0: object
+    q: object
+
+
+def _tail_model(phi, v, eps, k, law, r, prec) -> _TailModel | None:
+    """:class:`_TailModel` at the current precision ``prec``, or None unless ``w > 0`` and
+    ``a > 0`` are proved and ``r < 1``."""
+    iphi = reduce_phase(phi, prec).enclosure
+    iw = departure_speed(phi, v, eps, prec)  # w to prec bits of itself
+    ia = _force(iv.mpf(eps), iv.mpf(k), law, iphi)
+    if not (lo(iw) > 0 and lo(ia) > 0 and r < 1):
+        return None
+    w, a = mid(iw), mid(ia)
+    u = -eps * mp.sin(mid(iphi))
+    c, a2, p2 = LAWS[law].tail_terms(eps, k, u)
+    jerk = c * eps * mp.cos(mid(iphi)) - eps * mp.sin(mid(iphi))
+    t0 = 2 * w / (a * (1 - r))
+    q = t0**2 * (jerk**2 / a**2 + abs(jerk) * c / a + c**2 + a2 / a + p2 * a)
+    return _TailModel(iphi, iw, w, a, jerk, c, t0, q)
 
 
 def _enclosure(iphi, iw, ieps, ik, law, ir, window):
@@ -245,15 +271,29 @@ def _prove_arc(ieps, ik, law, left, right, sign):
     boxes = 0
     while stack:
         a, b, depth = stack.pop()
-        val = _force(ieps, ik, law, iv.mpf([a, b]))
         boxes += 1
-        if (lo(val) > 0) if sign > 0 else (hi(val) < 0):
+        if _has_sign(ieps, ik, law, a, b, sign):
             continue
         if depth >= _MAX_DEPTH or boxes >= _MAX_ARC_BOXES:
             raise NotDecided(f"sign of the riding force not proved on [{mp.nstr(a, 15)}, "
                              f"{mp.nstr(b, 15)}]")
         m = (a + b) / 2
         stack += [(a, m, depth + 1), (m, b, depth + 1)]
+
+
+def _has_sign(ieps, ik, law, a, b, sign) -> bool:
+    """``sign*a(theta) > 0`` proved on ``[a, b]``: by the interval value of ``a`` over the box,
+    else by the mean-value form ``a(m) + a'([a, b])*([a, b] - m)`` (``m`` the midpoint), whose
+    overestimate is second order in the box's width: near the arc's extremum, where ``a`` is
+    within ~1e-16 of 0 (``E`` just above 1), the plain interval value would need boxes of that
+    width."""
+    box = iv.mpf([a, b])
+    val = _force(ieps, ik, law, box)
+    if (lo(val) > 0) if sign > 0 else (hi(val) < 0):
+        return True
+    m = (a + b) / 2
+    val = _force(ieps, ik, law, iv.mpf(m)) + _force_slope(ieps, ik, law, box) * (box - m)
+    return (lo(val) > 0) if sign > 0 else (hi(val) < 0)
 
 
 def _monotone_end(ieps, ik, law, outer, inner, span, slope_sign, direction):
@@ -268,9 +308,6 @@ def _monotone_end(ieps, ik, law, outer, inner, span, slope_sign, direction):
             return end
         delta /= 2
     return inner
-
-
-_RIDING_CACHE: dict = {}
 
 
 def _riding_at(eps, k, law) -> Riding:
@@ -289,14 +326,15 @@ def riding(eps, k, law, dps: int, max_dps: int | None = None) -> Riding | None:
     """The sign structure of the riding force (module docstring, 2.): None when the particle
     never leaves the plate (decided exactly), else a :class:`Riding` proved at the first
     precision from ``dps + 10`` digits that decides it (doubled up to ``max_dps``, default
-    ``max(4*dps, 400)``); :class:`UndecidableCollision` beyond. Cached per inputs."""
+    ``max(4*dps, 400)``); :class:`UndecidableCollision` beyond. Cached per inputs and thread."""
     if not leaves_plate_with_drag(eps, k, law):
         return None
     key = (eps, k, law, dps)
-    if key not in _RIDING_CACHE:
-        _RIDING_CACHE[key] = _escalate(lambda wdps: _riding_at(eps, k, law), eps, k, law, dps,
-                                       max_dps, "detachment")
-    return _RIDING_CACHE[key]
+    cache = _caches.ridings
+    if key not in cache:
+        cache[key] = _escalate(lambda wdps: _riding_at(eps, k, law), eps, k, law, dps, max_dps,
+                               "detachment")
+    return cache[key]
 
 
 def _escalate(attempt, eps, k, law, dps, max_dps, what):
@@ -305,9 +343,7 @@ def _escalate(attempt, eps, k, law, dps, max_dps, what):
     max_dps = default_max_dps(dps) if max_dps is None else max_dps
 
     def undecidable(wdps, why):
-        with working_dps(wdps):
-            return UndecidableCollision(mp.nan, mp.nan, eps, wdps,
-                                        f"{what} with drag={k} ({law}): {why}")
+        return UndecidableCollision(None, None, eps, wdps, f"{what} with drag={k} ({law}): {why}")
 
     return escalate(attempt, dps, max_dps, undecidable)
 
@@ -315,61 +351,57 @@ def _escalate(attempt, eps, k, law, dps, max_dps, what):
 def riding_time(phase, ride: Riding):
     """Time riding the plate from ``phase`` (where a > 0 is proved) to the next theta*:
     ``(theta* - phase) mod 2*pi`` in ``(0, 2*pi]`` at the current precision."""
-    two_pi = 2 * mp.pi
-    d = mid(ride.theta_star) - phase
-    d -= two_pi * mp.floor(d / two_pi)
-    return d if d > 0 else two_pi
+    return time_until(mid(ride.theta_star), phase)
 
 
 # --- 3. the flight from detachment ---------------------------------------------------------------
-def drag_detachment_flight(eps, k, law, dps: int, max_dps: int | None = None):
-    """``(ride, lo, hi, wdps)``: the proved enclosure ``(lo, hi)`` of the first root of the gap
-    from detachment (module docstring, 3.) and the :class:`Riding` it started from, both at the
-    working digits ``wdps`` (raised as :func:`verify.certify_flight` does);
-    :class:`UndecidableCollision` at ``max_dps``. The gap is :class:`verify.dissipative.
-    drag_gap.DragGap` from the phase box theta* and the velocity box ``u(theta*)``."""
-    def attempt(wdps):
-        ride = _riding_at(eps, k, law)
-        ith = ride.theta_star
-        ieps = iv.mpf(eps)
-        ctx = DragGap(mid(ith), ith, -ieps * iv.sin(ith), eps, k, law, dps, wdps)
-        left, right, _, _ = search_first_root(ctx, ctx.curvature_bound(), ride.free, None,
-                                              candidate=local_candidate)
-        return ride, left, right, wdps
-
-    return _escalate(attempt, eps, k, law, dps, max_dps, "flight from detachment")
-
-
-_STEP_CACHE: dict = {}
-
-
-def drag_detachment_step(eps, k, law, r, dps: int):
-    """``(phi1, v1, tau)``: the impact ending the flight from detachment (the same after every
-    episode, cached). ``tau`` is the midpoint of the proved enclosure; ``theta = theta* + tau``
-    (theta* the midpoint of its box), ``v_in = V(tau)`` of the flight from ``u(theta*)``,
-    ``u = -eps*sin(theta)``, ``v1 = (1 + r)*u - r*v_in``; phase reduced to ``[0, 2*pi)``; all at
-    the certificate's precision, rounded to ``dps``."""
+def drag_detachment_step(eps, k, law, r, dps: int, max_dps: int | None = None) -> Impact:
+    """The impact ending the flight from detachment (module docstring, 3.), as an
+    :class:`verify.dissipative.impact.Impact` (the same after every episode: cached per
+    thread). The gap is :class:`verify.dissipative.drag_gap.DragGap` from the phase box theta*
+    and the velocity box ``u(theta*)``; the first root's enclosure
+    (:func:`verify.dissipative.impact.detachment_impact`) and the box flight's ``V`` over it give
+    the impact (:func:`verify.dissipative.impact.landing`). The precision is raised as
+    :func:`verify.certify_flight` does until the phase and velocity are known to ``dps`` digits;
+    :class:`UndecidableCollision` at ``max_dps``."""
     key = (eps, k, law, r, dps)
-    if key in _STEP_CACHE:
-        return _STEP_CACHE[key]
-    ride, left, right, wdps = drag_detachment_flight(eps, k, law, dps)
-    with working_dps(wdps + GUARD_DPS):
-        tau = (left + right) / 2
-        theta_star = mid(ride.theta_star)
-        theta = theta_star + tau
-        v_star = -eps * mp.sin(theta_star)
-        flight = DragFlight(v_star, k, law)
-        v_in = mid(flight.velocity(tau))
-        u = -eps * mp.sin(theta)
-        v1 = (1 + r) * u - r * v_in
-        two_pi = 2 * mp.pi
-        phi1 = theta - two_pi * mp.floor(theta / two_pi)
-    with working_dps(dps):
-        phi1, v1, tau = +phi1, +v1, +tau
-        if phi1 >= 2 * mp.pi:
-            phi1 = mp.zero
-    _STEP_CACHE[key] = (phi1, v1, tau)
-    return phi1, v1, tau
+    cache = _caches.steps
+    if key not in cache:
+        digits = [dps + 3]  # the flight time's relative digits, kept from attempt to attempt
+
+        def attempt(wdps):
+            ride = _riding_at(eps, k, law)
+            ith = ride.theta_star
+            ieps = iv.mpf(eps)
+
+            flight = DragGap(mid(ith), ith, -ieps * iv.sin(ith), eps, k, law, dps, wdps).flight
+
+            def search(enclosure_digits):
+                ctx = DragGap(mid(ith), ith, -ieps * iv.sin(ith), eps, k, law, enclosure_digits,
+                              wdps)
+                return search_first_root(ctx, ctx.curvature_bound(), ride.free, None,
+                                         candidate=local_candidate)[:2]
+
+            def landing_of(left, right):
+                v_in = flight.velocity_box(left, right)
+                return landing(ith, iv.mpf([left, right]), v_in, eps, r)
+
+            hit, digits[0] = detachment_impact(search, landing_of, eps, digits[0], dps)
+            return hit
+
+        cache[key] = _escalate(attempt, eps, k, law, dps, max_dps, "flight from detachment")
+    return cache[key]
+
+
+class _Caches(threading.local):
+    """Per-thread caches (their numbers belong to the thread's own mpmath context)."""
+
+    def __init__(self) -> None:
+        self.ridings: dict = {}
+        self.steps: dict = {}
+
+
+_caches = _Caches()
 
 
 class DragSticking:
@@ -391,18 +423,28 @@ class DragSticking:
     def riding_time(self, phase):
         return riding_time(phase, riding(self.eps, self.k, self.law, self.dps))
 
-    def detachment_step(self):
+    def detachment_step(self) -> Impact:
         return drag_detachment_step(self.eps, self.k, self.law, self.r, self.dps)
 
     def check_chattering(self, n: int, t, phi, v) -> None:
         """:class:`verify.ChatteringDetected` after collision ``n`` when the relative velocity
-        ``w = v + eps*sin(phi)`` fell below ``w_min = 10**(-dps//2)*(1 + |v| + |eps|)`` (far
-        below where :func:`drag_accumulation` sums a tail, ``w ~ 10**(-dps/3)``) while
-        ``d''(0) < 0`` is proved (the plate pulls the particle back)."""
+        ``w = v + eps*sin(phi)`` fell far below where :func:`drag_accumulation` would sum the
+        tail, while ``d''(0) < 0`` is proved (the plate pulls the particle back). "Far below":
+        ``w < w_min = min(10**(-dps//2)*(1 + |v| + |eps|), w_tail*10**(-dps//6))``, ``w_tail``
+        the relative velocity at which the model's ``q*T0`` reaches ``10**-dps`` with the
+        riding force ``a`` and jerk at this impact (``w_tail ~ 10**(-dps/3)`` for ``a ~ 1``,
+        much smaller where ``a`` is small, e.g. just after the phase where the plate stops
+        pulling away, ``E`` close to 1)."""
         eps, dps = self.eps, self.dps
-        with working_dps(dps + GUARD_DPS):
+        with working_dps(dps + GUARD_DPS) as prec:
             w_min = mp.mpf(10) ** (-(dps // 2)) * (1 + abs(v) + abs(eps))
-            w = iv.mpf(v) + iv.mpf(eps) * iv.sin(iv.mpf(phi))
+            model = _tail_model(phi, v, eps, self.k, self.law, self.r, prec)
+            if model is not None:
+                t0_tail = (mp.mpf(10) ** (-dps) * model.t0**3 / (model.q * model.t0)) ** (
+                    mp.one / 3)
+                w_tail = model.w * t0_tail / model.t0
+                w_min = min(w_min, w_tail * mp.mpf(10) ** (-(dps // 6)))
+            w = departure_speed(phi, v, eps, prec)
             if hi(w) >= w_min:
                 return
             flight = DragFlight(v, self.k, self.law)

@@ -3,7 +3,8 @@
 ``Physics(drag, drag_law, restitution)``: the drag ``k >= 0`` with its law (a name in
 :data:`verify.dissipative.drag.LAWS`: the force ``eta(V)`` in ``y'' = -1 - eta(y')``) and the
 coefficient of restitution ``r`` in ``(0, 1]`` of the impact law ``v1 - u = -r*(v_in - u)``
-(``u`` the plate's velocity). ``Physics()`` is the elastic, friction-free bouncer of the paper.
+(``u`` the plate's velocity). ``check_physics()`` is the elastic, friction-free bouncer of the
+paper.
 The flight certificate (:func:`verify.certify_flight`), the map (:func:`verify.step`) and the
 orbit loop (:func:`verify.orbit`, through :func:`verify.dissipative.sticking_model.
 sticking_model`) all take this one value, so a new drag law added to
@@ -15,7 +16,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import mpmath
-from mpmath import mp
 
 from ..numerics.inputs import exact_real
 from .drag import LAWS, check_drag
@@ -24,9 +24,9 @@ from .drag import LAWS, check_drag
 class Physics(NamedTuple):
     """Validated physics: ``drag`` k as an exact ``mpf``, the law's name, restitution r."""
 
-    drag: mpmath.mpf = mp.zero
-    drag_law: str = "linear"
-    restitution: mpmath.mpf = mp.one
+    drag: mpmath.mpf
+    drag_law: str
+    restitution: mpmath.mpf
 
     @property
     def is_default(self) -> bool:

@@ -60,21 +60,24 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import mpmath
-from mpmath import iv, mp
 
+from ..elastic.gap import departure_speed
 from ..errors import UndecidableCollision
 from ..numerics.first_root import local_candidate, search_first_root
-from ..numerics.phase import reduce_phase
+from ..numerics.phase import reduce_phase, time_until
 from ..numerics.precision import (
     GUARD_DPS,
     NotDecided,
     default_max_dps,
     escalate,
     hi,
+    iv,
     lo,
     mid,
+    mp,
     working_dps,
 )
+from .impact import Impact, detachment_impact, landing
 
 WINDOW = 2  # the window H of the rigorous enclosure of an accumulation, in units of T0
 
@@ -89,7 +92,8 @@ class Accumulation(NamedTuple):
 
 
 def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
-    """The summed tail from the impact state ``(phi, v)`` (exact ``mpf``), or None when the
+    """The summed tail from the impact state ``(phi, v)`` (exact ``mpf``; ``w = v + eps*sin(phi)``
+    is evaluated to ``dps + 10`` digits of itself however small), or None when the
     module docstring's conditions (``q*T0 <= 10**-dps``, the enclosure proved) do not hold.
 
     Computed at ``dps + 10`` digits; ``tail`` and ``phase`` are returned at that precision.
@@ -97,7 +101,7 @@ def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
     with working_dps(dps + GUARD_DPS) as prec:
         iphi = reduce_phase(phi, prec).enclosure
         ieps, ir = iv.mpf(eps), iv.mpf(r)
-        iw = iv.mpf(v) + ieps * iv.sin(iphi)
+        iw = departure_speed(phi, v, eps, prec)  # w to dps + 10 digits of itself
         ia = 1 - ieps * iv.cos(iphi)
         if not (lo(iw) > 0 and lo(ia) > 0 and r < 1):
             return None
@@ -198,19 +202,43 @@ class DetachedGap:
         return 0
 
 
-def detachment_flight(eps, dps: int, max_dps: int | None = None):
-    """``(lo, hi)``: proved enclosure of the first root of the detachment gap (module docstring),
-    raising the precision as :func:`verify.certify_flight` does; :class:`UndecidableCollision`
-    when it stays undecided at ``max_dps`` (default ``max(4*dps, 400)``: ``|eps|`` within
-    ~10**(-dps/2) of 1, where d(t_c) ~ (8/3)*(|eps| - 1)**2 is below the working precision)."""
+def detachment_box(eps):
+    """``iv`` enclosures of theta* (module docstring) and of the plate's velocity there,
+    ``u(theta*) = sqrt(eps**2 - 1)``, at the current precision (``|eps| > 1``)."""
+    ieps = iv.mpf(eps)
+    speed = iv.sqrt(ieps * ieps - 1)
+    alpha = iv.atan2(speed, 1)  # arccos(1/|eps|)
+    theta = (2 * iv.pi if eps > 0 else iv.pi) - alpha
+    return theta, speed
+
+
+def detachment_step(eps, r, dps: int, max_dps: int | None = None) -> Impact:
+    """The impact ending the flight from detachment (module docstring), as an
+    :class:`verify.dissipative.impact.Impact`: the proved enclosure of the first root of the
+    detachment gap (:func:`verify.dissipative.impact.detachment_impact`), the impact of
+    :func:`verify.dissipative.impact.landing` from theta*, with ``v_in = sqrt(eps**2 - 1) -
+    tau``; the precision is raised (as :func:`verify.certify_flight` does) until the phase and
+    velocity are known to ``dps`` digits. :class:`UndecidableCollision` when it stays undecided
+    at ``max_dps`` (default ``max(4*dps, 400)``: ``|eps|`` within ~10**(-dps/2) of 1, where
+    d(t_c) ~ (8/3)*(|eps| - 1)**2 is below the working precision)."""
     max_dps = default_max_dps(dps) if max_dps is None else max_dps
+    digits = [dps + 3]  # the flight time's relative digits, kept from attempt to attempt
 
     def attempt(wdps):
-        ctx = DetachedGap(eps, dps, wdps)
-        free = lo(2 * iv.atan2(ctx.s, 1))  # lo(t_c): d > 0 on (0, free]
-        left, right, _, _ = search_first_root(ctx, 1 + abs(eps), free, None,
-                                              candidate=local_candidate)
-        return left, right
+        theta, speed = detachment_box(eps)
+
+        def search(enclosure_digits):
+            ctx = DetachedGap(eps, enclosure_digits, wdps)
+            free = lo(2 * iv.atan2(ctx.s, 1))  # lo(t_c): d > 0 on (0, free]
+            return search_first_root(ctx, 1 + abs(eps), free, None,
+                                     candidate=local_candidate)[:2]
+
+        def landing_of(left, right):
+            itau = iv.mpf([left, right])
+            return landing(theta, itau, speed - itau, eps, r)
+
+        hit, digits[0] = detachment_impact(search, landing_of, eps, digits[0], dps)
+        return hit
 
     def undecidable(wdps, why):
         with working_dps(wdps):
@@ -220,35 +248,10 @@ def detachment_flight(eps, dps: int, max_dps: int | None = None):
     return escalate(attempt, dps, max_dps, undecidable)
 
 
-def detachment_step(eps, r, dps: int):
-    """``(phi1, v1, tau)``: the impact ending the flight from detachment (module docstring).
-
-    ``tau`` is the midpoint of the proved enclosure; phase ``theta* + tau`` reduced to
-    ``[0, 2*pi)``, ``v_in = sqrt(eps**2 - 1) - tau``, ``u = -eps*sin(theta* + tau)``,
-    ``v1 = (1 + r)*u - r*v_in``; all at ``dps + 10`` digits, rounded to ``dps``.
-    """
-    left, right = detachment_flight(eps, dps)
-    with working_dps(dps + 2 * GUARD_DPS):
-        tau = (left + right) / 2
-        theta = detachment_phase(eps) + tau
-        u = -eps * mp.sin(theta)
-        v1 = (1 + r) * u - r * (detachment_velocity(eps) - tau)
-        two_pi = 2 * mp.pi
-        phi1 = theta - two_pi * mp.floor(theta / two_pi)
-    with working_dps(dps):
-        phi1, v1, tau = +phi1, +v1, +tau
-        if phi1 >= 2 * mp.pi:
-            phi1 = mp.zero
-    return phi1, v1, tau
-
-
 def time_to_detachment(phase, eps):
     """Time riding the plate from the accumulation phase to theta*: ``(theta* - phase) mod
     2*pi`` in ``(0, 2*pi]`` at the current precision."""
-    two_pi = 2 * mp.pi
-    d = detachment_phase(eps) - phase
-    d -= two_pi * mp.floor(d / two_pi)
-    return d if d > 0 else two_pi
+    return time_until(detachment_phase(eps), phase)
 
 
 class RestitutionSticking:
@@ -270,7 +273,7 @@ class RestitutionSticking:
     def riding_time(self, phase):
         return time_to_detachment(phase, self.eps)
 
-    def detachment_step(self):
+    def detachment_step(self) -> Impact:
         return detachment_step(self.eps, self.r, self.dps)
 
     def check_chattering(self, n: int, t, phi, v) -> None:

@@ -4,7 +4,8 @@ With restitution ``r < 1`` the impacts after a slow landing pile up: :func:`veri
 the model after each impact whether the rest of the chattering run can be summed
 (``accumulation``); if so the particle rides the plate from the accumulation point, either for
 good (``leaves_plate()`` false) or for ``riding_time(phase)`` up to the detachment phase, and
-the next impact is the one ending the flight from detachment (``detachment_step()``). Where no
+the next impact is the one ending the flight from detachment (``detachment_step()``, an
+:class:`verify.dissipative.impact.Impact`). Where no
 tail is summed, ``check_chattering`` may stop a run that crawls
 (:class:`verify.ChatteringDetected`). The two models: :class:`verify.dissipative.sticking.
 RestitutionSticking` (no drag) and :class:`verify.dissipative.drag_sticking.DragSticking`.
@@ -15,6 +16,7 @@ from __future__ import annotations
 from typing import Protocol
 
 from .drag_sticking import DragSticking
+from .impact import Impact
 from .physics import Physics
 from .sticking import Accumulation, RestitutionSticking
 
@@ -31,8 +33,8 @@ class StickingModel(Protocol):
     def riding_time(self, phase):
         """Time riding the plate from the accumulation ``phase`` to the detachment phase."""
 
-    def detachment_step(self):
-        """``(phi1, v1, tau)``: the impact ending the flight from detachment."""
+    def detachment_step(self) -> Impact:
+        """The impact ending the flight from detachment."""
 
     def check_chattering(self, n: int, t, phi, v) -> None:
         """Raise :class:`verify.ChatteringDetected` if the run after impact ``n`` crawls."""

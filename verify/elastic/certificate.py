@@ -15,12 +15,15 @@ precision on failure, :func:`verify.numerics.precision.escalate`):
    tested first; a wrong one is replaced by Newton from the bracket's right end or bisection.
 3. ``|eps| > 1``: the candidate-and-proof search of :mod:`verify.numerics.first_root`: a
    candidate root ``c`` from the lower-bound step of the paper (not rigorous; it never
-   oversteps a root), then, in ``iv`` with outward rounding, ``d > 0`` proved on ``(0, c -
-   delta]`` by Taylor-form boxes and ``d(c + delta) < 0``, ``delta = c*10**-dps``. Where
-   ``v**2 > 4|eps|`` the proved part jumps over ``(t_-, t_+)``, on which
-   ``d >= t*(v - t/2) - 2|eps| > 0``. A search that needs more than
-   :data:`verify.numerics.first_root.MAX_STEPS` candidate steps (a flight over very many plate
-   periods, e.g. ``v = 1e154, eps = 1e300``) raises ``ValueError`` instead of running for hours.
+   oversteps a root) with a local bound of ``-d''`` (an interval enclosure of ``d''`` over the
+   step's window, not the global ``1 + |eps|``: just above ``|eps| = 1`` the curvature near a
+   near-triple root is ~1e-15 and the global bound would crawl), then, in ``iv`` with outward
+   rounding, ``d > 0`` proved on ``(0, c - delta]`` by Taylor-form boxes and
+   ``d(c + delta) < 0``, ``delta = c*10**-dps``. Where ``v**2 > 4|eps|`` the proved part jumps
+   over ``(t_-, t_+)``, on which ``d >= t*(v - t/2) - 2|eps| > 0``. A search that needs more
+   than :data:`verify.numerics.first_root.MAX_STEPS` candidate steps (a flight over very many
+   plate periods, e.g. ``v = 1e154, eps = 1e300``) raises ``ValueError`` instead of running
+   for hours.
 
 The certificate does not rely on the correctness of the candidate search: a wrong candidate
 only makes the box or sign checks fail, which raises the precision and finally raises
@@ -33,18 +36,17 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import mpmath
-from mpmath import iv, mp
 
 from ..numerics.first_root import (
     MAX_STEPS,
-    global_candidate,
+    local_candidate,
     prove_positive,
     search_first_root,
 )
 from ..numerics.inputs import check_state, exact_real
 from ..numerics.phase import reduce_phase
-from ..numerics.precision import GUARD_DPS, NotDecided, hi, lo, working_dps
-from .conditioning import condition_number
+from ..numerics.precision import GUARD_DPS, NotDecided, hi, iv, lo, mp, working_dps
+from .conditioning import kappa
 from .gap import iv_gap, iv_gap_prime, iv_gap_second, mp_gap, mp_gap_prime
 
 _MAX_BISECTIONS = 4_000  # halvings of the concave bracket: enough for 1e-1000 relative width
@@ -111,13 +113,14 @@ def elastic_attempt(phi, v, eps, dps, wdps):
 
 
 def _needed_dps(phi, v, eps, c, dps):
-    try:
-        kappa = condition_number(phi, v, eps, c)
-    except (ZeroDivisionError, ValueError):
+    """Precision hint for a sign left undecided near ``c``: ``dps + 10`` plus the digits of the
+    condition number there (a cheap estimate at the working precision)."""
+    if not c > 0:
         return 0
-    if not mp.isfinite(kappa) or kappa <= 1:
+    k = kappa(phi, v, eps, c, max_bits=mp.prec)
+    if not mp.isfinite(k) or k <= 1:
         return dps + GUARD_DPS
-    return dps + GUARD_DPS + int(mp.ceil(mp.log10(kappa)))
+    return dps + GUARD_DPS + int(mp.ceil(mp.log10(k)))
 
 
 def _concave(ctx: ElasticGap, w0_lo):
@@ -247,7 +250,7 @@ def _general(ctx: ElasticGap, w0_lo):
     particle over a strong plate is not followed period by period."""
     curv = 1 + abs(ctx.eps)  # bound on |d''|
     free = w0_lo / curv  # d > 0 on (0, free] analytically: free < 2*w0/(1+|eps|)
-    return search_first_root(ctx, curv, free, _positive_window(ctx), candidate=global_candidate)
+    return search_first_root(ctx, curv, free, _positive_window(ctx), candidate=local_candidate)
 
 
 def _positive_window(ctx: ElasticGap):

@@ -25,10 +25,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import mpmath
-from mpmath import mp
 
 from ..numerics.inputs import check_dps, exact_real
-from ..numerics.precision import working_dps
+from ..numerics.precision import mp, to_user, working_dps
 
 
 @dataclass(frozen=True)
@@ -44,7 +43,15 @@ class GrazingContact:
 
 
 def grazing_contact(eps, psi, T, clearance, dps: int = 50) -> GrazingContact:
-    """Solve ``D(T) = clearance`` for ``T`` near the given guess (see module docstring)."""
+    """Solve ``D(T) = clearance`` for ``T`` near the given guess (see module docstring).
+
+    Parameters: ``eps`` the amplitude (``eps*cos(psi) > 1`` required), ``psi`` the plate phase
+    of the contact, ``T`` a guess of the contact time (> 0), ``clearance`` the minimum gap
+    wanted there (0: an exact tangency), ``dps`` the digits of the results. Newton's method at
+    ``dps + 20`` digits; ``ValueError`` when it does not converge to a departure. The returned
+    values are rounded to ``dps`` digits (so the clearance of the returned ``phi, v`` is met up
+    to ``~T*10**-dps``). Safe to call from any thread.
+    """
     dps = check_dps(dps)
     eps, psi = exact_real("eps", eps), exact_real("psi", psi)
     t, c = exact_real("T", T), exact_real("clearance", clearance)
@@ -71,10 +78,11 @@ def grazing_contact(eps, psi, T, clearance, dps: int = 50) -> GrazingContact:
         v = t - eps * mp.sin(psi)
         w0 = v + eps * mp.sin(phi)
     with working_dps(dps):
-        return GrazingContact(+phi, +v, +t, +psi, +c, +w0)
+        return GrazingContact(*to_user((+phi, +v, +t, +psi, +c, +w0)))
 
 
 def grazing_departure(eps, psi, T, clearance, dps: int = 50) -> tuple[mpmath.mpf, mpmath.mpf]:
-    """``(phi, v)`` of :func:`grazing_contact` (the solved contact time is its ``.T``)."""
+    """``(phi, v)`` of :func:`grazing_contact` (the same parameters; the solved contact time
+    is its ``.T``)."""
     g = grazing_contact(eps, psi, T, clearance, dps)
     return g.phi, g.v

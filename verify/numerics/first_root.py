@@ -25,13 +25,12 @@ from __future__ import annotations
 from typing import Protocol
 
 import mpmath
-from mpmath import iv, mp
 
-from .precision import NotDecided, hi, lo
+from .precision import NotDecided, hi, iv, lo, mp
 
 MAX_STEPS = 100_000  # candidate steps per search: beyond it, ValueError (out of budget)
 MAX_BOXES = 20_000  # Taylor boxes per flight (a few seconds): beyond it, ValueError
-_LOCAL_GROWTH = 30  # windows [t, t + 4**j * s] tried by the local candidate step
+_LOCAL_GROWTH = 30  # windows [t, t + L] tried by one local candidate step (L grows >= 4x)
 
 
 class Gap(Protocol):
@@ -57,7 +56,7 @@ def search_first_root(gap: Gap, curv, free, window, concave_from=None, candidate
     interval known to lie in ``d > 0`` or None. ``concave_from``: where given (a callable of
     ``right``), a proof that ``d`` is concave on ``[0, right]`` lets two point evaluations
     certify (the chord argument of the elastic ``|eps| <= 1`` case) before the box-by-box proof
-    is tried. ``candidate``: the (non-rigorous) candidate search, :func:`global_candidate`
+    is tried. ``candidate``: the (non-rigorous) candidate search, :func:`local_candidate`
     unless given.
 
     Each candidate ``c`` is tested on ``[c - delta, c + delta]``, ``delta = c*10**-dps``:
@@ -72,7 +71,7 @@ def search_first_root(gap: Gap, curv, free, window, concave_from=None, candidate
     for _ in range(MAX_STEPS):
         if window is not None and window[0] <= free < window[1]:
             free = search_from = window[1]  # (free, window[1]] lies inside d > 0
-        c = (candidate or global_candidate)(gap, curv, search_from)
+        c = (candidate or local_candidate)(gap, curv, search_from)
         if c < search_from:  # the search only moves forward: a candidate behind it is refused
             raise NotDecided(f"candidate tau={mp.nstr(c, 20)} is behind the proved part")
         delta = c * scale
@@ -106,30 +105,15 @@ def search_first_root(gap: Gap, curv, free, window, concave_from=None, candidate
     raise over_budget(gap, f"{MAX_STEPS} near-tangencies", search_from)  # not reached
 
 
-def global_candidate(gap: Gap, curv, t):
-    """Non-rigorous: step ``t`` by the larger root of ``d + d'*s - curv*s**2/2`` (never past a
-    root in exact arithmetic) until ``d`` vanishes at working precision."""
-    tol = mp.mpf(10) ** (-(gap.wdps - 4))
-    for _ in range(MAX_STEPS):
-        g, p = gap.point(t)
-        if g <= 0:
-            return t
-        disc = mp.sqrt(p * p + 2 * curv * g)
-        s = (p + disc) / curv if p >= 0 else 2 * g / (disc - p)
-        t += s
-        if s <= t * tol:
-            return t
-    raise over_budget(gap, f"{MAX_STEPS} lower-bound steps", t)
-
-
 def local_candidate(gap: Gap, curv, t):
-    """Non-rigorous candidate: the paper's step with a LOCAL bound of ``-d''``.
+    """Non-rigorous candidate: the paper's lower-bound step with a LOCAL bound of ``-d''``.
 
     From ``t`` the step ``s`` (larger root of ``d + d'*s - a*s**2/2``) never passes a root if
     ``a >= -d''`` on ``[t, t+s]``. ``a`` is taken from the ``iv`` enclosure of ``d''`` over
-    ``[t, t+L]``, and ``L`` is raised to the step until the step fits inside it (else the
-    global ``curv``): near a root where ``d''`` is small this is far faster than the global
-    bound, which crawls at a departure at rest. Only ``gap.point`` values decide the stop.
+    ``[t, t+L]``, and ``L`` is raised (at least 4 times, to the step if the step is longer)
+    until the step fits inside it (else the global ``curv``): where ``|d''|`` is small near
+    the root (a departure at rest, a near-triple root just above ``|eps| = 1``) this is far
+    faster than the global bound, which crawls there. Only ``gap.point`` values decide the stop.
     """
     tol = mp.mpf(10) ** (-(gap.wdps - 4))
     for _ in range(MAX_STEPS):
@@ -137,9 +121,8 @@ def local_candidate(gap: Gap, curv, t):
         if g <= 0:
             return t
         s = lower_step(g, p, curv)
-        length = s
+        length = 4 * s
         for _ in range(_LOCAL_GROWTH):
-            length *= 4
             try:
                 a = max(hi(-gap.curvature(t, t + length)), mp.zero)
             except NotDecided:
@@ -148,6 +131,9 @@ def local_candidate(gap: Gap, curv, t):
             s = max(s, length if s_loc is None else min(s_loc, length))
             if s_loc is not None and s_loc <= length:
                 break
+            # the step reaches past the window: the next window is 4 times longer, or as long
+            # as this step (a longer window only lowers the bound's step)
+            length = 4 * length if s_loc is None else max(4 * length, s_loc)
         t += s
         if s <= t * tol:
             return t

@@ -21,11 +21,10 @@ import numbers
 from typing import NamedTuple
 
 import mpmath
-from mpmath import iv, mp
-from mpmath.ctx_mp_python import _mpf as _mpf_base
+from mpmath.libmp import from_int, from_man_exp
 
 from .phase import reduce_phase
-from .precision import hi, lo, working_dps
+from .precision import hi, iv, lo, mp, working_dps
 
 MIN_DPS = 15
 _W0_CHECK_DPS = 30  # w0 is checked at this many digits (after an exact phase reduction)
@@ -42,23 +41,46 @@ class State(NamedTuple):
 
 
 def exact_real(name: str, x) -> mpmath.mpf:
-    """``x`` as an ``mpf`` without rounding; ``ValueError`` for NaN, inf or non-reals."""
-    if type(x) is mpmath.mpf:
-        val = x
-    elif isinstance(x, _mpf_base):  # a lazy constant such as mp.pi: freeze it at caller precision
-        val = mp.mpf(x)
+    """``x`` as an ``mpf`` of this thread's context without rounding.
+
+    Every real is taken as the exact binary number it holds: an ``int``, a ``float`` or numpy
+    float of any width (``np.float32``, ``np.longdouble``), an mpmath ``mpf`` (a lazy constant
+    such as ``mpmath.mp.pi`` is taken at its own context's precision), or a rational such as
+    ``fractions.Fraction`` whose denominator is a power of two. ``ValueError`` for NaN, inf,
+    non-reals (``bool``, ``str``, complex), and reals that are not binary numbers
+    (``Fraction(1, 3)``), which would need a rounding verify does not choose for the caller.
+    """
+    if hasattr(x, "_mpf_"):
+        val = mp.make_mpf(x._mpf_)
     elif isinstance(x, bool) or not isinstance(x, numbers.Real):
         raise ValueError(f"{name} must be a real number, got {name}={x!r}")
     elif isinstance(x, numbers.Integral):
-        n = int(x)
-        with mp.workprec(max(53, n.bit_length() + 2)):
-            val = mp.mpf(n)
+        val = mp.make_mpf(from_int(int(x)))
     else:
-        with mp.workprec(64):  # a float64 (or narrower) converts exactly at >= 53 bits
-            val = mp.mpf(float(x))
+        num, den = _integer_ratio(name, x)
+        if den & (den - 1):
+            raise ValueError(
+                f"{name} must be a binary number (a float, an mpf, or a fraction with a power-of-2 "
+                f"denominator), got {name}={x!r}: round it to the precision you mean first"
+            )
+        val = mp.make_mpf(from_man_exp(num, 1 - den.bit_length()))
     if mp.isnan(val) or mp.isinf(val):
         raise ValueError(f"{name} must be finite, got {name}={x!r}")
     return val
+
+
+def _integer_ratio(name: str, x) -> tuple[int, int]:
+    """``(numerator, denominator)`` of the real ``x`` exactly (``ValueError`` if not finite)."""
+    if isinstance(x, numbers.Rational):
+        return int(x.numerator), int(x.denominator)
+    try:
+        num, den = x.as_integer_ratio()
+    except (OverflowError, ValueError):
+        raise ValueError(f"{name} must be finite, got {name}={x!r}") from None
+    except AttributeError:
+        raise ValueError(f"{name} must be a real number with an exact binary value, "
+                         f"got {name}={x!r}") from None
+    return int(num), int(den)
 
 
 def check_dps(dps, name: str = "dps") -> int:

@@ -17,9 +17,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import mpmath
-from mpmath import iv, mp
 
-from .precision import hi, lo
+from .precision import hi, iv, lo, mp, working_prec
 
 _GUARD_BITS = 20
 _NO_REDUCTION_BELOW = 8
@@ -46,13 +45,18 @@ def reduce_phase(phi: mpmath.mpf, prec: int) -> ReducedPhase:
     if abs(phi) < _NO_REDUCTION_BELOW:
         return ReducedPhase(phi, iv.mpf(phi), 0, prec)
     bits = reduction_bits(phi, prec)
-    old_mp, old_iv = mp.prec, iv.prec
-    try:
-        mp.prec = iv.prec = bits
+    with working_prec(bits):
         k = int(mp.floor(phi / (2 * mp.pi)))
         r = iv.mpf(phi) - 2 * iv.pi * k
         r_lo, r_hi = lo(r), hi(r)
-    finally:
-        mp.prec, iv.prec = old_mp, old_iv
     enclosure = iv.mpf([r_lo, r_hi])  # outward rounding to the caller's precision
     return ReducedPhase(+((r_lo + r_hi) / 2), enclosure, k, bits)
+
+
+def time_until(target, phase):
+    """The time from ``phase`` to the next phase congruent to ``target``: ``(target - phase)
+    mod 2*pi`` in ``(0, 2*pi]`` (a whole period when they coincide), at the current precision."""
+    two_pi = 2 * mp.pi
+    d = target - phase
+    d -= two_pi * mp.floor(d / two_pi)
+    return d if d > 0 else two_pi

@@ -1,26 +1,66 @@
 """Working precision of the point (``mp``) and interval (``iv``) contexts; the one escalation rule.
 
-Every certificate in :mod:`verify` is an *attempt* at some working precision that either
-succeeds or raises :class:`NotDecided` (an interval comparison stayed ambiguous); the attempt is
-then repeated at a higher precision by :func:`escalate`, up to a limit, after which the caller's
-public error (:class:`verify.UndecidableCollision`) is raised. No other precision loop exists.
+Thread safety. ``mp`` and ``iv`` here are not mpmath's process-wide contexts but this thread's
+own ones (an ``mpmath.MPContext`` and an ``mpmath.ctx_iv.MPIntervalContext`` per thread, made on
+the thread's first call and kept): every module of verify computes with them, and
+:func:`working_dps` sets their precision only. So verify never reads or changes
+``mpmath.mp.prec`` or ``mpmath.iv.prec``, and calls from several threads, each at its own
+precision, cannot disturb each other or the caller. Values cross the public API converted:
+inputs into this thread's context without rounding (:func:`verify.numerics.inputs.exact_real`),
+results into ``mpmath.mp`` numbers (:func:`to_user`), which compute at the caller's precision.
 
-Both contexts are raised together by :func:`working_dps` and restored in ``finally``: the global
-precision a caller set is never changed permanently.
+Escalation. Every certificate in :mod:`verify` is an *attempt* at some working precision that
+either succeeds or raises :class:`NotDecided` (an interval comparison stayed ambiguous); the
+attempt is then repeated at a higher precision by :func:`escalate`, up to a limit, after which
+the caller's public error (:class:`verify.UndecidableCollision`) is raised. No other precision
+loop exists.
 """
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import TypeVar
 
-from mpmath import iv, mp
+import mpmath
+from mpmath import ctx_iv
 from mpmath.libmp import dps_to_prec
 
 GUARD_DPS = 10  # digits worked beyond those promised (a first attempt at dps + GUARD_DPS)
 
 T = TypeVar("T")
+
+
+class _ThreadContexts(threading.local):
+    """This thread's point and interval contexts (made on the thread's first use)."""
+
+    def __init__(self) -> None:
+        self.mp = mpmath.MPContext()
+        self.iv = ctx_iv.MPIntervalContext()
+
+
+_contexts = _ThreadContexts()
+
+
+class _ThisThread:
+    """``mp`` or ``iv`` of the calling thread: attribute access is forwarded to it. The
+    precision is set by :func:`working_dps` / :func:`working_prec` only."""
+
+    __slots__ = ("_which",)
+
+    def __init__(self, which: str) -> None:
+        object.__setattr__(self, "_which", which)
+
+    def __getattr__(self, name):
+        return getattr(getattr(_contexts, self._which), name)
+
+    def __setattr__(self, name, value):
+        raise AttributeError("verify sets the working precision with working_dps/working_prec")
+
+
+mp = _ThisThread("mp")
+iv = _ThisThread("iv")
 
 
 def default_max_dps(dps: int) -> int:
@@ -29,17 +69,35 @@ def default_max_dps(dps: int) -> int:
 
 
 @contextmanager
-def working_dps(dps: int) -> Iterator[int]:
-    """Set ``mp`` and ``iv`` to ``dps`` decimal digits for the block; yield the bit precision."""
-    prec = dps_to_prec(dps)
-    old_mp, old_iv = mp.prec, iv.prec
+def working_prec(bits: int) -> Iterator[int]:
+    """Set this thread's ``mp`` and ``iv`` to ``bits`` bits for the block (restored after)."""
+    point, interval = _contexts.mp, _contexts.iv
+    old_mp, old_iv = point.prec, interval.prec
     try:
-        mp.prec = prec
-        iv.prec = prec
-        yield prec
+        point.prec = bits
+        interval.prec = bits
+        yield bits
     finally:
-        mp.prec = old_mp
-        iv.prec = old_iv
+        point.prec = old_mp
+        interval.prec = old_iv
+
+
+@contextmanager
+def working_dps(dps: int) -> Iterator[int]:
+    """Set this thread's ``mp`` and ``iv`` to ``dps`` decimal digits; yield the bit precision."""
+    with working_prec(dps_to_prec(dps)) as prec:
+        yield prec
+
+
+def to_user(x):
+    """A result for the caller: ``mpf`` values (also inside plain tuples and lists) become
+    ``mpmath.mp`` numbers with the same exact value, so that the caller's arithmetic on them
+    runs at the caller's precision."""
+    if hasattr(x, "_mpf_"):
+        return mpmath.mp.make_mpf(x._mpf_)
+    if type(x) in (tuple, list):
+        return type(x)(to_user(y) for y in x)
+    return x
 
 
 def lo(x) -> mp.mpf:

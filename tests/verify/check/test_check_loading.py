@@ -11,15 +11,15 @@ from examples import planted_defects
 
 
 def test_load_callable(tmp_path, monkeypatch):
-    assert verify.load_callable("examples.planted_defects:holmes_flight_time") is \
+    assert verify.check.load_callable("examples.planted_defects:holmes_flight_time") is \
         planted_defects.holmes_flight_time
-    assert verify.load_callable("fastpath:flight_time") is fastpath.flight_time
-    assert verify.load_callable("os.path:join.__call__")  # dotted attributes
-    by_path = verify.load_callable("examples/planted_defects.py:holmes_flight_time")
+    assert verify.check.load_callable("fastpath:flight_time") is fastpath.flight_time
+    assert verify.check.load_callable("os.path:join.__call__")  # dotted attributes
+    by_path = verify.check.load_callable("examples/planted_defects.py:holmes_flight_time")
     assert by_path(0.0, 1.5, 0.6) == 3.0
     (tmp_path / "mysolver.py").write_text("def tau(phi, v, eps):\n    return 2.0 * v\n")
     monkeypatch.chdir(tmp_path)
-    assert verify.load_callable("mysolver:tau")(0.0, 2.0, 0.1) == 4.0
+    assert verify.check.load_callable("mysolver:tau")(0.0, 2.0, 0.1) == 4.0
     bad = {
         "nocolon": "MODULE:FUNCTION",
         ":f": "MODULE:FUNCTION",
@@ -30,7 +30,7 @@ def test_load_callable(tmp_path, monkeypatch):
     }
     for spec, text in bad.items():
         with pytest.raises(ValueError, match=text):
-            verify.load_callable(spec)
+            verify.check.load_callable(spec)
     (tmp_path / "broken.py").write_text("raise ImportError('needs a GPU')\n")
     with pytest.raises(ValueError, match="needs a GPU"):
-        verify.load_callable("broken:f")
+        verify.check.load_callable("broken:f")
