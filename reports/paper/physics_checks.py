@@ -11,7 +11,8 @@ The stretched exponent of the escape survival is not here: it is a claim of the 
 on its regime by maximum likelihood (claims fig2-t-*, ``reports.paper.escape_claims``).
 
 2. The rotation angle of small oscillations around the elliptic fixed point (phi, v) = (0, pi):
-   cos(theta) = 1 - 2*eps (the linearisation of the fixed point, docs/model.md). From an orbit started 1e-5 above the fixed point,
+   cos(theta) = 1 - 2*eps (the linearisation of the fixed point, docs/model.md). From an orbit
+   started 1e-5 above the fixed point,
    the 2x2 matrix M with x_{k+1} = M x_k is fitted to the deviations by least squares and
    cos(theta) = tr(M)/2; the uncertainty is the change when the start is moved 2e-5 away
    (nonlinear terms), plus rounding.
