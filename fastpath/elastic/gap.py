@@ -8,13 +8,14 @@ For a departure at phase phi with velocity v, after a time t (DESIGN section 2):
 
 ``gap_error`` and ``rate_error`` bound the rounding errors of ``gap`` and ``gap_rate`` in float64
 (phi reduced); ``departure`` computes w0 = d'(0) = v + eps*sin(phi) with its error bound, and
-``departure_verdict`` says whether the particle leaves the plate.
+``departure_verdict`` says whether the particle leaves the plate. ``resolved`` says whether a
+stop within rounding of zero places the root (not where the gap's values underflow).
 """
 
 import math
 
 from fastpath.arithmetic.jit import jit
-from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.arithmetic.rounding import SUBNORMAL, UNIT_ROUNDOFF
 from fastpath.status import CONVERGED, NOT_DEPARTING, OVERFLOW, UNCERTAIN
 
 
@@ -36,18 +37,22 @@ def gap_error(phi, v, eps, t):
 
     The plate term 2*eps*sin(phi + t/2)*sin(t/2) has magnitude <= |eps|*min(t, 2) and an argument
     error of about u*(|phi| + t); the flight term t*(v - t/2) is good to a few u*(t*|v| + t**2).
-    The factor 4 covers the handful of roundings in each term.
+    The factor 4 covers the handful of roundings in each term. Results in the subnormal range
+    round in absolute terms: six operations, two of them sines scaled by 2|eps|, add
+    (4 + 2|eps|)*SUBNORMAL.
     """
     plate = abs(eps) * min(t, 2.0) * (abs(phi) + t + 3.0)
     flight = t * (abs(v) + t)
-    return 4.0 * UNIT_ROUNDOFF * (plate + flight)
+    return 4.0 * UNIT_ROUNDOFF * (plate + flight) + SUBNORMAL * (4.0 + 2.0 * abs(eps))
 
 
 @jit
 def rate_error(phi, v, eps, t):
     """A bound on |computed d' - exact d'| at the float t: a few u of each term of
-    v - t + eps*sin(phi + t), the sine's argument carrying u*(|phi| + t)."""
-    return 4.0 * UNIT_ROUNDOFF * (abs(v) + t + abs(eps) * (1.0 + abs(phi) + t))
+    v - t + eps*sin(phi + t), the sine's argument carrying u*(|phi| + t); in the subnormal
+    range (2 + |eps|)*SUBNORMAL for the absolute rounding of the sum and the sine."""
+    return (4.0 * UNIT_ROUNDOFF * (abs(v) + t + abs(eps) * (1.0 + abs(phi) + t))
+            + SUBNORMAL * (2.0 + abs(eps)))
 
 
 @jit
@@ -56,11 +61,13 @@ def departure(phi, sin_phi, v, eps, phase_error):
 
     phase_error bounds |phi - phi_exact| (0 for a phase used as given; the reduction's error
     otherwise) plus any absolute error of sin_phi beyond libm's (a sine carried by rotation).
-    The sine, the product and the sum each round by <= u of their size.
+    The sine, the product and the sum each round by <= u of their size, or, where they are
+    subnormal, by <= SUBNORMAL/2 in absolute terms (the sine's scaled by |eps|): (2 + |eps|)
+    SUBNORMAL, without which a subnormal w0 would be judged certain.
     """
     w0 = v + eps * sin_phi
     bound = 2.0 * UNIT_ROUNDOFF * abs(w0) + 3.0 * UNIT_ROUNDOFF * abs(eps * sin_phi)
-    return w0, bound + abs(eps) * phase_error
+    return w0, bound + abs(eps) * phase_error + SUBNORMAL * (2.0 + abs(eps))
 
 
 @jit
@@ -75,3 +82,13 @@ def departure_verdict(w0, bound):
     if not w0 > bound:
         return UNCERTAIN
     return CONVERGED
+
+
+@jit
+def resolved(t, slope, eps):
+    """Whether a stop at t with a gap within its rounding bound of zero and the given slope pins
+    the root to the flight's relative accuracy: the absolute (subnormal) part of the gap's
+    rounding bound, at most (16 + 2|eps|)*SUBNORMAL with drag, moves the root by that over
+    |slope|, which must be below u*t. Else (a flight whose gap values underflow, w0 below
+    ~1e-154) float64 cannot place the root: UNCERTAIN."""
+    return SUBNORMAL * (16.0 + 2.0 * abs(eps)) <= UNIT_ROUNDOFF * abs(slope) * t
