@@ -90,6 +90,20 @@ def test_overflow_is_a_value_error_saying_overflow(phi, v, eps):
     assert fastpath.flight(phi, v, eps).status == fastpath.FlightStatus.OVERFLOW
 
 
+@pytest.mark.parametrize("call", [
+    lambda: fastpath.flight([4.0], [10**400], 0.6),
+    lambda: fastpath.step(np.array([4.0]), [3.0], [10**400]),
+    lambda: fastpath.flight_time(4.0, 10**400, 0.6),
+    lambda: fastpath.orbit(4.0, 3.0, [-(10**400)], 3),
+    lambda: fastpath.flight(4.0, 3.0, 0.6, drag=10**400),
+], ids=["flight-array", "step-array", "flight_time-scalar", "orbit", "drag"])
+def test_an_integer_beyond_float64_is_a_value_error(call):
+    """Python integers beyond float64's range are rejected like inf: ValueError, not numpy's
+    OverflowError."""
+    with pytest.raises(ValueError, match="must be finite"):
+        call()
+
+
 @pytest.mark.parametrize("bad", ["4.0", True, np.bool_(False), None, [1.0, "x"], 1 + 2j,
                                  np.array(["1.0"]), np.array([True, False])])
 @pytest.mark.parametrize(
