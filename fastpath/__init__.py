@@ -1,9 +1,13 @@
 """Fast float64 integrator of the bouncer model (numba).
 
-Public API (DESIGN section 4): ``flight_time``, ``step``, ``holmes_step``, ``orbit``, plus
-``flight`` (times with iteration counts and status codes) and ``carried_step`` (one step of a
-chattering orbit from its carried state, as the kernels made it). Kernels live in the submodules.
+Public API: ``flight_time``, ``step``, ``holmes_step``, ``orbit``, plus ``flight`` (times with
+iteration counts and statuses) and ``carried_step`` (one step of a chattering orbit from its
+carried state, as the kernels made it). The subpackages: ``arithmetic`` (float64 building
+blocks), ``elastic`` (the paper's map), ``dissipative`` (drag, restitution, sticking),
+``kernels`` (many particles); ``physics`` describes the model they take.
 """
+
+from importlib.metadata import PackageNotFoundError, version
 
 from fastpath.api import (
     FlightResult,
@@ -16,6 +20,11 @@ from fastpath.api import (
     step,
 )
 from fastpath.status import FlightStatus, UncertainCollision
+
+try:
+    __version__ = version("bouncer-verify")
+except PackageNotFoundError:  # a source tree that was not installed
+    __version__ = "0+unknown"
 
 __all__ = [
     "FlightResult",

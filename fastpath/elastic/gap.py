@@ -63,11 +63,14 @@ def departure(phi, sin_phi, v, eps, phase_error):
     otherwise) plus any absolute error of sin_phi beyond libm's (a sine carried by rotation).
     The sine, the product and the sum each round by <= u of their size, or, where they are
     subnormal, by <= SUBNORMAL/2 in absolute terms (the sine's scaled by |eps|): (2 + |eps|)
-    SUBNORMAL, without which a subnormal w0 would be judged certain.
+    SUBNORMAL, without which a subnormal w0 would be judged certain. With eps = 0 or phi = 0
+    nothing rounds (the product is an exact zero and w0 = v), and nothing is added.
     """
     w0 = v + eps * sin_phi
     bound = 2.0 * UNIT_ROUNDOFF * abs(w0) + 3.0 * UNIT_ROUNDOFF * abs(eps * sin_phi)
-    return w0, bound + abs(eps) * phase_error + SUBNORMAL * (2.0 + abs(eps))
+    exact = eps == 0.0 or (phi == 0.0 and sin_phi == 0.0)
+    underflow = 0.0 if exact else SUBNORMAL * (2.0 + abs(eps))
+    return w0, bound + abs(eps) * phase_error + underflow
 
 
 @jit
