@@ -21,6 +21,8 @@ from fastpath.kernels.particle import step as step_of
 from fastpath.physics import describe, dissipative, elastic, holmes, with_eps
 from fastpath.status import (
     CONVERGED,
+    ITERATION_LIMIT,
+    MAX_ITERATIONS,
     NOT_DEPARTING,
     OVERFLOW,
     FlightStatus,
@@ -136,10 +138,14 @@ def _raise_on_status(status, phi, v, eps):
         name = FlightStatus(int(status[i])).name
         w0, bound = departure_of(float(phi[i]), float(v[i]), float(eps[i]))
         why = f" ({w0_text(i)}: departure or not)" if abs(w0) <= bound else ""
+        if status[i] == MAX_ITERATIONS:
+            what = (f"not decided within the solver's budget of {ITERATION_LIMIT} gap"
+                    f" evaluations ({name})")
+        else:
+            what = f"that float64 cannot decide ({name})"
         raise UncertainCollision(
-            f"{int(undecided.sum())} flight(s) float64 cannot decide ({name}), first at"
-            f" {state(i)}{why}; use fastpath.flight() to inspect the status and"
-            " verify.flight_time() to settle them"
+            f"{int(undecided.sum())} flight(s) {what}, first at {state(i)}{why}; use"
+            " fastpath.flight() to inspect the status and verify.flight_time() to settle them"
         )
 
 
