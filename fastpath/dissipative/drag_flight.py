@@ -63,7 +63,7 @@ from fastpath.arithmetic.sincos import sin_cos
 from fastpath.dissipative.drag import eta, gap_state, particle
 from fastpath.elastic.concave import AFTER, AT_ROOT, BEFORE, halley
 from fastpath.elastic.flight import AUTO, departure_phase
-from fastpath.elastic.gap import departure, departure_verdict, resolved
+from fastpath.elastic.gap import departure, departure_verdict
 from fastpath.elastic.lower_bound import GOING_ON, lower_bound_step, next_point
 from fastpath.physics import LINEAR, NONE, QUADRATIC
 from fastpath.status import (
@@ -149,8 +149,6 @@ def concave_drag_flight(physics, phi, cos_phi, v, w0, lo):
             where = BEFORE
         else:
             return t, evaluations, UNCERTAIN  # a flat zero: float64 cannot place the root
-        if where == AT_ROOT and not resolved(t, d1, eps):
-            return t, evaluations, UNCERTAIN  # the gap's values underflow
         if where == AT_ROOT:
             return min(max(t - d / d1, lo), hi), evaluations, CONVERGED
         if where == BEFORE and hi == math.inf:

@@ -56,7 +56,7 @@ import math
 from fastpath.arithmetic.jit import inline_jit, jit
 from fastpath.arithmetic.rotation import rotate, sin_cos_of_sum
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
-from fastpath.elastic.gap import gap_error, rate_error, resolved
+from fastpath.elastic.gap import gap_error, rate_error
 from fastpath.elastic.tight_gap import SMALLEST_T, tight_gap
 from fastpath.status import CONVERGED, ITERATION_LIMIT, MAX_ITERATIONS, OVERFLOW, UNCERTAIN
 
@@ -101,7 +101,7 @@ def classify(phi, v, eps, t, d, d1):
         return AFTER
     d1_err = rate_error(phi, v, eps, t)
     if d1 < -d1_err:
-        return AT_ROOT if resolved(t, d1, eps) else FLAT
+        return AT_ROOT
     if d1 > d1_err:
         return BEFORE
     return FLAT
@@ -232,7 +232,7 @@ def _refine(phi, sin_phi, cos_phi, v, eps, w0_error, t, lo, hi, done):
             where = BEFORE
         elif d < -d_err:
             where = AFTER
-        elif d1 < -d1_err and resolved(t, d1, eps):
+        elif d1 < -d1_err:
             where = AT_ROOT
         else:
             return _finish(t, d, d1, s, c, phi, lo, hi, evaluations, FLAT)

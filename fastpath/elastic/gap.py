@@ -8,8 +8,7 @@ For a departure at phase phi with velocity v, after a time t (DESIGN section 2):
 
 ``gap_error`` and ``rate_error`` bound the rounding errors of ``gap`` and ``gap_rate`` in float64
 (phi reduced); ``departure`` computes w0 = d'(0) = v + eps*sin(phi) with its error bound, and
-``departure_verdict`` says whether the particle leaves the plate. ``resolved`` says whether a
-stop within rounding of zero places the root (not where the gap's values underflow).
+``departure_verdict`` says whether the particle leaves the plate.
 """
 
 import math
@@ -86,12 +85,3 @@ def departure_verdict(w0, bound):
         return UNCERTAIN
     return CONVERGED
 
-
-@jit
-def resolved(t, slope, eps):
-    """Whether a stop at t with a gap within its rounding bound of zero and the given slope pins
-    the root to the flight's relative accuracy: the absolute (subnormal) part of the gap's
-    rounding bound, at most (16 + 2|eps|)*SUBNORMAL with drag, moves the root by that over
-    |slope|, which must be below u*t. Else (a flight whose gap values underflow, w0 below
-    ~1e-154) float64 cannot place the root: UNCERTAIN."""
-    return SUBNORMAL * (16.0 + 2.0 * abs(eps)) <= UNIT_ROUNDOFF * abs(slope) * t

@@ -46,7 +46,7 @@ import math
 
 from fastpath.arithmetic.jit import jit
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
-from fastpath.elastic.gap import gap, gap_error, gap_rate, rate_error, resolved
+from fastpath.elastic.gap import gap, gap_error, gap_rate, rate_error
 from fastpath.status import CONVERGED, ITERATION_LIMIT, MAX_ITERATIONS, OVERFLOW, UNCERTAIN
 
 _GROWTH_ROUNDS = 4  # rounds of growing H in the local step
@@ -148,13 +148,11 @@ def next_point(t, bounds, grazes):
     if not (abs(d) < math.inf and abs(r) < math.inf):
         return math.nan, OVERFLOW
     if d <= d_err:
-        if grazes or not resolved(t, r, eps):
+        if grazes:
             return t, UNCERTAIN
         return polish(t, d, r, r_err), CONVERGED
     t_next = t + certified_step(d - d_err, r - r_err, curvature, jerk, eps, a)
     if t_next == t:  # the root is within rounding of t: d <= d_err + |r|*ulp(t)
-        if not resolved(t, r, eps):
-            return t, UNCERTAIN
         return polish(t, d, r, r_err), CONVERGED
     return t_next, GOING_ON
 
