@@ -21,6 +21,8 @@ from fastpath.kernels.particle import step as step_of
 from fastpath.physics import describe, dissipative, elastic, holmes, with_eps
 from fastpath.status import (
     CONVERGED,
+    ITERATION_LIMIT,
+    MAX_ITERATIONS,
     NOT_DEPARTING,
     OVERFLOW,
     FlightStatus,
@@ -38,11 +40,16 @@ def _elastic(drag, drag_law, restitution):
 
 @dataclass(frozen=True)
 class FlightResult:
-    """Flight times with what the solver knows about each: iterations and a FlightStatus code."""
+    """Flight times with what the solver knows about each.
+
+    ``tau``: the flight time (NaN where there is none); ``iterations``: gap evaluations spent;
+    ``status``: a ``FlightStatus`` for a scalar flight, an int8 array of ``FlightStatus`` codes
+    for arrays (``FlightStatus(code)`` names one).
+    """
 
     tau: np.ndarray | float
     iterations: np.ndarray | int
-    status: np.ndarray | int
+    status: np.ndarray | FlightStatus
 
 
 @dataclass(frozen=True)
@@ -131,10 +138,14 @@ def _raise_on_status(status, phi, v, eps):
         name = FlightStatus(int(status[i])).name
         w0, bound = departure_of(float(phi[i]), float(v[i]), float(eps[i]))
         why = f" ({w0_text(i)}: departure or not)" if abs(w0) <= bound else ""
+        if status[i] == MAX_ITERATIONS:
+            what = (f"not decided within the solver's budget of {ITERATION_LIMIT} gap"
+                    f" evaluations ({name})")
+        else:
+            what = f"that float64 cannot decide ({name})"
         raise UncertainCollision(
-            f"{int(undecided.sum())} flight(s) float64 cannot decide ({name}), first at"
-            f" {state(i)}{why}; use fastpath.flight() to inspect the status and"
-            " verify.flight_time() to settle them"
+            f"{int(undecided.sum())} flight(s) {what}, first at {state(i)}{why}; use"
+            " fastpath.flight() to inspect the status and verify.flight_time() to settle them"
         )
 
 
@@ -160,30 +171,43 @@ def _scalar_flight(scalars, code, described):
 
 
 def _flight_physics(drag, drag_law, restitution):
-    """The description a flight needs (restitution does not change a flight), None for the
-    elastic defaults (their scalar path calls the elastic solver directly)."""
+    """The description a flight needs, None for the elastic defaults (their scalar path calls
+    the elastic solver directly). A restitution other than 1 is refused: it does not act on a
+    flight, and a caller who passes one expects it to."""
     if _elastic(drag, drag_law, restitution):
         return None
-    drag, law, _ = physics_options(drag, drag_law, restitution)
+    drag, law, restitution = physics_options(drag, drag_law, restitution)
+    if restitution != 1.0:
+        raise ValueError(f"restitution={restitution!r} does not act on a flight (only at its"
+                         " impact): flight and flight_time take restitution 1; step and orbit"
+                         " apply it")
     return None if drag == 0.0 else dissipative(0.0, drag, law, 1.0)
 
 
 def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
-    """Flight times with their iteration counts and FlightStatus codes; never raises for status.
+    """Flight times with their iteration counts and statuses: a ``FlightResult``; never raises
+    for a status (non-departures come back as NOT_DEPARTING with tau NaN).
 
-    Inputs broadcast; NaN/inf raise ValueError. Non-departures come back as NOT_DEPARTING (tau NaN).
-    method: "auto" (bracketed Halley where the gap is concave, |eps| < 1; the seed's lower-bound
-    steps otherwise) or "seed" (the seed's lower-bound steps everywhere).
-    drag, drag_law: air drag eta(v) = drag*v ("linear") or drag*v*|v| ("quadratic") during the
-    flight (``fastpath.dissipative.drag``); restitution (checked, in (0, 1]) does not change a
-    flight.
+    Parameters (phi, v, eps broadcast; a scalar call gives scalars):
+        phi: departure phase (any finite real, radians).
+        v: the particle's velocity at departure.
+        eps: the plate's amplitude (position eps*cos(t)).
+        method: "auto" (bracketed Halley where the gap is concave, |eps| <= 1; the paper's
+            lower-bound steps otherwise) or "lower_bound" (the paper's lower-bound steps
+            everywhere; "seed" is its former name).
+        drag, drag_law: air drag eta(V) = drag*V ("linear") or drag*V*|V| ("quadratic") during
+            the flight (``fastpath.dissipative.drag``).
+        restitution: only 1 (the default): restitution acts at impacts, not on a flight
+            (``step`` and ``orbit`` take it).
+    ValueError for inputs that are not finite reals, shapes that do not broadcast, an unknown
+    method, bad physics keywords.
     """
     code = _method(method)
     described = _flight_physics(drag, drag_law, restitution)
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
         tau, iterations, status = _scalar_flight(scalars, code, described)
-        return FlightResult(tau, iterations, status)
+        return FlightResult(tau, iterations, FlightStatus(status))
     tau, iterations, status, _, shape, scalar = _flight_arrays(
         phi, v, eps, code, elastic(0.0) if described is None else described)
     return FlightResult(*_shaped(shape, scalar, tau, iterations, status))
@@ -192,10 +216,13 @@ def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitu
 def flight_time(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
     """Smallest positive root tau of d(tau) = eps*(cos(phi) - cos(phi+tau)) + tau*(v - tau/2).
 
-    Scalars give a float, arrays broadcast. Raises ValueError for NaN/inf input or w0 <= 0, and
-    UncertainCollision where float64 cannot decide a near-graze (eps > 1).
-    With drag > 0 the particle's part tau*(v - tau/2) is its displacement under drag
-    (``fastpath.dissipative.drag``); restitution (checked, in (0, 1]) does not change a flight.
+    Parameters as for ``flight`` (phi, v, eps broadcast; scalars give a float; method "auto"):
+    drag and drag_law the air drag (with drag > 0 the particle's part tau*(v - tau/2) is its
+    displacement under drag, ``fastpath.dissipative.drag``); restitution must be 1 (it does not
+    act on a flight).
+    Raises ValueError for inputs that are not finite reals, w0 = v + eps*sin(phi) <= 0 or an
+    overflow, and UncertainCollision where float64 cannot decide the flight (``verify``
+    settles it).
     """
     described = _flight_physics(drag, drag_law, restitution)
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
@@ -211,11 +238,15 @@ def flight_time(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELAST
 
 
 def step(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
-    """One collision of the exact map: (phi1, v1, tau), phi1 reduced to [0, 2*pi).
+    """One collision of the exact map: (phi1, v1, tau), phi1 = (phi + tau) mod 2*pi in [0, 2*pi),
+    v1 = tau - v - 2*eps*sin(phi + tau).
 
-    v1 = tau - v - 2*eps*sin(phi + tau). Errors as for ``flight_time``.
-    With drag or restitution r < 1 (``fastpath.dissipative.impact``): the flight with drag, then
-    v1 = (1 + r)*u - r*v_in, u = -eps*sin(phi + tau) the plate's velocity, v_in the particle's.
+    Parameters (phi, v, eps broadcast; scalars give floats):
+        phi, v, eps: the departure phase, the velocity, the plate's amplitude (as ``flight``).
+        drag, drag_law: air drag during the flight (as ``flight``).
+        restitution: r in (0, 1]; the impact gives v1 = (1 + r)*u - r*v_in, u = -eps*sin(phi1)
+            the plate's velocity and v_in the particle's (``fastpath.dissipative.impact``).
+    Errors as for ``flight_time``.
     """
     described = None
     if not _elastic(drag, drag_law, restitution):
@@ -272,7 +303,11 @@ def _check_carried(phi, v, eps, carried):
 def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
                  restitution=ELASTIC):
     """One collision of a chattering orbit (r < 1, any drag) from its carried state: (phi1, v1,
-    tau), the step an orbit or ensemble kernel made (``fastpath.dissipative.carried``), bit for bit.
+    tau), the step an orbit or ensemble kernel made (``fastpath.dissipative.carried``), bit for
+    bit.
+
+    Parameters: phi, v, eps (scalars) the departure and the plate's amplitude; ``carried`` the six
+    carried entries below; drag, drag_law, restitution as for ``step`` (restitution < 1).
 
     Such a step reads more than (phi, v): ``carried`` = (base_phase, s, sin, cos, w, detached),
     the phase of the impact being base_phase + (s + tau), sin and cos those of the last impact,
@@ -302,7 +337,9 @@ def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
 def holmes_step(phi, v, eps):
     """One step of the Holmes map: phi1 = (phi + 2v) mod 2*pi, v1 = |v - 2*eps*sin(phi1)|.
 
-    The state must be a departure (w0 = v + eps*sin(phi) > 0), errors as for ``flight_time``.
+    Parameters: phi, v, eps as for ``step`` (broadcast). phi + 2v is reduced exactly: phi1 is
+    good to a few ulps of 2*pi at any v. The state must be a departure
+    (w0 = v + eps*sin(phi) > 0); errors as for ``flight_time``.
     """
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
@@ -322,10 +359,15 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
           drag=0.0, drag_law="linear", restitution=1.0):
     """n collisions from (phi0, v0): an Orbit with arrays .phi .v .t of length n+1.
 
-    model: "exact" (the transcendental map) or "holmes". on_uncertain: "raise" raises
-    UncertainCollision at a flight float64 cannot decide; "stop" returns the orbit up to it, with
-    its status, so the caller can settle that collision (e.g. with ``verify.step``) and go on.
-    method: the exact flight solver, as for ``flight``.
+    Parameters:
+        phi0, v0, eps: the start and the plate's amplitude (scalars).
+        n: the number of collisions (an integer >= 0).
+        model: "exact" (the transcendental map) or "holmes".
+        on_uncertain: "raise" raises UncertainCollision at a flight float64 cannot decide;
+            "stop" returns the orbit up to it, with its status, so the caller can settle that
+            collision (e.g. with ``verify.step``) and go on.
+        method: the exact flight solver, as for ``flight``.
+        drag, drag_law, restitution: as for ``step``; below.
 
     restitution r in (0, 1]: impacts v1 - u = -r*(v_in - u). With r < 1 impacts can accumulate;
     the orbit then sticks to the plate and detaches where eps*cos(t) rises through 1, or stops

@@ -24,6 +24,8 @@ def float_inputs(**named):
         _check_kind(name, value)
         try:
             arr = np.asarray(value, dtype=np.float64)
+        except OverflowError:  # an integer beyond float64's range
+            raise ValueError(f"{name} must be finite in float64, got {value!r}") from None
         except (TypeError, ValueError):
             msg = f"{name} must be a real number or array of them, got {value!r}"
             raise ValueError(msg) from None

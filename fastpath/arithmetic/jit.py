@@ -15,10 +15,18 @@ inside a ``prange`` loop an array held in a tuple (``fastpath.kernels.arrays``) 
 through a called function, never as ``group.array[i] = ...`` in the loop body itself; and an
 ``overload`` (``fastpath.physics.model_of``) is not inlined into its caller (``inline="always"``
 dropped writes to arrays unpacked from a tuple). LLVM still inlines and folds it.
+
+Threads. numba's ``workqueue`` threading layer (the fallback where neither TBB nor OpenMP can be
+loaded) aborts the whole process (SIGABRT) when two Python threads enter parallel code at once.
+``parallel_jit`` kernels are therefore called through a wrapper that holds one process-wide lock
+while numba runs that layer (or has not chosen one yet); with TBB or OpenMP, which are safe to
+enter from several threads, calls run concurrently. The kernels are entered from Python only.
 """
 
+import functools
 import hashlib
 import os
+import threading
 from pathlib import Path
 
 import numba
@@ -52,7 +60,33 @@ def _cached_njit(**options):
     return decorate
 
 
+_WORKQUEUE_LOCK = threading.Lock()
+
+
+def _serialise():
+    """Whether a parallel kernel must hold the lock (module docstring)."""
+    try:
+        return numba.threading_layer() == "workqueue"
+    except ValueError:  # no parallel kernel has run yet: the layer is not chosen
+        return True
+
+
+def parallel_jit(function):
+    """``numba.njit(parallel=True)`` (cached), called through the workqueue lock (module
+    docstring); the compiled dispatcher is the wrapper's ``kernel``."""
+    kernel = _cached_njit(parallel=True)(function)
+
+    @functools.wraps(function)
+    def call(*args):
+        if _serialise():
+            with _WORKQUEUE_LOCK:
+                return kernel(*args)
+        return kernel(*args)
+
+    call.kernel = kernel
+    return call
+
+
 jit = _cached_njit()
-parallel_jit = _cached_njit(parallel=True)
 # scalar helpers of the lockstep kernels: inlined into the loop so that it can be vectorised
 inline_jit = _cached_njit(inline="always")

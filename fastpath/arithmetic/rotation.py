@@ -11,7 +11,7 @@ With |h| <= SMALL_ANGLE = 0.125 the truncation errors h**11/11! and h**12/12! ar
 
 import math
 
-from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.jit import inline_jit, jit
 from fastpath.arithmetic.rounding import two_sum
 
 SMALL_ANGLE = 0.125
@@ -23,7 +23,7 @@ _S3, _S5, _S7, _S9 = -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0
 _C2, _C4, _C6, _C8, _C10 = -0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0, -1.0 / 3628800.0
 
 
-@jit
+@inline_jit
 def small_sin_cos(h):
     """(sin h, cos h) for |h| <= SMALL_ANGLE by Taylor polynomials (Horner form)."""
     h2 = h * h

@@ -1,14 +1,18 @@
 """The unit roundoff and error-free transformations of float64 arithmetic.
 
 With round-to-nearest, fl(x op y) = (x op y)*(1 + delta), |delta| <= UNIT_ROUNDOFF = 2**-53, for
-results in the normal range. ``two_sum`` and ``two_product`` return a rounded result together
-with its exact rounding error, so that x + y or x*y can be carried as an unevaluated sum of two
-floats (Knuth's TwoSum; Dekker's product with Veltkamp's splitting).
+results in the normal range; a subnormal result is off by at most SUBNORMAL/2 = 2**-1075.
+``two_sum`` and ``two_product`` return a rounded result together with its exact rounding error,
+so that x + y or x*y can be carried as an unevaluated sum of two floats (Knuth's TwoSum; Dekker's
+product with Veltkamp's splitting).
 """
 
 from fastpath.arithmetic.jit import inline_jit, jit
 
 UNIT_ROUNDOFF = 2.0**-53
+# The smallest subnormal. Below 2**-1022 rounding is absolute: a result there is off by at most
+# half of it, whatever its size (the relative bound u no longer holds).
+SUBNORMAL = 2.0**-1074
 _SPLIT = 134217729.0  # 2**27 + 1, Veltkamp's splitter for Dekker's exact product
 
 

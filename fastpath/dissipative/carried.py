@@ -135,7 +135,7 @@ def long_flight(physics, theta, v, method):
     if physics.drag != 0.0:
         return solve_drag_flight(physics, theta, v, method)
     centred = centre_phase(theta)
-    tau, _, _, iterations, status = flight_from(
+    tau, _, _, _, iterations, status = flight_from(
         centred, math.sin(centred), math.cos(centred), v, physics.eps, method,
         phase_error_of(theta, centred),
     )

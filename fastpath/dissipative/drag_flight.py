@@ -40,7 +40,17 @@ the root), a step that would go backwards is replaced by the root of the local q
 + d'*s + d''*s**2/2 (forward, d'' < 0). The first point where m(t) <= 0 (drag so strong or a
 fall so long that the particle nears its terminal velocity: even |eps| < 1 then allows a convex
 gap and several roots) hands the flight to the lower-bound steps, which go on from the bracket's
-lower end with the iterations left. The end is as in ``fastpath.elastic.concave``: a Newton
+lower end with the iterations left.
+
+The long descent (``descent_jump``). Near the terminal velocity the lower-bound steps would crawl:
+their curvature bound is the plate's |eps| while the particle sinks by ~1/k per unit of time
+(linear drag k = 3 from v = 1000 falls 330 units for 1000 units of time). But the plate rises at
+most c = |eps| - eps*cos(phi) above its departure position, so d(t) >= Y(t) - c: no collision
+while the particle is higher than c. Where its height Y is concave for the whole flight (it
+starts at or above its terminal velocity: ``falls_concave``), the time it sinks to c is
+bracketed by the motion alone, as the elastic concave gap is: the tangent at a point above c
+crosses c beyond that time, the chord to a point below it crosses c before it. The steps jump to
+the chord's crossing and go on from there. The end is as in ``fastpath.elastic.concave``: a Newton
 correction clamped into the bracket; UNCERTAIN at a flat zero.
 """
 
@@ -50,7 +60,7 @@ from fastpath.arithmetic.jit import jit
 from fastpath.arithmetic.rotation import sin_cos_of_sum
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.arithmetic.sincos import sin_cos
-from fastpath.dissipative.drag import eta, gap_state
+from fastpath.dissipative.drag import eta, gap_state, particle
 from fastpath.elastic.concave import AFTER, AT_ROOT, BEFORE, halley
 from fastpath.elastic.flight import AUTO, departure_phase
 from fastpath.elastic.gap import departure, departure_verdict
@@ -65,6 +75,8 @@ from fastpath.status import (
 )
 
 _U = UNIT_ROUNDOFF
+_DESCENT_EVALUATIONS = 12  # particle evaluations one descent jump may spend
+_DESCENT_CLOSE = 0.25  # a jump stops once the particle is within this share of |eps| above c
 
 
 @jit
@@ -172,15 +184,77 @@ def drag_gap_bounds(physics, phi, v, t):
 def lower_bound_drag_flight(physics, phi, v, t, used):
     """(tau, evaluations, status) by certified lower-bound steps from t (a certified lower bound,
     the departure's step), counting ``used`` evaluations already spent: the iteration of
-    ``fastpath.elastic.lower_bound`` with ``drag_gap_bounds`` and ``may_be_drag_graze``."""
-    for k in range(used + 1, ITERATION_LIMIT + 1):
+    ``fastpath.elastic.lower_bound`` with ``drag_gap_bounds`` and ``may_be_drag_graze``, and
+    the descent's jumps (``descent_jump``) while the particle is above the plate's reach."""
+    reach = plate_reach(physics.eps, math.cos(phi))
+    concave = falls_concave(physics, v)
+    evaluations = used
+    while evaluations < ITERATION_LIMIT:
+        if concave:
+            t, jumped = descent_jump(physics, v, t, reach, ITERATION_LIMIT - evaluations)
+            evaluations += jumped
+        if evaluations >= ITERATION_LIMIT:
+            break
+        evaluations += 1
         bounds, vel, v_err = drag_gap_bounds(physics, phi, v, t)
         d, r, d_err = bounds[0], bounds[1], bounds[2]
         grazes = d <= d_err and may_be_drag_graze(physics, phi, vel, v_err, t, r, d_err)
         t, status = next_point(t, bounds, grazes)
         if status != GOING_ON:
-            return t, k, status
+            return t, evaluations, status
     return t, ITERATION_LIMIT, MAX_ITERATIONS
+
+
+@jit
+def plate_reach(eps, cos_phi):
+    """c = |eps| - eps*cos(phi), rounded up: the most the plate rises above its position at the
+    departure, so that d(t) >= Y(t) - c (module docstring)."""
+    return (abs(eps) - eps * cos_phi) * (1.0 + 4.0 * _U) + 4.0 * _U * abs(eps)
+
+
+@jit
+def falls_concave(physics, v):
+    """Whether the particle's height Y is concave for the whole flight: its acceleration
+    -1 - eta(V) <= 0 at the departure, beyond the rounding of eta(v). V then moves towards the
+    terminal velocity from above and never crosses it (linear: V(t) = -1/k + (v + 1/k)*exp(-kt);
+    quadratic: V' = -1 + k*V**2 < 0 while |V| < 1/sqrt(k)), so -1 - eta(V(t)) <= 0 throughout."""
+    e = eta(v, physics.drag, physics.law)
+    return 1.0 + e > 4.0 * _U * (1.0 + abs(e))
+
+
+@jit
+def descent_jump(physics, v, t, reach, budget):
+    """(t', evaluations): a later start for the lower-bound steps, or (t, evaluations) with
+    t' = t where the descent's argument does not apply.
+
+    From a point t before the first root, while the particle falls (V(t) < 0) with a concave
+    height (``falls_concave``) above the plate's reach c, the gap d >= Y - c stays positive
+    until Y falls to c: no collision in between. The time Y reaches c is bracketed by the concave
+    motion alone: the tangent from the last point below (Y concave lies under it) overshoots it, and
+    the chord through two points above and below, with the heights lowered by their rounding bounds,
+    undershoots it (Y concave lies over it), so the chord's crossing is a certified later start. At
+    most ``budget`` particle evaluations, each counted.
+    """
+    drag, law = physics.drag, physics.law
+    y, vel, y_err, v_err = particle(v, drag, law, t)
+    evaluations = 1
+    if not (vel + v_err < 0.0 and y - y_err > reach):
+        return t, evaluations
+    lo, y_lo, vel_lo = t, y - y_err, vel
+    while evaluations + 2 <= min(budget, _DESCENT_EVALUATIONS):
+        beyond = lo + (reach - y_lo) / vel_lo  # the tangent's crossing of the reach
+        y_b, _, e_b, _ = particle(v, drag, law, beyond)
+        evaluations += 1
+        if y_b - e_b > reach:  # above the reach there too: Y > c on [lo, beyond] (concave)
+            lo = beyond
+        else:  # the chord's crossing: Y >= chord >= c up to it
+            lo = lo + (y_lo - reach) / (y_lo - (y_b - e_b)) * (beyond - lo) * (1.0 - 4.0 * _U)
+        y, vel_lo, y_err, _ = particle(v, drag, law, lo)
+        evaluations += 1
+        y_lo = y - y_err
+        if not y_lo - reach > _DESCENT_CLOSE * abs(physics.eps) + 4.0 * y_err:
+            break  # near the reach: the lower-bound steps go on from here
+    return lo, evaluations
 
 
 @jit

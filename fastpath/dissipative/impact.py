@@ -15,13 +15,13 @@ are reproduced bit for bit.
 import math
 
 from fastpath.arithmetic.jit import jit
-from fastpath.arithmetic.phase import reduce_phase
 from fastpath.arithmetic.sincos import sin_cos
 from fastpath.dissipative.drag import particle
 from fastpath.dissipative.drag_flight import drag_flight
 from fastpath.elastic.collision import collide
 from fastpath.elastic.flight import AUTO, departure_phase, flight_from
 from fastpath.elastic.gap import departure
+from fastpath.elastic.landing import landing_phase
 from fastpath.status import CONVERGED
 
 
@@ -35,14 +35,15 @@ def impact_velocity(v_in, u, restitution):
 def dissipative_collide(physics, phi, v):
     """(phi1, v1, tau, iterations, status): one flight (with the drag of the description
     ``physics``, ``fastpath.dissipative.drag``) and one impact with its restitution r; phi any
-    real, phi1 in [0, 2*pi)."""
+    real, phi1 in [0, 2*pi) (without drag as ``fastpath.elastic.collision``: a long flight's
+    root carried as an unevaluated sum, ``fastpath.elastic.landing``)."""
     eps, drag, restitution = physics.eps, physics.drag, physics.restitution
     if drag == 0.0 and restitution == 1.0:
         return collide(phi, v, eps)
     centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)  # as collide: the same flight when drag == 0
     if drag == 0.0:
-        tau, sin1, _, iterations, status = flight_from(
+        tau, tau_lo, sin1, _, iterations, status = flight_from(
             centred, sin_phi, cos_phi, v, eps, AUTO, phase_error
         )
         v_in = v - tau
@@ -51,6 +52,7 @@ def dissipative_collide(physics, phi, v):
         tau, sin1, _, iterations, status = drag_flight(
             physics, centred, sin_phi, cos_phi, v, w0_error, AUTO
         )
+        tau_lo = 0.0
         v_in = particle(v, drag, physics.law, tau)[1] if status == CONVERGED else math.nan
     v1 = impact_velocity(v_in, -eps * sin1, restitution)
-    return reduce_phase(centred + tau), v1, tau, iterations, status
+    return landing_phase(centred, tau, tau_lo), v1, tau, iterations, status

@@ -4,14 +4,18 @@ After the flight time tau (``solve_flight``), with plate velocity u = -eps*sin(p
 incoming velocity v_in = v - tau, the elastic impact gives
 
     phi1 = (phi + tau) mod 2*pi,      v1 = 2*u - v_in = tau - v - 2*eps*sin(phi + tau).
+
+phi1 is reduced from the exact sum phi + tau (+ the remainder of a long flight's root,
+``fastpath.elastic.landing``): a few ulps of 2*pi at any speed.
 """
 
 
 from fastpath.arithmetic.jit import jit
-from fastpath.arithmetic.phase import centre_phase, reduce_phase
+from fastpath.arithmetic.phase import centre_phase
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.arithmetic.sincos import sin_cos
 from fastpath.elastic.flight import AUTO, departure_phase, flight_from, phase_error_of
+from fastpath.elastic.landing import landing_phase
 
 CARRIED_SINE_ERROR = 8.0 * UNIT_ROUNDOFF  # sine carried across collisions (rotation, Newton)
 
@@ -41,9 +45,9 @@ def collide_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, sine_error=CARRIED_
     """
     centred = centre_phase(phi)
     phase_error = phase_error_of(phi, centred) + sine_error
-    tau, sin1, cos1, iterations, status = flight_from(
+    tau, tau_lo, sin1, cos1, iterations, status = flight_from(
         centred, sin_phi, cos_phi, v, eps, method, phase_error
     )
-    phi1 = reduce_phase(phi + tau)
+    phi1 = landing_phase(phi, tau, tau_lo)
     v1 = tau - v - 2.0 * eps * sin1
     return phi1, sin1, cos1, v1, tau, iterations, status

@@ -21,6 +21,7 @@ from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.arithmetic.sincos import sin_cos, sin_cos_error
 from fastpath.elastic.concave import concave_flight
 from fastpath.elastic.gap import departure, departure_verdict
+from fastpath.elastic.landing import refine_long_flight
 from fastpath.elastic.lockstep import lockstep_flight_one
 from fastpath.elastic.lower_bound import lower_bound_flight
 from fastpath.status import CONVERGED
@@ -67,7 +68,7 @@ def solve_flight(phi, v, eps, method=AUTO):
     """
     centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)  # as collide: flight and step give the same tau
-    tau, _, _, iterations, status = flight_from(
+    tau, _, _, _, iterations, status = flight_from(
         centred, sin_phi, cos_phi, v, eps, method, phase_error
     )
     return tau, iterations, status
@@ -75,13 +76,27 @@ def solve_flight(phi, v, eps, method=AUTO):
 
 @jit
 def flight_from(phi, sin_phi, cos_phi, v, eps, method=AUTO, phase_error=0.0):
-    """(tau, sin(phi + tau), cos(phi + tau), iterations, status) for phi in [-pi, pi).
+    """(tau, tau_lo, sin(phi + tau), cos(phi + tau), iterations, status) for phi in [-pi, pi).
 
     The caller supplies sin and cos of the departure phase, which the previous collision has
     already computed: an orbit needs one libm sine and cosine per collision. phase_error bounds
     the error of phi itself (its reduction). NOT_DEPARTING only where w0 <= 0 is certain; a w0
-    within its rounding bound of zero is UNCERTAIN.
+    within its rounding bound of zero is UNCERTAIN. A long flight's root is tau + tau_lo, an
+    unevaluated sum (``fastpath.elastic.landing``; tau_lo = 0 otherwise), and the sine and
+    cosine are of phi + tau + tau_lo.
     """
+    tau, sin1, cos1, iterations, status = certified_flight(phi, sin_phi, cos_phi, v, eps,
+                                                           method, phase_error)
+    if status != CONVERGED:
+        return tau, 0.0, sin1, cos1, iterations, status
+    tau, tau_lo, sin1, cos1 = refine_long_flight(cos_phi, v, eps, tau, sin1, cos1)
+    return tau, tau_lo, sin1, cos1, iterations, status
+
+
+@jit
+def certified_flight(phi, sin_phi, cos_phi, v, eps, method=AUTO, phase_error=0.0):
+    """(tau, sin(phi + tau), cos(phi + tau), iterations, status): ``flight_from``'s certified
+    flight time as one float, by the method that suits the flight (module docstring)."""
     w0, w0_error = departure(phi, sin_phi, v, eps, phase_error)
     verdict = departure_verdict(w0, w0_error)
     if verdict != CONVERGED:

@@ -14,7 +14,7 @@ For a departure at phase phi with velocity v, after a time t (DESIGN section 2):
 import math
 
 from fastpath.arithmetic.jit import jit
-from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.arithmetic.rounding import SUBNORMAL, UNIT_ROUNDOFF
 from fastpath.status import CONVERGED, NOT_DEPARTING, OVERFLOW, UNCERTAIN
 
 
@@ -36,18 +36,22 @@ def gap_error(phi, v, eps, t):
 
     The plate term 2*eps*sin(phi + t/2)*sin(t/2) has magnitude <= |eps|*min(t, 2) and an argument
     error of about u*(|phi| + t); the flight term t*(v - t/2) is good to a few u*(t*|v| + t**2).
-    The factor 4 covers the handful of roundings in each term.
+    The factor 4 covers the handful of roundings in each term. Results in the subnormal range
+    round in absolute terms: six operations, two of them sines scaled by 2|eps|, add
+    (4 + 2|eps|)*SUBNORMAL.
     """
     plate = abs(eps) * min(t, 2.0) * (abs(phi) + t + 3.0)
     flight = t * (abs(v) + t)
-    return 4.0 * UNIT_ROUNDOFF * (plate + flight)
+    return 4.0 * UNIT_ROUNDOFF * (plate + flight) + SUBNORMAL * (4.0 + 2.0 * abs(eps))
 
 
 @jit
 def rate_error(phi, v, eps, t):
     """A bound on |computed d' - exact d'| at the float t: a few u of each term of
-    v - t + eps*sin(phi + t), the sine's argument carrying u*(|phi| + t)."""
-    return 4.0 * UNIT_ROUNDOFF * (abs(v) + t + abs(eps) * (1.0 + abs(phi) + t))
+    v - t + eps*sin(phi + t), the sine's argument carrying u*(|phi| + t); in the subnormal
+    range (2 + |eps|)*SUBNORMAL for the absolute rounding of the sum and the sine."""
+    return (4.0 * UNIT_ROUNDOFF * (abs(v) + t + abs(eps) * (1.0 + abs(phi) + t))
+            + SUBNORMAL * (2.0 + abs(eps)))
 
 
 @jit
@@ -56,11 +60,16 @@ def departure(phi, sin_phi, v, eps, phase_error):
 
     phase_error bounds |phi - phi_exact| (0 for a phase used as given; the reduction's error
     otherwise) plus any absolute error of sin_phi beyond libm's (a sine carried by rotation).
-    The sine, the product and the sum each round by <= u of their size.
+    The sine, the product and the sum each round by <= u of their size, or, where they are
+    subnormal, by <= SUBNORMAL/2 in absolute terms (the sine's scaled by |eps|): (2 + |eps|)
+    SUBNORMAL, without which a subnormal w0 would be judged certain. With eps = 0 or phi = 0
+    nothing rounds (the product is an exact zero and w0 = v), and nothing is added.
     """
     w0 = v + eps * sin_phi
     bound = 2.0 * UNIT_ROUNDOFF * abs(w0) + 3.0 * UNIT_ROUNDOFF * abs(eps * sin_phi)
-    return w0, bound + abs(eps) * phase_error
+    exact = eps == 0.0 or (phi == 0.0 and sin_phi == 0.0)
+    underflow = 0.0 if exact else SUBNORMAL * (2.0 + abs(eps))
+    return w0, bound + abs(eps) * phase_error + underflow
 
 
 @jit
@@ -75,3 +84,4 @@ def departure_verdict(w0, bound):
     if not w0 > bound:
         return UNCERTAIN
     return CONVERGED
+

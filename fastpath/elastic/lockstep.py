@@ -58,7 +58,7 @@ def moderate_bracket(v, w0, w0_error, eps):
 
 
 @inline_jit
-def lane_rotate(s, c, h):
+def rotate_by(s, c, h):
     """(sin, cos) of the angle moved on by h: first order below 1e-8, else angle addition."""
     sh, ch = sin_cos(h)
     tiny = abs(h) < 1e-8
@@ -82,7 +82,7 @@ def lane_evaluation(state, phi, cos_phi, v, eps, two_v, k):
     if done or failed:
         return state
     if k > 1:
-        s, c = lane_rotate(s, c, h)
+        s, c = rotate_by(s, c, h)
     d = eps * (cos_phi - c) - 0.5 * t * delta
     d1 = -v - delta + eps * s
     if not (abs(d) < math.inf and abs(d1) < math.inf):
@@ -140,7 +140,7 @@ def lane_start(phi, sin_phi, v, eps, w0_error):
 def lane_answer(state):
     """(tau, sin(phi + tau), cos(phi + tau), evaluations, done) of a lane's final state."""
     _, _, _, _, _, _, _, tau, t_root, s_root, c_root, evaluations, done, failed = state
-    s1, c1 = lane_rotate(s_root, c_root, tau - t_root)
+    s1, c1 = rotate_by(s_root, c_root, tau - t_root)
     return tau, s1, c1, evaluations, done and not failed
 
 

@@ -40,7 +40,7 @@ import numpy as np
 from numba import get_num_threads, prange
 
 from fastpath.arithmetic.jit import inline_jit, jit, parallel_jit
-from fastpath.arithmetic.phase import MODERATE_LIMIT, centre_moderate, reduce_moderate
+from fastpath.arithmetic.phase import MODERATE_LIMIT, centre_moderate
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, select
 from fastpath.arithmetic.sincos import sin_cos, sin_cos_error
 from fastpath.dissipative.carried import CARRIED, PHI, STATE_SIZE, STUCK, T, V, copy_carried
@@ -48,6 +48,7 @@ from fastpath.dissipative.sticking import detachment
 from fastpath.elastic.collision import collide
 from fastpath.elastic.flight import AUTO, GENERAL, departure_phase
 from fastpath.elastic.holmes import holmes_collide
+from fastpath.elastic.landing import landing_phase_moderate, refine_long_flight
 from fastpath.elastic.lockstep import lockstep_collide
 from fastpath.kernels.arrays import keeps_carried
 from fastpath.kernels.histogram import censor, escape, exit_hole, in_hole, stuck
@@ -65,13 +66,15 @@ def lane_collide(centred, v, eps, phase_error):
     (tau, phi1, v1, centred phi1, its phase error for the next flight, answered).
 
     The same arithmetic as ``collide`` -> ``collide_from`` -> ``flight_from`` ->
-    ``lockstep_flight`` -> reduce_phase / centre_phase (their moderate ranges); answered False
+    ``lockstep_flight``, ``refine_long_flight`` -> ``landing_phase`` / centre_phase (their
+    moderate ranges); answered False
     where collide would do anything else (then the caller calls it).
     """
     s, c = sin_cos(centred)
-    tau, sin1, _, _, answered = lockstep_collide(centred, s, c, v, eps, phase_error)
+    tau, sin1, cos1, _, answered = lockstep_collide(centred, s, c, v, eps, phase_error)
+    tau, tau_lo, sin1, _ = refine_long_flight(c, v, eps, tau, sin1, cos1)
     x = centred + tau
-    phi1 = reduce_moderate(x)
+    phi1 = landing_phase_moderate(centred, tau, tau_lo)
     centred1 = centre_moderate(phi1)
     phase_error1 = select(centred1 == phi1, 0.0, 2.0 * UNIT_ROUNDOFF * abs(centred1))
     v1 = tau - v - 2.0 * eps * sin1

@@ -90,6 +90,20 @@ def test_overflow_is_a_value_error_saying_overflow(phi, v, eps):
     assert fastpath.flight(phi, v, eps).status == fastpath.FlightStatus.OVERFLOW
 
 
+@pytest.mark.parametrize("call", [
+    lambda: fastpath.flight([4.0], [10**400], 0.6),
+    lambda: fastpath.step(np.array([4.0]), [3.0], [10**400]),
+    lambda: fastpath.flight_time(4.0, 10**400, 0.6),
+    lambda: fastpath.orbit(4.0, 3.0, [-(10**400)], 3),
+    lambda: fastpath.flight(4.0, 3.0, 0.6, drag=10**400),
+], ids=["flight-array", "step-array", "flight_time-scalar", "orbit", "drag"])
+def test_an_integer_beyond_float64_is_a_value_error(call):
+    """Python integers beyond float64's range are rejected like inf: ValueError, not numpy's
+    OverflowError."""
+    with pytest.raises(ValueError, match="must be finite"):
+        call()
+
+
 @pytest.mark.parametrize("bad", ["4.0", True, np.bool_(False), None, [1.0, "x"], 1 + 2j,
                                  np.array(["1.0"]), np.array([True, False])])
 @pytest.mark.parametrize(
@@ -184,3 +198,49 @@ def test_orbit_shapes_and_models():
     hol = fastpath.orbit(4.0, 3.0, 0.6, 100, model="holmes")
     assert hol.phi.shape == (101,) and hol.iterations is None
     assert fastpath.orbit(4.0, 3.0, 0.6, 0).phi.shape == (1,)
+
+
+@pytest.mark.parametrize("func", [fastpath.flight, fastpath.flight_time])
+@pytest.mark.parametrize("drag", [0.0, 0.1])
+def test_a_flight_refuses_a_restitution_it_would_not_apply(func, drag):
+    """restitution acts at an impact, not on a flight: flight and flight_time take only 1 and
+    say so (they used to accept any r and ignore it); step and orbit apply it."""
+    with pytest.raises(ValueError, match=r"restitution=0.5 does not act on a flight"):
+        func(4.0, 3.0, 0.6, drag=drag, restitution=0.5)
+    assert func(4.0, 3.0, 0.6, drag=drag, restitution=1.0) == func(4.0, 3.0, 0.6, drag=drag)
+
+
+def test_a_scalar_flight_status_is_a_flight_status():
+    """FlightResult.status of a scalar call is a FlightStatus member (of arrays: its codes)."""
+    assert fastpath.flight(4.0, 3.0, 0.6).status is fastpath.FlightStatus.CONVERGED
+    assert fastpath.flight(4.0, 0.0, 0.6).status is fastpath.FlightStatus.NOT_DEPARTING
+    codes = fastpath.flight(np.array([4.0, 4.0]), np.array([3.0, 0.0]), 0.6).status
+    assert [fastpath.FlightStatus(c) for c in codes] == [fastpath.FlightStatus.CONVERGED,
+                                                         fastpath.FlightStatus.NOT_DEPARTING]
+
+
+def test_the_lower_bound_method_keeps_its_former_name_seed():
+    """method="lower_bound" names the paper's lower-bound steps; "seed" stays an alias."""
+    a = fastpath.flight(1.0, 2.0, 3.0, "lower_bound")
+    b = fastpath.flight(1.0, 2.0, 3.0, "seed")
+    assert (a.tau, a.iterations, a.status) == (b.tau, b.iterations, b.status)
+    orb = fastpath.orbit(4.0, 3.0, 0.6, 5, method="lower_bound")
+    assert np.array_equal(orb.phi, fastpath.orbit(4.0, 3.0, 0.6, 5, method="seed").phi)
+
+
+def test_version_is_the_package_version():
+    from importlib.metadata import version
+
+    assert fastpath.__version__ == version("bouncer-verify")
+
+
+@pytest.mark.parametrize("func", [fastpath.flight, fastpath.flight_time, fastpath.step,
+                                  fastpath.holmes_step, fastpath.orbit, fastpath.carried_step])
+def test_public_docstrings_name_their_parameters(func):
+    """Every parameter of a public function is named in its docstring."""
+    import inspect
+
+    doc = func.__doc__
+    for name in inspect.signature(func).parameters:
+        assert name in doc, (func.__name__, name)
+

@@ -127,7 +127,7 @@ def test_a_departure_exactly_at_its_error_bound_is_uncertain(method, eps):
     phase_error = (1.0 - 2.0**-52) / abs(eps)
     w0, bound = departure(0.0, 0.0, 1.0, eps, phase_error)
     assert w0 == bound == 1.0
-    tau, s, c, iterations, status = flight_from(0.0, 0.0, 1.0, 1.0, eps, method, phase_error)
+    tau, _, s, c, iterations, status = flight_from(0.0, 0.0, 1.0, 1.0, eps, method, phase_error)
     assert (status, iterations) == (UNCERTAIN, 0)
     assert math.isnan(tau) and math.isnan(s) and math.isnan(c)
 
@@ -152,7 +152,7 @@ def test_no_evaluation_before_a_non_departure_or_an_uncertain_departure(eps):
     w0, bound = departure(phi, s, v, eps, 0.0)
     assert w0 == 0.0 < bound
     for method in (AUTO, SEED, GENERAL):
-        tau, _, _, iterations, status = flight_from(phi, s, c, v, eps, method, 0.0)
+        tau, _, _, _, iterations, status = flight_from(phi, s, c, v, eps, method, 0.0)
         assert (status, iterations) == (UNCERTAIN, 0) and math.isnan(tau)
 
 

@@ -20,7 +20,7 @@ from mpmath import mp
 
 from fastpath.elastic.collision import CARRIED_SINE_ERROR
 from fastpath.elastic.concave import concave_flight
-from fastpath.elastic.flight import GENERAL, flight_from
+from fastpath.elastic.flight import GENERAL, certified_flight, flight_from
 from fastpath.elastic.gap import departure
 from fastpath.status import ITERATION_LIMIT, FlightStatus
 
@@ -122,14 +122,14 @@ def test_eps_zero_gives_exactly_twice_v(phi, v):
 
 
 def test_general_method_is_the_concave_solver():
-    """flight_from(..., GENERAL) for |eps| <= 1 is concave_flight, bit for bit."""
+    """certified_flight(..., GENERAL) for |eps| <= 1 is concave_flight, bit for bit."""
     for phi, v, eps in _cases(14, 3, (-4.0, 1.5)):
         s, c = math.sin(phi), math.cos(phi)
         w0, w0_error = departure(phi, s, v, eps, 0.0)
         if not w0 > w0_error:
             continue
-        assert flight_from(phi, s, c, v, eps, GENERAL, 0.0) == concave_flight(phi, s, c, v, eps,
-                                                                               w0_error)
+        assert certified_flight(phi, s, c, v, eps, GENERAL, 0.0) == concave_flight(
+            phi, s, c, v, eps, w0_error)
 
 
 @pytest.mark.parametrize("sin_phi, cos_phi, v, eps, w0_error, t", [
@@ -364,5 +364,5 @@ def test_an_overflowing_w0_is_an_overflow():
     """w0 = v + eps*sin(phi) = inf: OVERFLOW (not UNCERTAIN), before any evaluation."""
     s, c = math.sin(1.0), math.cos(1.0)
     for method in (0, GENERAL):
-        tau, _, _, evaluations, status = flight_from(1.0, s, c, 1.5e308, 1e308, method, 0.0)
+        tau, _, _, _, evaluations, status = flight_from(1.0, s, c, 1.5e308, 1e308, method, 0.0)
         assert status == int(FlightStatus.OVERFLOW) and evaluations == 0 and math.isnan(tau)
