@@ -112,6 +112,7 @@ def same_power_claim(hole, a, run):
     a_n, ci_n, s_n, u_n = _alpha(dn)
     a_t, ci_t, s_t, u_t = _alpha(dt)
     verdict = R.same_verdict(a_n, u_n, a_t, u_t)
+    note = R.same_note(a_n, u_n, a_t, u_t)
     share = chaotic_share(a, w.t["matched"][0])
     gone = ("" if share is None else
             f" The continuous-time intermediate law, extrapolated, accounts for {share:.3g} of "
@@ -128,8 +129,10 @@ def same_power_claim(hole, a, run):
                 f"{a_n:.3f} [{ci_n[0]:.3f}, {ci_n[1]:.3f}] +- {_g(s_n, 2)} (sys); "
                 f"{window_text(a['curves']['time'], w.t['matched'], 't')}, alpha_t = {a_t:.3f} "
                 f"[{ci_t[0]:.3f}, {ci_t[1]:.3f}] +- {_g(s_t, 2)} (sys); |alpha_n - alpha_t| = "
-                f"{abs(a_n - a_t):.3f} against U = {_g(u_n + u_t, 2)} and the band "
-                f"{R.SAME} x mean = {R.SAME * 0.5 * (a_n + a_t):.3f}; best laws: "
+                f"{abs(a_n - a_t):.3f} against U = {_g(u_n + u_t, 2)}, the same within "
+                f"{R.SAME} x mean = {R.SAME * 0.5 * (a_n + a_t):.3f}, different beyond "
+                f"{R.SAME_FAILS} x mean = {R.SAME_FAILS * 0.5 * (a_n + a_t):.3f}"
+                f"{' (' + note + ')' if note else ''}; best laws: "
                 f"{dn['best'].replace('_', ' ')} (n), {dt['best'].replace('_', ' ')} (t).{gone}.")
     return make_claim(cid, verdict, evidence, particles_per_curve=n,
                       statistical={"alpha_n": a_n, "alpha_n_ci95": list(ci_n), "alpha_t": a_t,
@@ -224,7 +227,8 @@ def bounded_velocity_claim(hole, a, study, run):
     boot = np.array([b for b in boot if math.isfinite(b)])
     ci = ((float(np.percentile(boot, 2.5)), float(np.percentile(boot, 97.5)))
           if len(boot) > BOOTSTRAP // 2 else (math.nan, math.nan))
-    verdict = R.band_verdict(*ci, *R.BOUNDED)
+    verdict = R.two_band_verdict(*ci, R.BOUNDED, R.BOUNDED_FAILS)
+    note = R.two_band_note(*ci, R.BOUNDED, R.BOUNDED_FAILS)
     ratio = t / n
     evidence = (f"Sampled study of {study.particles:,} starts: {count} escapes after n_half = "
                 f"{n_half:g} (the slow population holds half the escapes), n up to {n_hi:.4g}; "
@@ -232,7 +236,10 @@ def bounded_velocity_claim(hole, a, study, run):
                 f"{np.median(ratio):.3g}, 5-95% {np.percentile(ratio, 5):.3g}-"
                 f"{np.percentile(ratio, 95):.3g}; slope of log median(t/n) against log n over "
                 f"{bins} quarter-decades = {_g(slope, 3)}, bootstrap 95% [{_g(ci[0], 3)}, "
-                f"{_g(ci[1], 3)}] (0 for bounded velocity, 1/2 for velocity diffusion).")
+                f"{_g(ci[1], 3)}] (0 for bounded velocity, 1/2 for velocity diffusion): bounded "
+                f"within [{R.BOUNDED[0]:g}, {R.BOUNDED[1]:g}], not beyond "
+                f"[{R.BOUNDED_FAILS[0]:g}, {R.BOUNDED_FAILS[1]:g}]"
+                f"{' (' + note + ')' if note else ''}.")
     return make_claim(cid, verdict, evidence, particles_per_curve=study.particles,
                       statistical={"slope": slope, "slope_ci95": list(ci),
                                    "median_t_over_n": float(np.median(ratio))}, run=None)
@@ -306,7 +313,9 @@ def sea_slowed_claim(hole, analysis, study, snapshot_n, run):
                           "the tail's start.", particles_per_curve=cn.particles, run=run)
     k, m = locked_share(study.snapshots[snapshot_n])
     lo, hi = (float(x) for x in wilson(k, m)) if m else (0.0, 1.0)
-    share = R.fraction_at_least(k, m, 0.5, (lo, hi)) if m else INCONCLUSIVE
+    most, most_fails = 1 - R.MOSTLY, 1 - R.MOSTLY_FAILS
+    share = R.word_verdict(lo, hi, most, most_fails) if m else INCONCLUSIVE
+    note = R.word_note(lo, hi, most, most_fails) if m else ""
     idx = int(np.searchsorted(cn.x, snapshot_n))  # S(x = n): still inside after collision n
     mine = _survival_at(cn, idx)
     orders = [_order(mine, _survival_at(analysis[i]["curves"]["collisions"], idx))
@@ -316,7 +325,8 @@ def sea_slowed_claim(hole, analysis, study, snapshot_n, run):
     verdict = R.all_of([share, above])
     evidence = (f"Sampled study of {study.particles:,} starts: {m} survivors after n = "
                 f"{snapshot_n} watched for 200 collisions, {k} locked to a period-1 resonance "
-                f"(share {k / m if m else math.nan:.3f}, 95% [{lo:.3f}, {hi:.3f}]); run: P(n = "
+                f"(share {k / m if m else math.nan:.3f}, 95% [{lo:.3f}, {hi:.3f}]; 'most' "
+                f"{R.bounds_text(most, most_fails)}{': ' + note if note else ''}); run: P(n = "
                 f"{cn.x[idx]:.4g}) = {mine[0]:.3g} against "
                 + ", ".join(f"{_survival_at(analysis[i]['curves']['collisions'], idx)[0]:.3g} "
                             f"(phi_c = {i})" for i in ISLAND_HOLES) + ".")
@@ -402,11 +412,17 @@ def universal_claim(analysis, run):
     else:
         verdict = INCONCLUSIVE
     differ = [f"{h1} vs {h2}" for (h1, h2), v in pairs.items() if v == REFUTED]
+    between = [f"{h1} vs {h2}" for (h1, h2), (a1, _, _, u1), (a2, _, _, u2) in
+               ((k, alphas[k[0]], alphas[k[1]]) for k in pairs)
+               if R.same_note(a1, u1, a2, u2) == R.BETWEEN]
+    beyond = f"at least {R.pct(R.SAME_FAILS)} apart beyond their uncertainties"
     evidence = ("Late-tail power-law exponents (discrete time): "
                 + ", ".join(f"phi_c = {h}: alpha = {a:.3f} +- {_g(u, 2)}"
                             for h, (a, _, _, u) in alphas.items())
-                + (f"; pairs that differ beyond 10%: {', '.join(differ)}" if differ else
-                   "; no pair differs beyond 10% with its uncertainty") + ".")
+                + (f"; pairs {beyond}: {', '.join(differ)}" if differ else
+                   f"; no pair {beyond}")
+                + (f"; pairs {R.BETWEEN} ({R.pct(R.SAME)}, {R.pct(R.SAME_FAILS)}): "
+                   f"{', '.join(between)}" if between else "") + ".")
     n = next(iter(analysis.values()))["curves"]["collisions"].particles
     return make_claim("intro-universal", verdict, evidence, particles_per_curve=n,
                       statistical={h: a for h, (a, _, _, _) in alphas.items()},

@@ -13,7 +13,13 @@ import numpy as np
 from fastpath.kernels.moments import moments
 from reports.paper.check import Check, agree
 from reports.paper.register import make_claim
-from reports.paper.rules import SAME, band_verdict
+from reports.paper.rules import (
+    SAME,
+    SAME_FAILS,
+    relative_band,
+    two_band_note,
+    two_band_verdict,
+)
 from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit, verified_text, verify_sample
 
 # Fermi acceleration ensemble (eps = 0.6, the paper's escape start box)
@@ -124,9 +130,10 @@ def fermi_claims(fermi):
     """Claims ``fermi-n`` (<v_n> ~ n^(1/2)) and ``fermi-t`` (t ~ n^(3/2), i.e. <v(t)> ~
     t^(1/3)), register ``reports.paper.register``.
 
-    Rule: the slope's interval, 1.96 sigma (bootstrap over particle blocks) plus the window
-    family's half-range on each side, must lie within ``rules.SAME`` (10%) of the exponent:
-    confirmed inside, refuted wholly outside, inconclusive otherwise.
+    Rule: "the same" exponent (``reports.paper.rules``, two bounds): the slope's interval, 1.96
+    sigma (bootstrap over particle blocks) plus the window family's half-range on each side,
+    confirms if it lies within ``rules.SAME`` (10%) of the exponent, refutes if it lies wholly
+    beyond ``rules.SAME_FAILS`` (25%) of it, and is inconclusive otherwise.
     """
     out = []
     for key, beta, err, expected, x, y, window, unit in (
@@ -136,14 +143,18 @@ def fermi_claims(fermi):
              fermi.t_window, "t")):
         sys = _window_family(x, y, window)
         u = 1.96 * err + sys
-        band = (expected * (1 - SAME), expected * (1 + SAME))
-        verdict = band_verdict(beta - u, beta + u, *band)
+        band = relative_band(expected, SAME)
+        fails = relative_band(expected, SAME_FAILS)
+        verdict = two_band_verdict(beta - u, beta + u, band, fails)
+        note = two_band_note(beta - u, beta + u, band, fails)
         out.append(make_claim(
             f"fermi-{key}", verdict,
             f"slope of log<v> against log {unit} over [{window[0]:g}, {window[1]:.3g}]"
             f" = {beta:.4f} +- {err:.4f} (bootstrap over 64 particle blocks, "
             f"{fermi.particles} particles) +- {sys:.3f} (window family): interval "
-            f"[{beta - u:.4f}, {beta + u:.4f}] against the band [{band[0]:.4f}, {band[1]:.4f}]; "
+            f"[{beta - u:.4f}, {beta + u:.4f}] against the band [{band[0]:.4f}, {band[1]:.4f}] "
+            f"(fails wholly outside [{fails[0]:.4f}, {fails[1]:.4f}]"
+            f"{'; ' + note if note else ''}); "
             f"{verified_text(fermi.verification)}.",
             particles_per_curve=fermi.particles,
             statistical={"beta": beta, "sigma": err}, systematic={"beta": sys}))

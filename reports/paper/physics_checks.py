@@ -12,10 +12,9 @@ on its regime by maximum likelihood (claims fig2-t-*, ``reports.paper.escape_cla
 
 2. The rotation angle of small oscillations around the elliptic fixed point (phi, v) = (0, pi):
    cos(theta) = 1 - 2*eps (the linearisation of the fixed point, docs/model.md). From an orbit
-   started 1e-5 above the fixed point,
-   the 2x2 matrix M with x_{k+1} = M x_k is fitted to the deviations by least squares and
-   cos(theta) = tr(M)/2; the uncertainty is the change when the start is moved 2e-5 away
-   (nonlinear terms), plus rounding.
+   started 1e-5 above the fixed point, the 2x2 matrix M with x_{k+1} = M x_k is fitted to the
+   deviations by least squares and cos(theta) = tr(M)/2; the uncertainty is the change when the
+   start is moved 2e-5 away (nonlinear terms), plus rounding.
 3. Velocity diffusion at large eps: <(v_n - v_0)**2>/n -> 2 eps**2 C(4 eps) with the
    Rechester-White factor C(K) = 1 - 2 J2 - 2 J1**2 + 2 J2**2 + 2 J3**2 (the Holmes map is the
    standard map in I = 2v with K = 4 eps; the exact map approaches it as v grows), for the exact

@@ -24,7 +24,8 @@ from reports.stats.hazard import all_cause_survival, first_below, hazard_ratio
 from reports.stats.histogram import read_run
 
 MIN_AT_RISK = 10
-HR_BAND = (1 / (1 + R.SAME), 1 + R.SAME)
+HR_BAND = R.ratio_band(R.SAME)              # "the same" hazards: holds inside
+HR_FAILS_BAND = R.ratio_band(R.SAME_FAILS)  # fails wholly outside
 
 
 def followed_curve(followed, ref):
@@ -71,9 +72,10 @@ def compare_long_times(ref, other, level):
     parts, verdicts = [], []
     for lo, hi in ((a, mid), (mid, b)):
         hr, ci, used = hazard_ratio(ref, other, lo, hi)
-        verdicts.append(R.band_verdict(*ci, *HR_BAND))
+        verdicts.append(R.two_band_verdict(*ci, HR_BAND, HR_FAILS_BAND))
+        note = R.two_band_note(*ci, HR_BAND, HR_FAILS_BAND)
         parts.append(f"[{ref.x[lo]:.3g}, {ref.x[hi]:.3g}] HR {hr:.3f} [{ci[0]:.3f}, {ci[1]:.3f}]"
-                     f" ({used:,} escapes)")
+                     f" ({used:,} escapes{', ' + note if note else ''})")
     return R.all_of(verdicts), ", ".join(parts), verdicts
 
 
@@ -92,9 +94,9 @@ def same_results_claim(claim_id, ref_curves, other_curves, levels, what, particl
         verdicts.append(v)
         parts.append(f"{key[0]} ({'n' if key[1] == 'collisions' else 't'}): {text}")
     evidence = (f"{what} against the paper-scale run, hazard ratio (log-rank) over the earlier "
-                "and later half of the late tail (from the reference's tail level), band "
-                f"[{HR_BAND[0]:.3f}, "
-                f"{HR_BAND[1]:.3f}]: " + "; ".join(parts) + ".")
+                "and later half of the late tail (from the reference's tail level), the same "
+                f"inside [{HR_BAND[0]:.3f}, {HR_BAND[1]:.3f}], different wholly outside "
+                f"[{HR_FAILS_BAND[0]:.3f}, {HR_FAILS_BAND[1]:.3f}]: " + "; ".join(parts) + ".")
     return make_claim(claim_id, R.all_of(verdicts) if verdicts else INCONCLUSIVE, evidence,
                       particles_per_curve=particles, run=run)
 
@@ -155,8 +157,9 @@ def island_start_claim(run_dir, box_classified):
     f_ci = tuple(float(x) for x in wilson(reg, m))
     p_ci = tuple(float(x) for x in wilson(inside[2], n))
     lo_, hi_ = min(low, p_ci[0]), p_ci[1]
-    same = R.same_verdict(0.5 * (lo_ + hi_), 0.5 * (hi_ - lo_), reg / m,
-                          0.5 * (f_ci[1] - f_ci[0]))
+    same_args = (0.5 * (lo_ + hi_), 0.5 * (hi_ - lo_), reg / m, 0.5 * (f_ci[1] - f_ci[0]))
+    same = R.same_verdict(*same_args)
+    note = R.same_note(*same_args)
     evidence = (f"Run {Path(run_dir).name} ({n:,} starts, hole at phi_c = pi): still inside "
                 f"{inside[0]:,}, {inside[1]:,} and {inside[2]:,} at t = {c.x[k_100]:.3g}, "
                 f"{c.x[k_10]:.3g} and the horizon {t_h:.3g}; escapes in the last two decades "
@@ -165,7 +168,9 @@ def island_start_claim(run_dir, box_classified):
                 f"{'decelerates' if converging == CONFIRMED else 'does not clearly decelerate'})"
                 f"; limit between {low:.4f} and {high:.4f}; regular share of the box "
                 f"{reg / m:.4f} (95% [{f_ci[0]:.4f}, {f_ci[1]:.4f}], {m} random starts "
-                f"classified by their orbits): {same} under 'the same'.")
+                f"classified by their orbits): {same} under 'the same' (within "
+                f"{R.pct(R.SAME)}, different beyond {R.pct(R.SAME_FAILS)}"
+                f"{'; ' + note if note else ''}).")
     return make_claim("sec3-island-start", R.all_of([converging, same]), evidence,
                       particles_per_curve=n,
                       statistical={"survival_at_horizon": high, "limit_low": low,
@@ -183,19 +188,23 @@ def destruction_claim(sample, hole_width=0.3):
                           "large island.", particles_per_curve=len(large))
     left = int((large & (fol.exit < 0)).sum())
     ci = tuple(float(x) for x in wilson(left, m))
-    destroyed = R.fraction_at_most(left, m, R.TRAP_SHARE, ci)
+    destroyed = R.word_verdict(*ci, R.DESTROYED, R.DESTROYED_FAILS)
+    note = R.word_note(*ci, R.DESTROYED, R.DESTROYED_FAILS)
     # the phase extent of the island's orbits: 5th and 95th percentiles of their lowest and
     # highest phases (a few orbits locked by chance while they wander are left out)
     width = float(np.percentile(cls.phase_hi[large], 95) - np.percentile(cls.phase_lo[large], 5))
-    smaller = CONFIRMED if width >= 3 * hole_width else REFUTED
+    smaller = R.word_verdict(width / hole_width, width / hole_width, R.MUCH_SMALLER,
+                             R.MUCH_SMALLER_FAILS)
     others = int((~large & cls.regular & (fol.exit < 0)).sum())
     evidence = (f"Sampled study, {len(large):,} starts in the box 0.3 < phi < 0.9, 2.7 < v < 3.3:"
                 f" {m:,} on the large island around (0, pi) (locked orbits); with the hole of "
                 f"width {hole_width:g} at phi_c = 0, {left} of them are still inside after "
                 f"{int(fol.n.max())} collisions (share {left / m:.4f}, 95% [{ci[0]:.4f}, "
-                f"{ci[1]:.4f}], against {R.pct(R.TRAP_SHARE)}); {others} starts on other "
-                f"islands survive too; the island's orbits span a phase width of {width:.2f} = "
-                f"{width / hole_width:.1f} hole widths.")
+                f"{ci[1]:.4f}]; 'destroy all' {R.bounds_text(R.DESTROYED, R.DESTROYED_FAILS)}"
+                f"{': ' + note if note else ''}); {others} starts on other islands survive too; "
+                f"the island's orbits span a phase width of {width:.2f} = "
+                f"{width / hole_width:.1f} hole widths ('quite a lot smaller' "
+                f"{R.bounds_text(R.MUCH_SMALLER, R.MUCH_SMALLER_FAILS, '{:g}'.format)}).")
     return make_claim("sec3-destruction", R.all_of([destroyed, smaller]), evidence,
                       particles_per_curve=len(large),
                       statistical={"surviving_share": left / m, "surviving_ci95": list(ci),

@@ -81,14 +81,15 @@ def strong_measure(tr):
     return ratio, q, times
 
 
+def strong_interval(ratio):
+    """The ratio t_11 / max(others) widened by one bin of the grid either way."""
+    return ratio / BIN_MARGIN, ratio * BIN_MARGIN
+
+
 def strong_verdict(ratio):
-    if not math.isfinite(ratio) and ratio != math.inf:
-        return INCONCLUSIVE
-    if ratio >= R.DECADE * BIN_MARGIN:
-        return CONFIRMED
-    if ratio < R.DECADE / BIN_MARGIN:
-        return REFUTED
-    return INCONCLUSIVE
+    """"very strong P_11": confirmed if the widened ratio lies at or above ``rules.DECADE``,
+    refuted if at or below ``rules.STRONG_FAILS``, inconclusive otherwise (or NaN)."""
+    return R.word_verdict(*strong_interval(ratio), R.DECADE, R.STRONG_FAILS)
 
 
 def strong_claim(h, tr, run):
@@ -99,9 +100,13 @@ def strong_claim(h, tr, run):
                           f"100/N = {q:.2g} is above the long-lived level {R.LONG_LIVED_LEVEL:g}:"
                           " the data do not reach the late times (needs N >= 10^6).",
                           particles_per_curve=n, run=run)
+    lo, hi = strong_interval(ratio)
+    note = R.word_note(lo, hi, R.DECADE, R.STRONG_FAILS)
     evidence = (f"Times at which P_ij(t) falls to q = {q:.2g}: "
                 + ", ".join(f"{k} {v:.4g}" for k, v in sorted(times.items()))
-                + f"; t_11 / max(others) = {ratio:.3g} against {R.DECADE:g}.")
+                + f"; t_11 / max(others) = {ratio:.3g}, one bin either way [{lo:.3g}, {hi:.3g}];"
+                f" 'very strong' {R.bounds_text(R.DECADE, R.STRONG_FAILS, '{:g}'.format)}"
+                + (f" ({note})" if note else "") + ".")
     n = next(iter(tr[1]["time"].values())).particles
     return make_claim(f"fig3-h={h}", strong_verdict(ratio), evidence, particles_per_curve=n,
                       statistical={"ratio": ratio, "times": times}, run=run)
@@ -137,14 +142,17 @@ def trap_claim(claim_id, tr, run, traps_expected):
                           f"hole 1 are still inside at the level {R.LONG_LIVED_LEVEL:g} at "
                           f"{n:,} particles.", particles_per_curve=n, run=run)
     k11, k12, share, ci, t = got
-    trapped = R.fraction_at_most(k12, k11 + k12, R.TRAP_SHARE, ci)
+    trapped = R.word_verdict(*ci, R.TRAP_SHARE, R.TRAP_SHARE_FAILS)
+    note = R.word_note(*ci, R.TRAP_SHARE, R.TRAP_SHARE_FAILS)
     verdict = trapped if traps_expected else {CONFIRMED: REFUTED, REFUTED: CONFIRMED}.get(
         trapped, INCONCLUSIVE)
     later = _later_ratios(tr[1]["time"], t)
     evidence = (f"At t = {t:.4g}, where the entrants of hole 1 still inside fall to "
                 f"{R.LONG_LIVED_LEVEL:g}: {k11:,} will leave by hole 1 and {k12:,} by hole 2, "
-                f"share through hole 2 = {share:.4f} (95% [{ci[0]:.4f}, {ci[1]:.4f}]) against "
-                f"{R.pct(R.TRAP_SHARE)}; P_12/P_11 later: {', '.join(later) or 'n/a'}; last "
+                f"share through hole 2 = {share:.4f} (95% [{ci[0]:.4f}, {ci[1]:.4f}]): traps at "
+                f"<= {R.pct(R.TRAP_SHARE)}, does not trap at >= {R.pct(R.TRAP_SHARE_FAILS)}"
+                f"{' (' + note + ')' if note else ''}; P_12/P_11 later: "
+                f"{', '.join(later) or 'n/a'}; last "
                 f"escape through hole 2 at t < {_last_escape(tr[1]['time']['P12']):.4g}, "
                 f"through hole 1 at t < {_last_escape(tr[1]['time']['P11']):.4g}; from hole 2,"
                 f" P_21 ends at t < {_last_escape(tr[2]['time']['P21']):.4g}, P_22 at t < "
@@ -231,28 +239,30 @@ def long_lived_detail(tr, clock):
 
 
 def well_approximated_claim(claim_id, tr, clock, run):
-    from reports.paper.rules import well_approximated_verdict
-
     c = tr[1][clock]["P11"]
     d = long_lived_detail(tr, clock)
     if d is None:
         return make_claim(claim_id, INCONCLUSIVE, "The long-lived level is not reached at "
                           f"{c.particles:,} particles.", particles_per_curve=c.particles,
                           run=run), None
-    verdict, excess = well_approximated_verdict(c, d, "stretched_exponential",
+    verdict, excess = R.well_approximated_verdict(c, d, "stretched_exponential",
                                                 R.MIN_ESCAPES_TAIL)
     fit = d["fits"]["stretched_exponential"]
     beta, ci = fit.params["beta"], fit.ci95.get("beta", (math.nan, math.nan))
     sys = d["systematic"]["stretched_exponential"]["beta"]
     ll = d["fits"]
     unit = "n" if clock == "collisions" else "t"
+    note = (R.word_note(excess, excess, R.RESIDUAL_LEVEL, R.RESIDUAL_FAILS)
+            if verdict == INCONCLUSIVE and d["best"] == "stretched_exponential" else "")
     evidence = (f"P_11, {unit} in [{d['from']:.4g}, {d['to']:.4g}] ({d['escapes']:,} escapes): "
                 f"best of the three laws {d['best'].replace('_', ' ')} (log-likelihood stretched"
                 f" - power law = {ll['stretched_exponential'].loglik - ll['power_law'].loglik:.4g}"
                 f", stretched - exponential = "
                 f"{ll['stretched_exponential'].loglik - ll['exponential'].loglik:.4g}); the "
                 f"stretched law departs from the data by at most {excess:.3f} in log S beyond "
-                f"the 95% band (level {R.RESIDUAL_LEVEL}); beta = {beta:.3f} [{ci[0]:.3f}, "
+                f"the 95% band ('well approximated' "
+                f"{R.bounds_text(R.RESIDUAL_LEVEL, R.RESIDUAL_FAILS, '{:g}'.format)}"
+                f"{', ' + note if note else ''}); beta = {beta:.3f} [{ci[0]:.3f}, "
                 f"{ci[1]:.3f}] +- {sys if sys is None else f'{sys:.2g}'} (sys) (the paper leaves"
                 " open whether it is exactly 1/2).")
     return make_claim(claim_id, verdict, evidence, particles_per_curve=c.particles,
@@ -308,31 +318,60 @@ def fewer_collisions_claim(samples, seed=20120907, reps=200):
     boots = np.array(boots)
     upper = np.nanpercentile(boots, 97.5, axis=0)
     lower = np.nanpercentile(boots, 2.5, axis=0)
-    verdict = (CONFIRMED if np.all(upper <= R.FEWER) else
-               REFUTED if np.all(lower > R.FEWER) else INCONCLUSIVE)
+    per_bin = [R.word_verdict(lo, hi, R.FEWER, R.FEWER_FAILS)
+               for lo, hi in zip(lower, upper, strict=True)]
+    verdict = (CONFIRMED if all(v == CONFIRMED for v in per_bin) else
+               REFUTED if all(v == REFUTED for v in per_bin) else INCONCLUSIVE)
+    notes = [R.word_note(lo, hi, R.FEWER, R.FEWER_FAILS)
+             for lo, hi in zip(lower, upper, strict=True)]
+    tally = (f"{per_bin.count(CONFIRMED)} bins in the holds zone, {notes.count(R.BETWEEN)} "
+             f"{R.BETWEEN}, {per_bin.count(REFUTED)} in the fails zone, "
+             f"{notes.count('straddles a bound')} straddling a bound")
     evidence = (f"Sampled study, {m:,} starts (h = 1, both entry holes): ratio of the median "
                 "collision counts, transporting / reflected, per quarter-decade of escape time: "
                 + ", ".join(f"t ~ {t:.3g}: {r:.3g} [{lo:.3g}, {hi:.3g}]"
                             for (t, r), lo, hi in zip(bins, lower, upper, strict=True))
-                + f" (against {R.FEWER}).")
+                + f" ('many fewer' {R.bounds_text(R.FEWER, R.FEWER_FAILS, '{:g}'.format)}"
+                f": {tally}).")
     return make_claim("fig4-fewer-collisions", verdict, evidence, particles_per_curve=m,
                       statistical={"ratios": [r for _, r in bins]})
+
+
+def large_velocity_verdict(lo_large, hi_low):
+    """"large velocities" from the Wilson intervals of two shares of the transporting orbits:
+    confirmed if some exceed ``LARGE_VELOCITY`` times the largest start velocity (the lower
+    bound ``lo_large`` of that share above 0), refuted if none exceeds ``LARGE_VELOCITY_FAILS``
+    times it (the upper bound ``hi_low`` of that share below ``NONE_SHARE``), inconclusive
+    otherwise."""
+    if lo_large > 0:
+        return CONFIRMED
+    if hi_low < R.NONE_SHARE:
+        return REFUTED
+    return INCONCLUSIVE
 
 
 def large_velocity_claim(samples):
     _, _, v_tr, _, _ = _kinds(samples)
     m = sum(f.particles for f in samples.values())
     limit = R.LARGE_VELOCITY * START_V_MAX
+    low_limit = R.LARGE_VELOCITY_FAILS * START_V_MAX
     k, total = int((v_tr > limit).sum()), len(v_tr)
     if total == 0:
         return make_claim("fig4-large-velocities", INCONCLUSIVE, "No transporting escapes.",
                           particles_per_curve=m)
     lo, hi = _pct_ci(k, total)
-    verdict = CONFIRMED if lo > 0 else (REFUTED if hi < 1e-4 else INCONCLUSIVE)
+    k_low = int((v_tr > low_limit).sum())
+    lo_low, hi_low = _pct_ci(k_low, total)
+    verdict = large_velocity_verdict(lo, hi_low)
+    note = ("" if verdict != INCONCLUSIVE else
+            R.BETWEEN if lo_low >= R.NONE_SHARE else "straddles a bound")
     evidence = (f"Sampled study, {m:,} starts (h = 1): {k:,} of {total:,} transporting orbits "
-                f"exceed v = {limit:g} before they escape (share {k / total:.3g}, 95% "
-                f"[{lo:.2g}, {hi:.2g}]); their largest velocity reaches {v_tr.max():.4g}, the "
-                f"99.9th percentile {np.percentile(v_tr, 99.9):.4g}.")
+                f"exceed v = {limit:g} ({R.LARGE_VELOCITY:g} times the largest start velocity) "
+                f"before they escape (share {k / total:.3g}, 95% [{lo:.2g}, {hi:.2g}]), "
+                f"{k_low:,} exceed v = {low_limit:g} ({R.LARGE_VELOCITY_FAILS:g} times; share "
+                f"{k_low / total:.3g}, 95% [{lo_low:.2g}, {hi_low:.2g}]); their largest "
+                f"velocity reaches {v_tr.max():.4g}, the 99.9th percentile "
+                f"{np.percentile(v_tr, 99.9):.4g}{' (' + note + ')' if note else ''}.")
     return make_claim("fig4-large-velocities", verdict, evidence, particles_per_curve=m,
                       statistical={"share": k / total, "share_ci95": [lo, hi],
                                    "v_max": float(v_tr.max())})

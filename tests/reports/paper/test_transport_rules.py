@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from reports.paper.claims import CONFIRMED, REFUTED
+from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.transport_claims import eventual_claim, strong_claim, trap_claim
 from reports.stats.histogram import Curve, bin_means, survival_boundaries
 
@@ -58,8 +58,12 @@ def test_p11_is_very_strong_only_when_it_outlives_the_others_by_a_decade():
     rng = np.random.default_rng(2)
     assert strong_claim("1", transport(0.0, rng), "r").verdict == CONFIRMED
     assert strong_claim("1", transport(1.0, rng), "r").verdict == REFUTED
-    # P_12's tail three times shorter: P_11 outlives it, but not by a decade
-    assert strong_claim("1", transport(1.0, rng, scale=1 / 3), "r").verdict == REFUTED
+    # P_12's tail three times shorter: P_11 outlives it, but neither by a decade nor by at most
+    # a factor 2: between the word's bounds
+    between = strong_claim("1", transport(1.0, rng, scale=1 / 3), "r")
+    assert between.verdict == INCONCLUSIVE
+    assert 2.5 < between.statistical["ratio"] < 4 and "between the word's bounds" in \
+        between.evidence
 
 
 def test_eventual_escape_counts_who_is_left_at_the_horizon():
