@@ -190,7 +190,7 @@ BAD_INPUT = [
     ("plot manifest list", ["plot", "run"], _write("run/manifest.json", "[1, 2, 3]"), 2,
      "is not of type 'object'"),
     ("plot fit without window", ["plot", "run", "--fit", "exponential"], None, 2,
-     "--fit needs --window"),
+     "--fit exponential needs --window"),
     ("fit manifest list", ["fit", "run", "--json"], _write("run/manifest.json", "[1, 2, 3]"), 2,
      "is not of type 'object'"),
     ("fit no such path", ["fit", "nothing.csv"], None, 2, "nothing.csv: no such file"),
