@@ -8,7 +8,7 @@ name to the property of ``verify.check_integrator`` that must catch it:
 2. ``scanner_flight_time``: steps in fixed increments ``h = 0.05`` until the gap changes sign,
    then bisects. Accurate at every root it finds, but two roots closer than ``h`` (a near-graze,
    eps > 1) leave no sign change on the grid: it skips that collision.        -> no_overstep
-3. ``naive_gap_flight_time``: the seed's lower-bound steps on the textbook gap
+3. ``naive_gap_flight_time``: the paper's lower-bound steps on the textbook gap
    ``eps*(cos(phi) - cos(phi+tau)) + tau*(v - tau/2)``; the cosine difference cancels for short
    flights, so at small departure speed (w0 ~ 1e-10) tau is wrong in most digits.  -> accuracy
 4. ``biased_flight_time``: ``fastpath.flight_time`` times ``1 + 1e-9``.            -> accuracy
@@ -96,7 +96,7 @@ def _naive(phi, v, eps):
 
 
 def naive_gap_flight_time(phi, v, eps):
-    """Defect 3: the seed's lower-bound steps on the cancelling gap eps*(cos(phi) - cos(phi+t))."""
+    """Defect 3: the paper's lower-bound steps on the cancelling gap eps*(cos(phi) - cos(phi+t))."""
     return float(_naive(float(phi), float(v), float(eps)))
 
 

@@ -1,6 +1,6 @@
 """Fast float64 integrator of the bouncer model (numba).
 
-Public API (DESIGN section 4): ``flight_time``, ``step``, ``holmes_step``, ``orbit``, plus
+Public API: ``flight_time``, ``step``, ``holmes_step``, ``orbit``, plus
 ``flight`` (times with iteration counts and statuses) and ``carried_step`` (one step of a
 chattering orbit from its carried state, as the kernels made it), and the dynamics
 ``periodic_orbit`` and ``lyapunov`` (``fastpath.dynamics``). The subpackages: ``arithmetic``

@@ -1,4 +1,4 @@
-"""Public functions of the fast path: validate, broadcast, call the kernels (DESIGN section 4)."""
+"""Public functions of the fast path: validate, broadcast, call the kernels."""
 
 from dataclasses import dataclass, field
 
@@ -194,7 +194,7 @@ def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitu
         eps: the plate's amplitude (position eps*cos(t)).
         method: "auto" (bracketed Halley where the gap is concave, |eps| <= 1; the paper's
             lower-bound steps otherwise) or "lower_bound" (the paper's lower-bound steps
-            everywhere; "seed" is its former name).
+            everywhere; "seed" is an alias of "lower_bound", kept for backward compatibility).
         drag, drag_law: air drag eta(V) = drag*V ("linear") or drag*V*|V| ("quadratic") during
             the flight (``fastpath.dissipative.drag``).
         restitution: only 1 (the default): restitution acts at impacts, not on a flight

@@ -1,7 +1,7 @@
 """The physics description that every solver, orbit loop and kernel takes.
 
 A particle bounces on a plate whose position is eps*cos(t) (velocity -eps*sin(t)) under gravity 1
-(DESIGN section 2: the paper's units). Between impacts it may feel air drag eta(V); at an impact
+(docs/model.md: the paper's units). Between impacts it may feel air drag eta(V); at an impact
 the relative velocity reverses and shrinks by the restitution r:
 
     V' = -1 - eta(V),      eta(V) = 0 (NONE), k*V (LINEAR), k*V*|V| (QUADRATIC),  k = drag,

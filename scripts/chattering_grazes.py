@@ -1,4 +1,4 @@
-"""Construct the "chattering-graze" hard cases of ``verify.hard_cases`` (issue 16).
+"""Construct the "chattering-graze" hard cases of ``verify.hard_cases``.
 
 A chattering particle (restitution r < 1) leaves each impact with a small relative speed w. Near
 the phase theta* = 2*pi - arccos(1/eps) (eps > 1) the relative acceleration A(t) = d''(t) =

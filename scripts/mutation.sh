@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Mutation testing (issue 12 item 5). Not part of the default test run: it takes minutes.
+# Mutation testing. Not part of the default test run: it takes minutes.
 #
 #   scripts/mutation.sh [verify|runs|kernel|integrity|ensemble|solver|certify|all]     (default: all)
 #

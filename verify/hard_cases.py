@@ -148,8 +148,8 @@ HARD_CASES = (
         for eps in (0.6, 3.0)
         for phi in (1e6 + 0.3, -50.0)
     ],
-    # found by the grazing property test: a small negative phase is reduced to ~2*pi - 0.34 inside
-    # fastpath, so its gap error bound grows with 5.94 instead of 0.34 on a short flight
+    # a small negative phase is reduced to ~2*pi - 0.34 inside fastpath, so its gap error bound
+    # grows with 5.94 instead of 0.34 on a short flight
     _case(
         -0.34274032340288646,
         0.3529882181733127,

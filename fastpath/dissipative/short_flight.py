@@ -11,8 +11,8 @@ the gap is written so that every term is proportional to w*t or smaller:
     d'(t) = w + A*t - eps*(cos(phi)*S3(t) + sin(phi)*V2(t)),
 
 with S3(t) = t - sin(t), C4(t) = 1 - cos(t) - t**2/2 and V2(t) = 1 - cos(t) = 2*sin(t/2)**2
-(the first two by their Taylor series for t <= 1: no cancellation). This is the gap of DESIGN
-section 2 with cos(phi) - cos(phi + t) expanded by angle addition.
+(the first two by their Taylor series for t <= 1: no cancellation). This is the gap of docs/model.md
+with cos(phi) - cos(phi + t) expanded by angle addition.
 
 When it applies (``elastic_short_window``): A < 0 at departure and, with m = a/2 (a = -A, lowered by
 its rounding bound) and h = 4*w/a, the plate's acceleration over [0, h] keeps d'' <= -m:

@@ -3,7 +3,7 @@
 All kernels of this package live in this one file: numba checks only the timestamp of the file
 that defines a kernel, so a kernel calling one from a sibling file could keep stale machine code.
 
-The exact map (DESIGN facts 2 and 6). After the flight tau from (phi, v), with w = v + eps*sin(phi)
+The exact map (docs/model.md). After the flight tau from (phi, v), with w = v + eps*sin(phi)
 the departure speed relative to the plate and w1 = v1 + eps*sin(phi1) the next one,
 ``d'(tau) = v - tau + eps*sin(phi1) = -w1``, and implicit differentiation of d(tau; phi, v) = 0
 gives tau_phi = a, tau_v = b with

@@ -1,4 +1,4 @@
-"""Fast flight solver for |eps| <= 1 (exactly 1 included), where the gap is concave (DESIGN fact 2).
+"""Fast flight solver for |eps| <= 1 (exactly 1 included), where the gap is concave (docs/model.md).
 
 With d'' = -1 + eps*cos(phi + t) <= -1 + |eps| <= 0 the gap has exactly one positive root, so a
 point t where the computed gap exceeds its rounding bound E (``fastpath.elastic.gap.gap_error``)

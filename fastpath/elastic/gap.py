@@ -1,6 +1,6 @@
 """The gap between particle and plate during a flight, and its rate of change.
 
-For a departure at phase phi with velocity v, after a time t (DESIGN section 2):
+For a departure at phase phi with velocity v, after a time t (docs/model.md):
 
     d(t)  = eps*(cos(phi) - cos(phi + t)) + t*(v - t/2)
           = 2*eps*sin(phi + t/2)*sin(t/2) + t*(v - t/2)        (no cancellation at small t)

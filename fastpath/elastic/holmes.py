@@ -1,4 +1,4 @@
-"""The Holmes map: the plate's displacement neglected, its velocity kept (DESIGN fact 5).
+"""The Holmes map: the plate's displacement neglected, its velocity kept (docs/model.md).
 
     phi1 = (phi + 2*v) mod 2*pi,      v1 = |v - 2*eps*sin(phi1)|
 

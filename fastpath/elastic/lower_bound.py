@@ -3,7 +3,7 @@
 Used for |eps| > 1, where the gap can have several roots (and for every eps with the method
 "lower_bound").
 
-Global step (the paper's, DESIGN fact 3). Gravity and the plate's acceleration give
+Global step (the paper's; docs/method.md). Gravity and the plate's acceleration give
 d2(t) >= -(1 + |eps|) =: -a (d1, d2, d3: the first three derivatives of d), so from a time t_k
 with d_k = d(t_k) > 0 and slope r_k = d1(t_k),
 

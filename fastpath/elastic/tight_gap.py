@@ -2,7 +2,7 @@
 
 ``fastpath.elastic.gap.gap_error`` allows an absolute error of a few u in sin(phi + t/2) (the "+3"
 of its plate term) and so about 12u*|eps|*t in d. Near a (near-)triple root of the concave solver
-(eps -> 1, phi = -x, v = x, tau = 2x: DESIGN fact 11) the gap is of order x**4/24 and its slope
+(eps -> 1, phi = -x, v = x, tau = 2x: docs/model.md) the gap is of order x**4/24 and its slope
 x**3/6, while its terms are only of order t*x: there the generic bound is ~1e3-1e6 times the actual
 rounding, the solver stopped 16% away from the root (x = 3e-5; the Newton correction from there
 left a 4.8% error, 2.29 kappa*u), and for x < 2e-5 it could not tell the slope from its bound.

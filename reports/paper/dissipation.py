@@ -4,7 +4,7 @@ The study (``STUDY``): eps = 2 (at eps = 0.6 particles with r < 1 fall onto the 
 or stick, so there is no plateau to measure), starts uniform in the paper's escape box
 3.85 < phi < 4.15, 2 < v < 4, no holes; the same starts for every physics:
 
-* restitution r < 1 (DESIGN fact 12: v1 - u = -r*(v_in - u)) for several 1 - r;
+* restitution r < 1 (docs/model.md: v1 - u = -r*(v_in - u)) for several 1 - r;
 * linear drag eta = k*v and quadratic drag eta = k*v*|v| with elastic impacts;
 * the elastic, drag-free model as the reference that keeps growing (Fermi acceleration);
 * the stuck fraction at eps = 0.6 (|eps| <= 1: a particle whose impacts accumulate never

@@ -29,8 +29,8 @@ def say_nothing(_msg):
 def ensure_run(name, runs_dir, particles, echo=say_nothing):
     """Run directory of the built-in scene ``name`` with ``particles`` (per curve): reused when
     complete with the same scene, particles and seed and ``bouncer verify`` (``recheck``) passes
-    on it (this code re-derives its sampled collisions bit for bit: a run made by an earlier
-    solver is run again), resumed when partial, else run."""
+    on it (this code re-derives its sampled collisions bit for bit: a run made by other
+    solver code is run again), resumed when partial, else run."""
     scene = load_scene(name)
     out = Path(runs_dir) / f"{name}-{particles}"
     resume = force = False
@@ -42,12 +42,13 @@ def ensure_run(name, runs_dir, particles, echo=say_nothing):
         same = (stored == scene.source and man.get("particles") == particles
                 and man.get("seed") == scene.seed)
         complete = same and man.get("status") == "complete"
-        if complete and recheck(out)[0]:
+        audit = recheck(out) if complete else None
+        if audit and audit[0]:
             echo(f"reusing {out} (complete, bouncer verify passes)")
             return out
         if complete:
-            echo(f"{out}: bouncer verify fails on it with this code (an earlier release made"
-                 " it): running it again")
+            echo(f"{out}: bouncer verify fails on it ({audit[1][-1]}; `bouncer verify {out}` lists"
+                 " them): this code does not reproduce the stored run, running it again")
             force = True
         elif same and man.get("status") == "partial":
             resume = True

@@ -19,7 +19,7 @@ TWO_PI = 2.0 * math.pi
 
 
 def random_states(n: int, seed: int = SEED) -> list[Case]:
-    """n seeded departures: a quarter from the seed's box (eps = 0.6, 3.85 < phi < 4.15,
+    """n seeded departures: a quarter from the paper's box (eps = 0.6, 3.85 < phi < 4.15,
     2 < v < 4); the rest with eps uniform in (0, 10] or log-uniform in [1e-3, 10] (half each),
     phi uniform, v log-uniform in [0.1, 1e4], resampled until w0 = v + eps*sin(phi) > 0."""
     rng = np.random.default_rng(seed)
@@ -27,7 +27,7 @@ def random_states(n: int, seed: int = SEED) -> list[Case]:
     n_box = n // 4
     for _ in range(n_box):
         cases.append(Case(float(rng.uniform(3.85, 4.15)), float(rng.uniform(2.0, 4.0)), 0.6,
-                          "seed box", "random"))
+                          "paper box", "random"))
     for i in range(n - n_box):
         eps = float(10.0 - rng.uniform(0.0, 10.0)) if i % 2 else float(10 ** rng.uniform(-3, 1))
         phi = float(rng.uniform(0.0, TWO_PI))

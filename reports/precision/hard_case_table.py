@@ -236,7 +236,7 @@ def dissipative_case_markdown(rows: list[DissipativeRow]) -> str:
             f"| {worst} | {sum(r.tau is None for r in group)} "
             f"| {max(r.seconds for r in group):.2f} |")
     lines += ["", "NOT_DEPARTING on the departures at rest is by design: `fastpath.flight` takes "
-              "w0 > 0 only (DESIGN fact 1, w0 = 0 is not a departure for it); a particle leaving "
+              "w0 > 0 only (w0 = 0 is not a departure for it); a particle leaving "
               "the plate from rest is started inside the sticking kernels from a certified "
               "point (`fastpath.dissipative.sticking`). UNCERTAIN is fastpath "
               "saying that float64 cannot decide (verify settles those); on the chattering "

@@ -127,7 +127,7 @@ def upper_time(phi, v, eps):
 
 
 def gap_array(phi, v, eps, s):
-    """The gap at flight times s (numpy), cancellation-free half-angle form (DESIGN fact 4)."""
+    """The gap at flight times s (numpy), cancellation-free half-angle form."""
     return 2.0 * eps * np.sin(phi + 0.5 * s) * np.sin(0.5 * s) + s * (v - 0.5 * s)
 
 
@@ -292,11 +292,11 @@ def default_methods() -> list[Method]:
                vectorised=True,
                iterations_label="gap evaluations (Halley) or lower-bound steps",
                description="fastpath.flight(method='auto'): bracketed Halley for |eps| < 1, "
-               "the seed's lower-bound steps otherwise"),
+               "the paper's lower-bound steps otherwise"),
         Method("fastpath seed", FLOAT64, _fastpath_solve("seed"), _fastpath_batch("seed"),
                vectorised=True,
                iterations_label="lower-bound steps",
-               description="fastpath.flight(method='seed'): the seed's lower-bound steps"),
+               description="fastpath.flight(method='seed'): the paper's lower-bound steps"),
         Method("Holmes map", FLOAT64, _holmes_solve, _holmes_batch, model="holmes", vectorised=True,
                description="tau = 2v, phi1 = phi + 2v, v1 = |v - 2 eps sin(phi1)| "
                "(error = modelling error against the exact map)"),

@@ -253,7 +253,7 @@ def work_precision_markdown(result: WorkPrecisionResult, image: str) -> str:
         "## Precision comparison (work-precision)",
         "",
         f"Every method solves the same {n_random} seeded random departures (a quarter from the "
-        "seed's box eps = 0.6, 3.85 < phi < 4.15, 2 < v < 4; the rest with eps in (0, 10] and "
+        "paper's box eps = 0.6, 3.85 < phi < 4.15, 2 < v < 4; the rest with eps in (0, 10] and "
         f"v log-uniform in [0.1, 1e4]), {n_hard} hard cases and {n_graze} eps > 1 departures "
         "whose first two roots are a close pair (clearance -1e-2..-1e-8 below a graze). The "
         f"reference is `verify.step` at {REFERENCE_DPS} digits. Errors are relative errors of "

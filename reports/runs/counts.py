@@ -170,7 +170,7 @@ class Finished:
 
     @classmethod
     def from_json(cls, obj):
-        if isinstance(obj, list):  # checkpoints of earlier versions: the list of (e, k)
+        if isinstance(obj, list):  # the list format of a checkpoint: the finished (e, k)
             curves = 1 + max((e for e, _ in obj), default=0)
             out = cls.none(curves)
             for e, k in obj:

@@ -100,7 +100,7 @@ SOLVER_DESELECT = [
     "tests/fastpath/test_fastpath_api.py::test_message_states_the_computed_w0",
     "tests/fastpath/test_fastpath_api.py::test_overflow_is_a_value_error_saying_overflow",
 ]
-GROUPS = {  # name: (targets, tests, deselected, new tests' glob, timeout, environment)
+GROUPS = {  # name: (targets, tests, deselected, glob of its own tests, timeout, environment)
     # both groups: hypothesis derandomized and without its database (``nopython_shims``), so
     # that an example stored by one mutant's run is not replayed into the next
     "ensemble": (TARGETS, TESTS, DESELECT, "tests/**/test_mutants_ensemble*.py", TIMEOUT,
@@ -164,7 +164,7 @@ def run_tests(root, group="ensemble"):
     patterns = (pattern,) if isinstance(pattern, str) else pattern
     extra = sorted({p for g in patterns
                     for p in glob.glob(os.path.join(root, g), recursive=True)})
-    if os.environ.get("MUTATION_NO_NEW_TESTS"):  # the existing suite alone (first-run scores)
+    if os.environ.get("MUTATION_NO_NEW_TESTS"):  # the score without the group's own test files
         extra = []
     cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider",
            *(os.path.relpath(p, root) for p in extra), *tests,

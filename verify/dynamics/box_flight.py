@@ -1,6 +1,6 @@
 """The flight over a box of departures, certified; and the point flight that proposes it.
 
-Gap of a departure (phi, v) (DESIGN facts 2-4), product form without cancellation:
+Gap of a departure (phi, v) (docs/model.md), product form without cancellation:
 
     d(t)  = 2*eps*sin(phi + t/2)*sin(t/2) + t*(v - t/2),      d'(t) = v - t + eps*sin(phi + t),
     d''(t) = -1 + eps*cos(phi + t) >= -a,   a = 1 + |eps|.
