@@ -99,18 +99,20 @@ def physics_options(drag, drag_law, restitution):
     if (type(drag) is float and type(restitution) is float and type(drag_law) is str
             and drag == 0.0 and restitution == 1.0 and drag_law in _LAW_NAMES):
         return 0.0, LAWS[drag_law], 1.0  # the elastic defaults, checked in ~0.1 us
-    drag = _physical_scalar("drag", drag)
+    drag = real_scalar("drag", drag)
     if not drag >= 0.0:
         raise ValueError(f"drag must be >= 0, got drag={drag!r}")
     if not isinstance(drag_law, str) or drag_law not in LAWS:
         raise ValueError(f"drag_law must be one of {sorted(LAWS)}, got drag_law={drag_law!r}")
-    restitution = _physical_scalar("restitution", restitution)
+    restitution = real_scalar("restitution", restitution)
     if not 0.0 < restitution <= 1.0:
         raise ValueError(f"restitution must be in (0, 1], got restitution={restitution!r}")
     return drag, LAWS[drag_law], restitution
 
 
-def _physical_scalar(name, value):
+def real_scalar(name, value):
+    """A finite real scalar as a float; bools, strings, NaN and inf are a ValueError naming
+    ``name``."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating)):
         raise ValueError(f"{name} must be a real number, got {name}={value!r}")
     try:

@@ -8,19 +8,6 @@ import numpy as np
 from fastpath.dynamics.kernels import MODELS
 
 
-def real(name, value):
-    """A finite real scalar as a float (bools, strings, NaN and inf are refused)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating)):
-        raise ValueError(f"{name} must be a real number, got {name}={value!r}")
-    try:
-        x = float(value)
-    except OverflowError:
-        raise ValueError(f"{name} must be finite, got {name}={value!r}") from None
-    if not math.isfinite(x):
-        raise ValueError(f"{name} must be finite, got {name}={x!r}")
-    return x
-
-
 def integer(name, value, minimum=None):
     """An integer (not a bool) >= minimum, as an int."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Integral,)):

@@ -16,10 +16,11 @@ import math
 
 import numpy as np
 
-from fastpath.dynamics._checks import integer, model_code, real
+from fastpath.dynamics._checks import integer, model_code
 from fastpath.dynamics._internals import CONVERGED
 from fastpath.dynamics.kernels import block_search
 from fastpath.dynamics.periodic_orbit import OrbitNotFound, build_orbit
+from fastpath.inputs import real_scalar as real
 
 MAX_ITERATIONS = 40
 _SAME = 1e-7  # two blocks whose states agree to this (phase mod 2*pi, v mod pi) are one

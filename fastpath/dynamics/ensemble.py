@@ -5,7 +5,8 @@ first passage above a velocity (transport across a band). Thin wrappers of the p
 
 import numpy as np
 
-from fastpath.dynamics._checks import departing, integer, model_code, real
+from fastpath.dynamics._checks import departing, integer, model_code
+from fastpath.inputs import real_scalar as real
 
 
 def _starts(phi, v, eps):

@@ -24,10 +24,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fastpath.dynamics._checks import integer, model_code, real
+from fastpath.dynamics._checks import integer, model_code
 from fastpath.dynamics._internals import CONVERGED
 from fastpath.dynamics.kernels import UNIT_ROUNDOFF, half_orbit, symmetric_newton
 from fastpath.dynamics.periodic_orbit import TRACE_ROUNDING, OrbitNotFound, build_orbit
+from fastpath.inputs import real_scalar as real
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
 TARGET = 0.25

@@ -4,10 +4,11 @@ import math
 
 import numpy as np
 
-from fastpath.dynamics._checks import departing, model_code, real
+from fastpath.dynamics._checks import departing, model_code
 from fastpath.dynamics._internals import CONVERGED, NOT_DEPARTING, reduce_phase
 from fastpath.dynamics.kernels import step_tangent
 from fastpath.dynamics.periodic_orbit import _raise_for_status
+from fastpath.inputs import real_scalar as real
 
 
 def step_jacobian(phi, v, eps, *, model="exact"):

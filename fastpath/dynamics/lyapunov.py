@@ -14,9 +14,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fastpath.dynamics._checks import departing, integer, model_code, real
+from fastpath.dynamics._checks import departing, integer, model_code
 from fastpath.dynamics._internals import CONVERGED, NOT_DEPARTING, FlightStatus, UncertainCollision
 from fastpath.dynamics.kernels import separation_exponent, tangent_ensemble
+from fastpath.inputs import real_scalar as real
 
 
 @dataclass(frozen=True)

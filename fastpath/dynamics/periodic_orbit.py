@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fastpath.dynamics._checks import departing, integer, model_code, real
+from fastpath.dynamics._checks import departing, integer, model_code
 from fastpath.dynamics._internals import CONVERGED, NOT_DEPARTING, FlightStatus, UncertainCollision
 from fastpath.dynamics.kernels import (
     UNIT_ROUNDOFF,
@@ -28,6 +28,7 @@ from fastpath.dynamics.kernels import (
     orbit_monodromy,
     product_rounding_scale,
 )
+from fastpath.inputs import real_scalar as real
 
 ELLIPTIC, HYPERBOLIC, UNDECIDED = "elliptic", "hyperbolic", "undecided"
 MAX_ITERATIONS = 60
