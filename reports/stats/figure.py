@@ -1,10 +1,9 @@
 """One PNG per curve: the life-table survival in the fit window with the fitted laws, and the
 Pearson residuals of the escape counts per bin.
 
-Life table (actuarial): in bin j the n_j particles at risk at x_j, less half the competing
-escapes of the bin, face E_j escapes: q_j = E_j / r_j, and S(x_{j+1})/S(x_a) = prod (1 - q_i)
-with the Greenwood variance S**2 sum q_i / (r_i (1 - q_i)). A law predicts r_j Q_j escapes,
-Q_j = 1 - S(x_{j+1})/S(x_j); the residual is (E_j - r_j Q_j) / sqrt(r_j Q_j (1 - Q_j)).
+The data are the life table of the window (``reports.stats.life_table``). A law predicts
+r_j Q_j escapes, Q_j = 1 - S(x_{j+1})/S(x_j); the residual is
+(E_j - r_j Q_j) / sqrt(r_j Q_j (1 - Q_j)).
 """
 
 from __future__ import annotations
@@ -15,31 +14,20 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from reports.stats.life_table import life_table  # noqa: E402
 from reports.stats.likelihood import shape  # noqa: E402
 
 COLOURS = {"exponential": "tab:blue", "power_law": "tab:orange",
            "stretched_exponential": "tab:green"}
 
 
-def life_table(curve, window):
-    """(x boundaries, S at them, Greenwood sd, at-risk r_j, escapes E_j) in the window."""
-    a = int(np.searchsorted(curve.x, window.start))
-    b = a + len(window.escapes)
-    later = (curve.escapes + curve.competing + curve.censored)[::-1].cumsum()[::-1]
-    risk = later[a:b] - 0.5 * curve.competing[a:b]
-    e = curve.escapes[a:b].astype(np.float64)
-    q = np.divide(e, risk, out=np.zeros_like(e), where=risk > 0)
-    s = np.concatenate([[1.0], np.cumprod(1.0 - q)])
-    terms = np.divide(q, risk * (1.0 - q), out=np.zeros_like(q), where=(risk > 0) & (q < 1))
-    sd = s * np.sqrt(np.concatenate([[0.0], np.cumsum(terms)]))
-    return window.x, s, sd, risk, e
-
-
 def plot_curve(result, curve, path):
     """Write the figure of one analysed curve (``analysis.analyse`` result) to ``path``."""
     fits = result["_fits"]
     window = next(iter(fits.values())).window
-    x, s, sd, risk, e = life_table(curve, window)
+    table = life_table(curve, window)
+    x, s, risk, e = table.x, table.survival, table.at_risk, table.escapes
+    sd = s * table.sd_log
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True,
                                       gridspec_kw={"height_ratios": [3, 1.4]})
     keep = s > 0

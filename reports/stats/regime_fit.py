@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from reports.stats.analysis import fit_all, systematic, usable_range
+from reports.stats.life_table import life_table
 from reports.stats.likelihood import window_of
 from reports.stats.selection import choose
 
@@ -62,21 +63,14 @@ def window_detail(curve, a, b):
 def residual_excess(curve, fit, min_at_risk=100):
     """Largest |log S_fit - log S_data| beyond the data's 95% band over the window of ``fit``:
     max over boundaries of (|log S_fit(x) - log S(x)| - 1.96 sd(log S(x)))_+, with S the
-    life-table survival since the window start and sd its Greenwood error (``figure.life_table``
-    without matplotlib); 0 when the law stays inside the band everywhere. Only boundaries with
-    at least ``min_at_risk`` particles still at risk count (below that log S is too noisy for
-    Greenwood's normal approximation)."""
+    life-table survival since the window start and sd its Greenwood error
+    (``reports.stats.life_table``); 0 when the law stays inside the band everywhere. Only
+    boundaries with at least ``min_at_risk`` particles still at risk count (below that log S is
+    too noisy for Greenwood's normal approximation)."""
     w = fit.window
-    a = int(np.searchsorted(curve.x, w.start))
-    b = a + len(w.escapes)
-    later = (curve.escapes + curve.competing + curve.censored)[::-1].cumsum()[::-1]
-    risk = later[a:b] - 0.5 * curve.competing[a:b]
-    e = curve.escapes[a:b].astype(np.float64)
-    q = np.divide(e, risk, out=np.zeros_like(e), where=risk > 0)
-    s = np.concatenate([[1.0], np.cumprod(1.0 - q)])
-    terms = np.divide(q, risk * (1.0 - q), out=np.zeros_like(q), where=(risk > 0) & (q < 1))
-    sd_log = np.sqrt(np.concatenate([[0.0], np.cumsum(terms)]))
-    risk_at = np.append(risk, later[b] if b < len(later) else 0)
+    table = life_table(curve, w)
+    s, sd_log = table.survival, table.sd_log
+    risk_at = np.append(table.at_risk, table.at_risk_after)
     keep = (s > 0) & (risk_at >= min_at_risk)
     dev = np.abs(fit.log_survival(w.x[keep]) - np.log(s[keep])) - 1.96 * sd_log[keep]
     return float(max(0.0, dev.max())) if keep.any() else math.inf
