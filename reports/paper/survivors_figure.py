@@ -64,7 +64,7 @@ def figure_survivors(portrait_run, out_dir, analysis, follow, snapshots):
             continue
         _, phi, v, _ = fol.snapshots[s]
         ok = np.isfinite(phi)
-        ax.plot(centred(phi[ok]), v[ok], ",", color=colour, alpha=0.6)
+        ax.plot(centred(phi[ok]), v[ok], ",", color=colour, alpha=0.6, rasterized=True)
         ax.plot([], [], "o", ms=3, color=colour,
                 label=f"phi_c = {hole}: {len(phi)} survivors after n = {s}")
     ax.set_xlim(-math.pi, math.pi)
@@ -108,11 +108,11 @@ def figure_survivors(portrait_run, out_dir, analysis, follow, snapshots):
         if len(mids):
             ax.plot(mids, meds, "o-", ms=3, lw=0.8,
                     label=f"phi_c = {hole} (n > {n_half.n_at['half']:g})")
-    if ax.lines:
-        lo, hi = ax.get_xlim()
-        nn = np.geomspace(lo, hi, 10)
-        base = ax.lines[0].get_ydata()[0]
-        ax.plot(nn, base * (nn / nn[0]) ** 0.5, "k:", lw=1, label="n^(1/2) (diffusing)")
+    if ax.lines:  # the diffusing slope, anchored at the first point drawn
+        xs = np.concatenate([line.get_xdata() for line in ax.lines])
+        x0, y0 = ax.lines[0].get_xdata()[0], ax.lines[0].get_ydata()[0]
+        nn = np.geomspace(xs.min(), xs.max(), 10)
+        ax.plot(nn, y0 * (nn / x0) ** 0.5, "k:", lw=1, label="n^(1/2) (diffusing)")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("collisions n at escape")

@@ -3,7 +3,12 @@
 import numpy as np
 
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
-from reports.paper.transport_claims import eventual_claim, strong_claim, trap_claim
+from reports.paper.transport_claims import (
+    eventual_claim,
+    stretched_form,
+    strong_claim,
+    trap_claim,
+)
 from reports.stats.histogram import Curve, bin_means, survival_boundaries
 
 EDGES = np.concatenate([[0.0], np.geomspace(0.1, 1e7, 161)])
@@ -74,3 +79,20 @@ def test_eventual_escape_counts_who_is_left_at_the_horizon():
                       rng, horizon_left=100)
     tr[1] = {"time": left, "collisions": left}
     assert eventual_claim("1", tr, "r").verdict == REFUTED
+
+
+def test_the_long_lived_form_is_the_law_the_model_selection_picks():
+    """The conclusion's 'a different functional form, specifically a stretched exponential':
+    confirmed for a sqrt(t) tail, refuted for the stadium's power law."""
+    rng = np.random.default_rng(4)
+    assert stretched_form(transport(0.0, rng), "time")[0] == CONFIRMED
+    power = transport(0.0, rng)
+    m = N // 10
+    tail = (rng.pareto(1.5, m // 100) + 1.0) * 300.0  # P(t > s) ~ s**-1.5
+    power[1] = {clock: experiment({"P11": np.concatenate([rng.exponential(20, 9 * m - m // 100),
+                                                         tail]),
+                                   "P12": rng.exponential(20, m)}, rng)
+                for clock in ("time", "collisions")}
+    verdict, text = stretched_form(power, "time")
+    assert verdict == REFUTED, text
+    assert "power law" in text
