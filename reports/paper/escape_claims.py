@@ -219,6 +219,13 @@ def bounded_velocity_claim(hole, a, study, run):
                           particles_per_curve=study.particles, run=None)
     n_lo, n_hi = float(n_half), float(n.max())
     slope, bins = _slope_median_ratio(n, t, n_lo, n_hi)
+    if not math.isfinite(slope):
+        return make_claim(cid, INCONCLUSIVE, f"Sampled study of {study.particles:,} starts: "
+                          f"{count} escapes after n_half = {n_half:g}, n up to {n_hi:.4g}: "
+                          f"{bins} quarter-decade(s) of n with enough escapes, too few for a "
+                          "slope of t/n against n; the slow decay needs a larger sample with n "
+                          "and t recorded together.",
+                          particles_per_curve=study.particles, run=None)
     rng = np.random.default_rng(SLOPE_SEED)
     boot = []
     for _ in range(BOOTSTRAP):
