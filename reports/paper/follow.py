@@ -88,7 +88,7 @@ def _step_all(phi, v, eps):
     return phi1, v1, tau, int(bad.sum())
 
 
-def follow(phi0, v0, eps, hole_lo, hole_width, max_collisions, max_time=math.inf,
+def follow(phi0, v0, eps, hole_lo, hole_width, max_collisions, max_time=math.inf, *,
            snapshot_at=(), snapshot_size=2000, snapshot_length=200, verify_samples=200,
            seed=0, progress=None):
     """Follow every start (arrays phi0, v0) until it escapes or reaches the horizon; returns a

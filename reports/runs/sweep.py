@@ -146,7 +146,7 @@ def plan_points(base, axes, values, n_star, particles, verify_samples):
     return points
 
 
-def sweep(base: Scene, out, grid=None, n_star=N_STAR, particles=PARTICLES, seed=None,
+def sweep(base: Scene, out, *, grid=None, n_star=N_STAR, particles=PARTICLES, seed=None,
           verify_samples=VERIFY_SAMPLES, scheduler=None, threads=None, force=False,
           progress=True):
     """Run the escape-rate sweep of ``base`` over ``grid`` ({axis: values}, axes in ``AXES``,
@@ -183,8 +183,9 @@ def sweep(base: Scene, out, grid=None, n_star=N_STAR, particles=PARTICLES, seed=
         with Executor(scheduler, session) as execute, RunLock(out):
             rundir.prepare(out, False, force, resumable=False)
             try:
-                return _sweep_locked(base, out, axes, values, points, live, n_star, particles,
-                                     threads, execute, session, progress)
+                return _sweep_locked(base, out, axes, values, points, live, n_star=n_star,
+                                     particles=particles, threads=threads, execute=execute,
+                                     session=session, progress=progress)
             except RunFailed:
                 raise
             except BaseException:
@@ -199,8 +200,8 @@ def sweep(base: Scene, out, grid=None, n_star=N_STAR, particles=PARTICLES, seed=
 SWEEP_FILES = (rundir.MANIFEST, "sweep.csv", "sample.csv", "escape-rate.png")
 
 
-def _sweep_locked(base, out, axes, values, points, live, n_star, particles, threads, execute,
-                  session, progress):
+def _sweep_locked(base, out, axes, values, points, live, *, n_star, particles, threads,
+                  execute, session, progress):
     plans = {i: make_plan(points[i]["scene"]) for i in live}
     jobs = [((i, k), (points[i]["scene"], base.seed, 0, k, particles, threads))
             for i in live for k in range(plans[i].chunks_per_experiment)]
