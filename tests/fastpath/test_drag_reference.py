@@ -125,5 +125,3 @@ def test_methods_agree_and_auto_is_not_slower_on_concave_flights():
         record(f"drag {law} eps<1 drag<=0.05: mean iterations auto, seed",
                (float(np.mean(auto_its)), float(np.mean(seed_its))))
         assert np.mean(auto_its) <= np.mean(seed_its)
-
-

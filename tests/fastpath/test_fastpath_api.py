@@ -243,4 +243,3 @@ def test_public_docstrings_name_their_parameters(func):
     doc = func.__doc__
     for name in inspect.signature(func).parameters:
         assert name in doc, (func.__name__, name)
-
