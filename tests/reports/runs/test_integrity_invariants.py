@@ -275,8 +275,6 @@ def test_curve_problems_take_stuck_from_the_dict_when_given(tplan):
          " stuck = 69, but 64 particles were run")]
 
 
-
-
 def test_phase_space_has_no_curves_but_its_visits_are_bounded():
     plan = make_plan(parse_scene(PORTRAIT))
     tally = Tally.empty(plan)

@@ -424,8 +424,6 @@ def test_edited_sample_row_with_its_hash_updated(run):
     assert found[1].startswith("sample.csv:4: verify gives tau_ref ")
 
 
-
-
 @pytest.fixture(scope="module")
 def velocity_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("velocity") / "run"

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scene_texts import TINY
-from test_mutants_recheck import (
+from test_recheck import (
     _edit_sample,
     _sample_problems,
     edit_rows,
@@ -118,7 +118,6 @@ def test_a_drag_run_with_restitution_1_is_repeated_with_its_drag(drag_run, tmp_p
     assert found[0].endswith("(not reproduced bit for bit)")
 
 
-
 # ---- the output files (_outputs) ------------------------------------------------------------
 
 
@@ -165,4 +164,3 @@ def test_inconsistent_counts_give_no_numpy_warning(run):
     assert not ok and [str(w.message) for w in caught] == []
     assert ("counts.csv:2: curve 'from hole 1', clock collisions: 249 escaped + 1 censored + 0"
             " stuck = 250, but 200 particles were run") in problems_of(lines)
-
