@@ -1,4 +1,4 @@
-"""Energy bookkeeping (DESIGN fact 6): E = v**2/2 + eps*cos(phase) at the plate.
+"""Energy bookkeeping: E = v**2/2 + eps*cos(phase) at the plate.
 
 Flight conserves E: (v - tau)**2/2 + eps*cos(phi1) - v**2/2 - eps*cos(phi) = -d(tau), so with
 the fast tau the residual is |d'(tau)|*(tau error) + |eps|*(phase rounding) to first order:

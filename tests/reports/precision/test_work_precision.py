@@ -12,7 +12,7 @@ from reports.precision.work_precision import run_work_precision, work_precision_
 FASTPATH = ("fastpath auto", "fastpath seed")
 VERIFY = ("verify dps=20", "verify dps=50")
 SAMPLED = ("solve_ivp rtol=1e-06", "brentq grid 0.1")
-WORST_UNITS = 16  # fastpath's error bound in units of kappa*u (DESIGN fact 4)
+WORST_UNITS = 16  # fastpath's error bound in units of kappa*u
 
 
 @pytest.fixture(scope="module")

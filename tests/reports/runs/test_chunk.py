@@ -1,7 +1,9 @@
-"""Tests that kill mutants of the ensemble bookkeeping (scripts/mutation.sh runs):
-``chunk.simulate_chunk`` (the settled path of phase-space scenes, the time horizon of a settled
-flight, which sample rows are kept), ``chunk.run_chunk`` (its arguments, the failure result,
-threads, seconds), ``plan.chunk_starts`` (the verification picks) and ``Tally.load``.
+"""One chunk of a run (``reports.runs.chunk``): ``simulate_chunk`` (the settled path of
+phase-space scenes, the time horizon of a settled flight, which sample rows are kept),
+``run_chunk`` (its arguments, the failure result, threads, seconds), ``verify_rows``,
+``check_sample`` and ``settle`` (verify's view of the sampled collisions), and ``kernel``: a
+second pass adds to the counts, the dissipative kernel stops at each horizon and gets the
+scene's physics.
 """
 
 import dataclasses

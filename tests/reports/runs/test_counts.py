@@ -1,4 +1,6 @@
-"""Tests that kill mutants of ``reports/runs/counts.py`` (scripts/mutation.sh runs)."""
+"""The bookkeeping of a run (``reports.runs.counts``): ``Finished`` (which chunks are done, in
+its current and its former list form), ``Counts`` (zeros of the plan's shape, sums), and the
+checkpoint ``Tally`` (every field saved and loaded, unreadable or edited files refused)."""
 
 import io
 import zipfile

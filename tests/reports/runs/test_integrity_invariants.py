@@ -1,6 +1,6 @@
-"""Tests that kill mutants of ``reports/runs/integrity.py`` (scripts/mutation.sh integrity): the
-invariants that ``bouncer verify`` and a resume check, each fault on its own so that a weakened
-check cannot hide behind another one."""
+"""The invariants of a run's checkpoint and outputs (``reports.runs.integrity``) that
+``bouncer verify`` and a resume check, each fault on its own so that a weakened check cannot hide
+behind another one."""
 
 from fractions import Fraction
 

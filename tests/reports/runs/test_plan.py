@@ -1,6 +1,6 @@
-"""Mutation tests of ``plan.make_plan`` and of ``chunk.kernel``'s accumulation (issue 12's last
-survivors of the kernel group): the seed override and its bounds, the error messages, and a
-second kernel pass adding to the counts rather than replacing them."""
+"""The plan of a run (``reports.runs.plan``): ``make_plan``'s seed override and its bounds, its
+refusals, how many collisions are sampled and from which chunks, the bin edges, and
+``chunk_starts``' verification picks (distinct particles, log-uniform collision indices)."""
 
 import math
 

@@ -1,6 +1,6 @@
-"""Tests that kill mutants of ``reports/runs/recheck.py`` (scripts/mutation.sh integrity):
-``bouncer verify RUN`` on a tiny transport run and a tiny phase-space run, each fault alone
-(its hash updated where the deeper check is the one under test), with the report's wording."""
+"""The audit of a finished run (``reports.runs.recheck``, ``bouncer verify RUN``) on a tiny
+transport run and a tiny phase-space run, each fault alone (its hash updated where the deeper check
+is the one under test), with the report's wording."""
 
 import json
 import math
@@ -553,8 +553,8 @@ def test_progress_bar_counts_the_recomputed_collisions(run, capsys):
 
 @pytest.mark.parametrize(("key", "value"), [("censored", 5), ("stuck", 1)])
 def test_a_forged_phase_space_curve_figure_fails(portrait_run, tmp_path, key, value):
-    """The driver writes curves.portrait (zeros: a portrait records no escapes); until issue
-    12's mutation pass verify skipped it for phase-space runs and accepted any value."""
+    """The driver writes curves.portrait (zeros: a portrait records no escapes); the audit checks
+    those figures for phase-space runs too, and fails a forged one."""
     run_dir = Path(shutil.copytree(portrait_run, tmp_path / "run"))
     edit_manifest(run_dir, lambda m: m["curves"]["portrait"].__setitem__(key, value))
     ok, lines = recheck(run_dir)

@@ -1,4 +1,4 @@
-"""The optional [physics] table of a scene: restitution, drag, drag_law (DESIGN fact 12)."""
+"""The optional [physics] table of a scene: restitution, drag, drag_law."""
 
 import hashlib
 import re
