@@ -6,10 +6,11 @@ finite, > 0 and inside the certified bracket of the concave gap where one is kno
     2*w0/(1 + |eps|) <= tau <= min(2*w0/(1 - |eps|), v + sqrt(v**2 + 4|eps|))     (|eps| <= 1)
 
 (the second bound from d <= 2|eps| + t*v - t**2/2). Where kappa is huge (the triple root of the
-family phi = -x, v = x near eps = 1, exact flight time 2x) the accuracy is held in units of the backward
-error: the exact gap at the fast tau is within twice fastpath's own rounding bound ``gap_error``
-plus one ulp of tau times the slope. Against references (verify at 60 digits, or the exact 2x):
-never a wrong CONVERGED (off by more than K*kappa*u), and converged grazes within 2*kappa*u.
+family phi = -x, v = x near eps = 1, exact flight time 2x) the accuracy is held in units of the
+backward error: the exact gap at the fast tau is within twice fastpath's own rounding bound
+``gap_error`` plus one ulp of tau times the slope. Against references (verify at 60 digits, or the
+exact 2x): never a wrong CONVERGED (off by more than K*kappa*u), and converged grazes within
+2*kappa*u.
 """
 
 import math

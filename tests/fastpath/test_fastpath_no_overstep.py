@@ -49,7 +49,8 @@ def test_random_departures_agree_with_verify(phi, w0, eps):
 )
 @example(eps=3.0, fraction=1.0, sign=1.0, t_guess=5.0)
 # phi = -0.3427 is reduced to 5.94 inside fastpath: a gap_error scaled with 5.94 instead of 0.34
-# would put tau off by 19 kappa*u (kappa at the caller's phi). Also in hard_cases.HARD_CASES as "negative-phase-short-graze".
+# would put tau off by 19 kappa*u (kappa at the caller's phi). Also in hard_cases.HARD_CASES as
+# "negative-phase-short-graze".
 @example(eps=1.05, fraction=0.125, sign=-1.0, t_guess=1.0)
 # A dip at float resolution (minimum -1.4e-17) whose computed discriminant is -1.6e-19: read as
 # "no root" it would jump to tau = 4.93 over the first root 0.4453. The lower models take d, d' and
