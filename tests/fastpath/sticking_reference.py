@@ -4,7 +4,7 @@ Flights are written in relative coordinates (particle minus plate velocity w at 
 
     d(t) = w*t - t**2/2 + eps*(cos(phi)*(1 - cos(t)) - sin(phi)*(t - sin(t))),
 
-the gap, relative. A flight is solved only where its first root is certified by
+the model's gap. A flight is solved only where its first root is certified by
 concavity: either |eps| < 1 (d'' <= -1 + |eps| < 0 everywhere: one positive root, bracketed by
 2w/(1 + |eps|) and 2w/(1 - |eps|)), or a = 1 - eps*cos(phi) > 0 and the plate's acceleration
 keeps d'' <= -a/2 over [0, h], h = 4w/a (d''(s) <= -a + |eps*sin(phi)|*s + |eps|*s**2/2), so the
