@@ -117,7 +117,7 @@ def test_tight_bounds_are_the_documented_ones(sin_phi, cos_phi, v, eps, w0_error
     w0_error ones too), so a dropped or subtracted term moves E or R by far more than the few u
     of evaluation order allowed. At t = SMALLEST_T the terms underflow and E is the allowance
     2**-1060 alone (a positive bound)."""
-    from fastpath.elastic.tight_gap import _SLACK, _UNDERFLOW, tight_gap
+    from fastpath.elastic.tight_gap import tight_gap
 
     d, d1, d2, s, c, d_err, d1_err = tight_gap(sin_phi, cos_phi, v, eps, w0_error, t)
     with mp.workdps(DPS):
@@ -137,5 +137,5 @@ def test_tight_bounds_are_the_documented_ones(sin_phi, cos_phi, v, eps, w0_error
         r_doc = U * (abs(d1_x) + abs(w - tt) + ae * (2 * abs(s_x) + 4 * abs(m) + 6 * asp
                                                      + 14 * ash)) + we * (1 + 3 * ash)
         for got, doc in ((d_err, e_doc), (d1_err, r_doc)):
-            want = doc * mp.mpf(_SLACK) + _UNDERFLOW
+            want = doc * (1 + 64 * mp.mpf(U)) + mp.mpf(2) ** -1060  # docstring's factor, allowance
             assert abs(got - want) <= close * want, (got, want)

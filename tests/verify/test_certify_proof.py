@@ -8,7 +8,7 @@ import pytest
 from mpmath import mp
 
 import verify
-from tests.verify._cases import internal
+from tests.verify.cases import internal
 from verify.elastic import certificate
 from verify.elastic.gap import iv_gap, iv_gap_prime, iv_gap_second, mp_gap
 from verify.numerics import first_root

@@ -9,7 +9,7 @@ import pytest
 from mpmath import mp
 
 import verify
-from tests.verify._cases import STATES
+from tests.verify.cases import STATES
 from tests.verify.test_drag_flight import naive_motion
 from verify import flight
 

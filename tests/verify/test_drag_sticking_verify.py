@@ -46,7 +46,7 @@ from fastpath.dissipative.short_flight import drag_short_window
 from fastpath.dissipative.sticking import drag_detachment_phase
 from fastpath.elastic.gap import departure
 from fastpath.physics import LINEAR, QUADRATIC
-from tests.verify._cases import internal
+from tests.verify.cases import internal
 from verify.dissipative.drag_sticking import drag_accumulation, leaves_plate_with_drag, riding
 
 U = 2.0**-53

@@ -18,7 +18,7 @@ import pytest
 from mpmath import mp
 
 import verify
-from tests.verify._cases import internal
+from tests.verify.cases import internal
 from verify.dissipative.sticking import accumulation, detachment_phase, detachment_step
 from verify.numerics.precision import to_user, working_dps
 

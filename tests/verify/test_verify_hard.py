@@ -13,7 +13,7 @@ from hypothesis import example, given, settings
 from mpmath import iv, mp
 
 import verify
-from tests.verify._cases import mpmath_dps, small_w0_velocity
+from tests.verify.cases import mpmath_dps, small_w0_velocity
 from verify import strategies as vs
 from verify.hard_cases import ALL_CASES, HARD_CASES, OVERFLOW_CASES
 from verify.numerics.inputs import exact_real

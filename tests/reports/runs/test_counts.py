@@ -64,7 +64,8 @@ def test_merge_adds_a_chunk_once_and_the_portrait_only_for_phase_space():
     assert tally.portrait.tolist() == [[2, 2], [2, 2]] and tally.collisions == 4
 
 
-def _tally():
+def _saved_tally():
+    """One curve with every bookkeeping field set, to save and load."""
     return Tally(np.zeros((1, 1, 3), np.int64), np.zeros((1, 1, 4), np.int64),
                  np.zeros((1, 3), np.int64), np.zeros((1, 4), np.int64),
                  np.zeros((0, 0), np.int64), collisions=5, settled=1,
@@ -73,7 +74,7 @@ def _tally():
 
 
 def test_load_keeps_every_bookkeeping_field(tmp_path):
-    t = _tally()
+    t = _saved_tally()
     t.samples.sort()
     t.save(tmp_path / "c.npz")
     back = Tally.load(tmp_path / "c.npz")
@@ -87,7 +88,7 @@ def test_load_messages(tmp_path):
     path.write_bytes(b"not a zip file")
     with pytest.raises(CheckpointError, match=r"is unreadable \(ValueError: "):
         Tally.load(path)
-    t = _tally()
+    t = _saved_tally()
     t.save(path)
     with zipfile.ZipFile(path) as z:
         members = {n: z.read(n) for n in z.namelist()}

@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 from scene_texts import TINY
 from test_recheck import (
-    _edit_sample,
-    _sample_problems,
     edit_rows,
+    edit_sample,
     manifest_of,
     problems_of,
     rehash,
+    sample_problems,
 )
 
 from reports.cli import main
@@ -49,7 +49,7 @@ def test_a_sample_with_cr_line_ends_is_still_checked_by_line(run, capsys):
     """A sample.csv with CR line ends (its hash updated)
     is read as csv's own files are, and an edited row is reported by file and line (exit 1),
     by the comparison with the checkpoint and by verify's recomputation, never a csv traceback."""
-    _edit_sample(run, {4: {"tau_ref": "1.5"}})
+    edit_sample(run, {4: {"tau_ref": "1.5"}})
     text = (run / "sample.csv").read_text()
     (run / "sample.csv").write_bytes(text.replace("\n", "\r").encode())
     rehash(run, "sample.csv")
@@ -66,8 +66,8 @@ def test_rows_after_a_refused_row_are_still_recomputed(run):
     """Step 5 covers
     *every* row of sample.csv; a row verify refuses (v = -1, no departure) is reported by line and
     the rows after it are still recomputed: an edited error two rows on is reported too."""
-    _edit_sample(run, {2: {"v": "-1.0"}, 4: {"error": "0.5"}})
-    found = _sample_problems(run)
+    edit_sample(run, {2: {"v": "-1.0"}, 4: {"error": "0.5"}})
+    found = sample_problems(run)
     assert found[0].startswith("sample.csv:2: fastpath.step refuses the row: not a departure")
     assert found[1].startswith("sample.csv:2: verify refuses the row: no departure")
     assert found[2].startswith("sample.csv:4: verify gives tau_ref ")
@@ -81,7 +81,7 @@ def test_sample_returns_the_overstepped_lines(run):
     their count is shown; the line is in the OVERSTEP message.)"""
     rows = (run / "sample.csv").read_text().splitlines()
     tau = float(rows[2].split(",")[8])
-    _edit_sample(run, {3: {"tau": repr(tau * (1 + 1e-9))}})
+    edit_sample(run, {3: {"tau": repr(tau * (1 + 1e-9))}})
     scene = parse_scene((run / "scene.toml").read_text())
     got_rows, worst, overstepped, out, parsed = _sample(run, scene, False)
     assert [r.line for r in parsed] == list(range(2, len(rows) + 1))
@@ -109,8 +109,8 @@ def test_a_drag_run_with_restitution_1_is_repeated_with_its_drag(drag_run, tmp_p
     ok, lines = recheck(run_dir)
     assert ok is True, lines
     phi1 = float((run_dir / "sample.csv").read_text().splitlines()[1].split(",")[6])
-    _edit_sample(run_dir, {2: {"phi1": repr(phi1 + 1e-6)}})
-    found = _sample_problems(run_dir)
+    edit_sample(run_dir, {2: {"phi1": repr(phi1 + 1e-6)}})
+    found = sample_problems(run_dir)
     assert len(found) == 1 and found[0].startswith("sample.csv:2: fastpath.step gives (")
     assert found[0].endswith("(not reproduced bit for bit)")
 
