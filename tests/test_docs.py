@@ -265,6 +265,7 @@ def test_console_blocks_split_into_commands_outputs_and_exit_status():
         session_commands("output\n$ bouncer scenes\n")
 
 
+@pytest.mark.slow
 def test_a_session_fails_on_other_output_or_exit_status(tmp_path):
     def session(text):
         return Block("page.md", 1, "console", text, "")

@@ -66,6 +66,7 @@ def judge(phi, v, eps, k, law, method):
     return "uncertain", None, res.iterations
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["auto", "lower_bound"])
 @pytest.mark.parametrize("regime", sorted(REGIMES))
 @pytest.mark.parametrize("law", sorted(LAWS))

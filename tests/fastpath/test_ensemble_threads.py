@@ -96,6 +96,7 @@ def escape_run(eps, max_n, max_t, m=6000, seed=7):
     return run
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("eps", "max_n", "max_t"), [(0.6, 60, np.inf), (0.6, 2**62, 300.0),
                                                       (1.5, 500, 2000.0)])
 def test_escape_counts_are_the_same_on_one_and_two_threads(eps, max_n, max_t):

@@ -157,6 +157,7 @@ def test_eps_exactly_one_takes_the_concave_path(phi, log_w0):
     assert problem is None, (status, units, problem)
 
 
+@pytest.mark.slow
 @given(case=st.data())
 def test_grazes_just_above_one(case):
     import verify.strategies as vs
@@ -224,6 +225,7 @@ def check_impact(phi, v, eps, tau_flight):
         assert u - v_in >= -rounding
 
 
+@pytest.mark.slow
 def test_fixed_adversarial_set():
     """The fixed set (``adversarial.py``): no wrong CONVERGED, no valid departure rejected,
     <= 60 iterations, converged grazes within 2*kappa*u."""

@@ -147,6 +147,7 @@ def _random_chattering_grazes(n, seed):
     return out
 
 
+@pytest.mark.slow
 def test_random_chattering_grazes_are_never_wrong():
     """fastpath on random members of the class: CONVERGED within the suite's tolerance of
     verify's certified first root, else (UNCERTAIN, MAX_ITERATIONS) short of that root."""

@@ -14,6 +14,7 @@ evaluated exactly (mpmath) from the float outputs.
 
 import math
 
+import pytest
 from fastpath_tolerances import DPS, K, U, phase_rounding
 from hypothesis import assume, given
 from hypothesis import strategies as st
@@ -71,6 +72,7 @@ def test_energy_in_one_collision(phi, w0, eps):
     assert abs(impact) <= _impact_tolerance(phi, v, eps, tau, v1), (impact, v1)
 
 
+@pytest.mark.slow
 def test_energy_over_an_orbit():
     """E_n - E_0 equals the sum of the impact changes over 10^4 collisions (eps = 0.6)."""
     eps, n = 0.6, 10_000

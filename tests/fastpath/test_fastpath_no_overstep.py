@@ -41,6 +41,7 @@ def test_random_departures_agree_with_verify(phi, w0, eps):
         bump("random departures: UNCERTAIN/MAX_ITERATIONS (justified)")
 
 
+@pytest.mark.slow
 @given(
     eps=st.floats(min_value=1.05, max_value=10.0),
     fraction=st.floats(min_value=0.1, max_value=1.0),

@@ -12,11 +12,11 @@ on crafted states.
 
 import math
 
-import numba
 import numpy as np
 
 import fastpath
 import verify
+from fastpath.arithmetic.jit import jit
 from fastpath.arithmetic.phase import centre_moderate, centre_phase, reduce_moderate, reduce_phase
 from fastpath.arithmetic.sincos import sin_cos
 from fastpath.elastic.collision import collide
@@ -42,7 +42,7 @@ from fastpath.kernels.escape import lane_collide
 U = 2.0**-53
 
 
-@numba.njit(error_model="numpy")
+@jit  # fastpath's cached options: compiled once per version of fastpath and of this file
 def _lanes(phi, v, eps, out):
     """lockstep_flight over arrays: the loop the ensembles vectorise."""
     for i in range(len(phi)):

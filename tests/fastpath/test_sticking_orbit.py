@@ -124,6 +124,7 @@ def _impact_check(phi, v, eps, r, phi1, v1):
     return float(err), tol, float(w_in)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("eps, r, phi0, v0", [(0.5, 0.5, 4.0, 3.0), (0.9, 0.8, 1.0, 2.0),
                                               (1.5, 0.8, math.pi, 1e-2), (3.0, 0.5, 2.0, 0.0)])
 def test_impact_keeps_r_of_relative_velocity_and_1_minus_r2_of_its_energy(eps, r, phi0, v0):

@@ -16,6 +16,7 @@ from verify import flight
 TOL = mp.mpf(10) ** -45
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 @pytest.mark.parametrize("r", [1.0, 0.8, 0.3])
 @pytest.mark.parametrize(("phi", "v", "eps", "k"), [(4.0, 3.0, 0.6, 0.1), (0.3, 1.5, 1.5, 0.05),

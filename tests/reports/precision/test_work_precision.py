@@ -20,6 +20,7 @@ def result():
     return run_work_precision(quick=True)
 
 
+@pytest.mark.slow
 def test_section_builds_files_and_rows(tmp_path):
     md = work_precision_section(tmp_path, quick=True)
     assert (tmp_path / "work_precision.png").stat().st_size > 0
@@ -30,6 +31,7 @@ def test_section_builds_files_and_rows(tmp_path):
         assert sum(row.startswith(f"| {m.name} |") for row in rows) == 1, m.name
 
 
+@pytest.mark.slow
 def test_fastpath_error_within_bound_on_random_states(result):
     for name in FASTPATH:
         errs = result.group(name, "random")
@@ -76,6 +78,7 @@ def test_user_method_from_callable():
     assert res.summaries[0].max_units <= WORST_UNITS
 
 
+@pytest.mark.slow
 def test_hard_case_section(tmp_path):
     md = hard_case_section(tmp_path, quick=True)
     cases = hard_cases(quick=True)

@@ -140,6 +140,7 @@ def test_edited_stuck_column_fails_the_audit(run_dir, capsys):
     assert "but 600 particles were run" in out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 def test_drag_and_restitution_run_passes_the_audit(tmp_path, capsys, law):
     """drag with r < 1: the run's samples, chattering ones included, are

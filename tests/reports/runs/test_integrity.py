@@ -309,6 +309,7 @@ with RunLock(sys.argv[1]):
 """
 
 
+@pytest.mark.slow
 def test_second_writer_is_refused_and_nothing_deleted(run_dir, capsys):
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     holder = subprocess.Popen([sys.executable, "-c", HOLD, str(run_dir)], cwd=ROOT, env=env,

@@ -101,6 +101,7 @@ def drag_run(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow
 def test_a_drag_run_with_restitution_1_is_repeated_with_its_drag(drag_run, tmp_path):
     """Step 5 repeats each row with ``fastpath.step(phi, v, eps)`` *of the
     run's physics*; a drag run with r = 1 passes the audit (the drag-free step would give other

@@ -31,6 +31,7 @@ def _huge_field(line):
     return '"' + "1" * 200_000 + '"' + line[line.index(","):]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("source, name", [("tiny", "counts.csv"), ("tiny", "survival.csv"),
                                           ("tiny", "sample.csv"),
                                           ("velocity", "velocity.csv")])

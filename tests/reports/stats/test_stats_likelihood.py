@@ -120,6 +120,7 @@ def test_competing_escapes_censor_at_their_bin_mean():
     assert fit.params["gamma"] == pytest.approx(g1, rel=1e-10)
 
 
+@pytest.mark.slow
 def test_lifelines_weibull_agrees_on_a_censored_sample():
     lifelines = pytest.importorskip("lifelines")
     rng = np.random.default_rng(11)
