@@ -40,7 +40,7 @@ def test_fastpath_error_within_bound_on_random_states(result):
         assert worst <= WORST_UNITS, (name, worst)
 
 
-def test_holmes_flight_time_obeys_fact5(result):
+def test_holmes_flight_time_is_within_4_eps_over_tau_of_2v(result):
     checked = 0
     for case, ref, err in zip(result.cases, result.references, result.errors["Holmes map"],
                               strict=True):
