@@ -46,9 +46,13 @@ def _step_tolerances(phi, v, eps, tau):
     return phase + 16 * U, e2 * (phase + 16 * U) + 4 * math.ulp(float(tau) + abs(v) + e2)
 
 
-@pytest.mark.parametrize("eps, r, phi0", [(1.5, 0.8, math.pi), (3.0, 0.5, math.pi),
-                                          (-1.5, 0.8, 0.5), (1.2, 0.3, math.pi),
-                                          (0.5, 0.5, 0.0)])
+SLOW = pytest.mark.slow
+
+
+@pytest.mark.parametrize("eps, r, phi0", [
+    pytest.param(1.5, 0.8, math.pi, marks=SLOW), pytest.param(3.0, 0.5, math.pi, marks=SLOW),
+    pytest.param(-1.5, 0.8, 0.5, marks=SLOW), pytest.param(1.2, 0.3, math.pi, marks=SLOW),
+    (0.5, 0.5, 0.0)])
 def test_sticking_intervals_and_impacts_after_detachment_agree(eps, r, phi0):
     w0 = 1e-3
     v0 = w0 - eps * math.sin(phi0)

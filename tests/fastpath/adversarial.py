@@ -1,11 +1,11 @@
-"""A fixed adversarial set of flights (issue 12) and its judge; run it for the figures:
+"""A fixed adversarial set of flights and its judge; run it for the figures:
 
     python tests/fastpath/adversarial.py
 
 Families (all float64 inputs, references from ``verify`` at 60+ digits or exact):
 
 * ``triple``: phi = -x, v = x with eps in [1 - 1e-3, 1] (exactly 1 included), x over decades.
-  The exact flight time is 2x (DESIGN fact 11); near eps = 1 it is a near-triple root.
+  The exact flight time is 2x; near eps = 1 it is a near-triple root.
 * ``triple-perturbed``: the same with phi and v moved by relative 1e-6 (verify reference).
 * ``eps-one``: eps = 1 exactly, departures spread over phase and w0.
 * ``graze``: eps = 1 + 10**-k just above 1, ``verify.grazing_contact`` dips of several clearances.

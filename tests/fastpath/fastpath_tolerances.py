@@ -111,7 +111,7 @@ def phase_distance(a, b):
 
 
 def exact_gap(phi, v, eps, t):
-    """d(t) of the float (or mpf) inputs at DPS digits, product form (DESIGN fact 4)."""
+    """d(t) of the float (or mpf) inputs at DPS digits, in product form (no cancellation)."""
     with mp.workdps(DPS):
         phi, v, eps, t = mpf(phi), mpf(v), mpf(eps), mpf(t)
         half = t / 2

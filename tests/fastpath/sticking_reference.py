@@ -4,7 +4,7 @@ Flights are written in relative coordinates (particle minus plate velocity w at 
 
     d(t) = w*t - t**2/2 + eps*(cos(phi)*(1 - cos(t)) - sin(phi)*(t - sin(t))),
 
-the gap of DESIGN section 2. A flight is solved only where its first root is certified by
+the model's gap. A flight is solved only where its first root is certified by
 concavity: either |eps| < 1 (d'' <= -1 + |eps| < 0 everywhere: one positive root, bracketed by
 2w/(1 + |eps|) and 2w/(1 - |eps|)), or a = 1 - eps*cos(phi) > 0 and the plate's acceleration
 keeps d'' <= -a/2 over [0, h], h = 4w/a (d''(s) <= -a + |eps*sin(phi)|*s + |eps|*s**2/2), so the
@@ -89,11 +89,11 @@ def detachment_phase(eps):
 
 
 def detachment_flight(eps):
-    """First root of the exact gap from theta* with relative velocity 0 (DESIGN fact 12):
+    """First root of the exact gap from theta* with relative velocity 0 (a detachment):
 
         d(t) = sqrt(eps**2 - 1)*(t - sin(t)) - (t**2/2 - 1 + cos(t)),
 
-    positive on (0, t_c], t_c = 2*arccos(1/|eps|) (d'' > 0 there). From t_c the seed's
+    positive on (0, t_c], t_c = 2*arccos(1/|eps|) (d'' > 0 there). From t_c the paper's
     lower-bound steps (d'' >= -(1 + |eps|)) approach the first root from below, never past it,
     until d < 1e-50; Newton then finishes. Returns (tau, t_c).
     """

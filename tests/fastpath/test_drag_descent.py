@@ -31,6 +31,7 @@ CASES = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("state", "k", "law"), CASES,
                          ids=[f"{s}-k={k}-{law}" for s, k, law in CASES])
 def test_a_long_descent_converges_to_the_certified_root(state, k, law):

@@ -1,4 +1,4 @@
-"""Energy bookkeeping with dissipation (issue 16).
+"""Energy bookkeeping with dissipation.
 
 In flight E = V**2/2 + Y changes by minus the work of drag, W = integral of eta(V)*V dt >= 0;
 with dt = dV/(-1 - eta(V)) it has closed forms in V alone (so it checks Y against V):

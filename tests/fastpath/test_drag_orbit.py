@@ -48,6 +48,7 @@ def _distance(a, b):
     return min(d, 2 * mp.pi - d)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("phi0, v0, eps, k, law", ORBITS)
 def test_orbit_with_drag_against_60_digits(phi0, v0, eps, k, law):
     orb = fastpath.orbit(phi0, v0, eps, N, drag=k, drag_law=law, on_uncertain="stop")

@@ -60,6 +60,7 @@ def _phase_error(theta, theta_ref):
     return float(min(d, 2 * mp.pi - d))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("eps, k", [(1.5, 0.1), (1.5, 2.0), (0.9, 0.6), (-1.2, 0.3),
                                     (3.0, 1e-3), (0.5, 2.0), (1.0 + 1e-6, 0.01)])
 def test_linear_detachment_phase_matches_mpmath(eps, k):
@@ -75,6 +76,7 @@ def test_linear_detachment_phase_matches_mpmath(eps, k):
     assert err <= tol
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("eps, k", [(1.5, 0.1), (1.5, 2.0), (0.9, 1.0), (-1.2, 0.3),
                                     (3.0, 1e-3), (0.8, 3.0), (1.1, 0.2), (-0.95, 0.8)])
 def test_quadratic_detachment_phase_matches_mpmath(eps, k):
@@ -143,6 +145,7 @@ def test_detach_kind_agrees_with_exact_rational_decision():
     record("drag detach_kind undecided of 4000 near-threshold draws", undecided)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "law, eps, k, r, theta, w",
     [("linear", 1.5, 0.1, 0.8, 2.0, 1e-9), ("linear", 0.5, 0.5, 0.5, 1.0, 1e-10),
@@ -183,6 +186,7 @@ CHATTER_STARTS = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law, eps, k, r, phi0, w0", CHATTER_STARTS)
 def test_accumulation_time_matches_reference(law, eps, k, r, phi0, w0):
     """sticking[0, 0] of an orbit started near chattering against the 100-digit impacts."""
@@ -267,6 +271,7 @@ def test_impacts_keep_r_of_relative_velocity_with_drag(law):
     assert checked >= 10
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law, eps, k", [("linear", 1.5, 0.1), ("linear", 0.9, 0.6),
                                          ("quadratic", 1.5, 0.1), ("quadratic", 0.9, 1.0),
                                          ("linear", -1.2, 0.3), ("quadratic", 3.0, 0.5)])

@@ -160,3 +160,100 @@ def test_counts_do_not_depend_on_the_number_of_threads():
         numba.set_num_threads(before)
     for key in ("esc_n", "esc_t", "cens_n", "cens_t", "collisions"):
         np.testing.assert_array_equal(results[0][key], results[1][key])
+
+
+def test_escape_chunk_counts_each_particle_into_its_own_block():
+    """Particles are split into ``len(collisions)`` blocks of ceil(m/blocks) consecutive ones,
+    and a particle's collisions count into its block's row: 7 particles in 4 blocks (of 2, 2,
+    2, 1), no hole (width 0), each censored at exactly 5 collisions, give 10, 10, 10, 5 (a block
+    size (m + blocks + 1)//blocks = 3 would give 15, 15, 5, 0; a first lane's block
+    (first - lane)//per_block, wrapped as a negative index, 5, 10, 10, 10)."""
+    from fastpath.kernels.escape import escape_chunk
+    from fastpath.kernels.histogram import log_edges
+
+    m, blocks, max_n = 7, 4, 5
+    rng = np.random.default_rng(3)
+    n_edges = log_edges(1.0, 8, 10, integer=True)
+    t_edges = np.concatenate([[0.0], log_edges(0.1, 9, 10)])
+    nb, tb = len(n_edges), len(t_edges)
+    collisions = np.zeros(blocks, np.int64)
+    cens_n = np.zeros((blocks, nb), np.int64)
+    counts = EscapeCounts.zeros(blocks, 1, nb, tb)._replace(cens_n=cens_n, collisions=collisions)
+    escape_chunk(elastic(0.6), Starts(phi=rng.uniform(-np.pi, np.pi, m),
+                                      v=rng.uniform(1.0, 5.0, m), t=np.zeros(m),
+                                      n=np.zeros(m, np.int64)),
+                 Holes(lo=np.array([1.0]), width=np.array([0.0])),
+                 Horizon(max_collisions=max_n, max_time=np.inf),
+                 Bins(n_edges=n_edges, t_edges=t_edges, record_n=True, record_t=True),
+                 Sample.none(m), counts, Flags.zeros(m))
+    assert cens_n.sum(axis=1).tolist() == [2, 2, 2, 1]  # every particle censored, none flagged
+    assert collisions.tolist() == [2 * max_n, 2 * max_n, 2 * max_n, max_n]
+
+
+def test_overlapping_holes_count_into_the_first_listed():
+    """Where holes overlap, a landing in both escapes through the first listed (``exit_hole``
+    returns the first j): with two identical holes every escape is in hole 0, in the lanes'
+    vectorised hole test too (``hole[lane] < 0`` keeps the first; ``<= 0`` would let hole 1
+    overwrite hole 0)."""
+    from fastpath.kernels.escape import escape_chunk
+    from fastpath.kernels.histogram import log_edges
+
+    m, blocks, max_n = 50, 2, 2000
+    rng = np.random.default_rng(4)
+    n_edges = log_edges(1.0, 8, 10, integer=True)
+    t_edges = np.concatenate([[0.0], log_edges(0.1, 9, 10)])
+    nb, tb = len(n_edges), len(t_edges)
+    esc_n = np.zeros((blocks, 2, nb), np.int64)
+    cens_n = np.zeros((blocks, nb), np.int64)
+    flags = np.zeros(m, np.int8)
+    counts = EscapeCounts.zeros(blocks, 2, nb, tb)._replace(esc_n=esc_n, cens_n=cens_n)
+    escape_chunk(elastic(0.6), Starts(phi=rng.uniform(-np.pi, np.pi, m),
+                                      v=rng.uniform(1.0, 5.0, m), t=np.zeros(m),
+                                      n=np.zeros(m, np.int64)),
+                 Holes(lo=np.array([1.0, 1.0]), width=np.array([0.5, 0.5])),
+                 Horizon(max_collisions=max_n, max_time=np.inf),
+                 Bins(n_edges=n_edges, t_edges=t_edges, record_n=True, record_t=True),
+                 Sample.none(m), counts, Flags(status=flags, state=np.zeros((m, 4))))
+    assert not flags.any()
+    assert esc_n[:, 0].sum() > m // 2  # most escape (hole 0.5 wide, 2000 collisions)
+    assert esc_n[:, 1].sum() == 0
+    assert esc_n.sum() + cens_n.sum() == m
+
+
+def _escape_one(phi, v, eps, hole_lo, hole_width, max_time, max_n=NO_LIMIT, target=None):
+    """One particle through ``escape_chunk``, one block, unit bins: (esc_t, cens_t, collisions),
+    and with a sample ``target`` also the sample row."""
+    t_edges = np.arange(0.0, 10.0)
+    esc_n, esc_t = np.zeros((1, 1, 10), np.int64), np.zeros((1, 1, 10), np.int64)
+    cens_n, cens_t = np.zeros((1, 10), np.int64), np.zeros((1, 10), np.int64)
+    collisions, samples = np.zeros(1, np.int64), np.zeros((1, 6))
+    escape_chunk(elastic(eps), Starts(phi=np.array([phi]), v=np.array([v]), t=np.zeros(1),
+                                      n=np.zeros(1, np.int64)),
+                 Holes(lo=np.array([hole_lo]), width=np.array([hole_width])),
+                 Horizon(max_collisions=max_n, max_time=max_time),
+                 Bins(n_edges=t_edges, t_edges=t_edges, record_n=True, record_t=True),
+                 Sample(slot=np.full(1, -1 if target is None else 0, np.int64),
+                        target=np.full(1, target or 0, np.int64), rows=samples),
+                 EscapeCounts(esc_n, esc_t, cens_n, cens_t, np.zeros((1, 10), np.int64),
+                              np.zeros((1, 10), np.int64), collisions),
+                 Flags.zeros(1))
+    return esc_t[0, 0], cens_t[0], collisions[0], samples[0]
+
+
+def test_collision_exactly_at_the_time_horizon_is_made():
+    """Censoring needs t > max_time (module docstring): with eps = 0 the first flight is exactly
+    tau = 2*v = 2, so a horizon of 2 still makes that collision and the particle escapes."""
+    esc_t, cens_t, collisions, _ = _escape_one(0.0, 1.0, 0.0, 1.9, 0.2, max_time=2.0)
+    assert collisions == 1
+    assert esc_t[2] == 1 and esc_t.sum() == 1 and cens_t.sum() == 0
+    esc_t, cens_t, collisions, _ = _escape_one(0.0, 1.0, 0.0, 1.9, 0.2, max_time=np.nextafter(2, 0))
+    assert collisions == 0 and esc_t.sum() == 0 and cens_t[2] == 1  # the bound t1 = 2 is kept
+
+
+def test_sample_is_the_target_collision_when_the_particle_gets_there():
+    """eps = 0: every flight is tau = 2, phi advances by 2; the hole [5, 5.1) is never hit in 5
+    collisions (phases 2, 4, 6, 8 - 2*pi, 10 - 2*pi). The sample of target 3 is collision 3,
+    from (phi, v) = (4, 1) to (6, 1)."""
+    _, _, collisions, row = _escape_one(0.0, 1.0, 0.0, 5.0, 0.1, np.inf, max_n=5, target=3)
+    assert collisions == 5
+    assert tuple(row) == (3.0, 4.0, 1.0, 6.0, 1.0, 2.0)

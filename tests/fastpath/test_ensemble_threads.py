@@ -1,7 +1,7 @@
 """The ensemble kernels give the same counts on 1 and on 2 threads.
 
 Each block of particles has its own histogram rows and the caller sums integer counts, so the
-result must not depend on the number of threads (DESIGN section 6). The comparison means
+result must not depend on the number of threads. The comparison means
 something only if the second run really has two threads working: numba must offer two, the
 setting must read back as 2, and a probe kernel must see two distinct thread ids in its prange.
 On a machine where numba offers one thread the tests are skipped, never passed.
@@ -96,6 +96,7 @@ def escape_run(eps, max_n, max_t, m=6000, seed=7):
     return run
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("eps", "max_n", "max_t"), [(0.6, 60, np.inf), (0.6, 2**62, 300.0),
                                                       (1.5, 500, 2000.0)])
 def test_escape_counts_are_the_same_on_one_and_two_threads(eps, max_n, max_t):

@@ -1,15 +1,16 @@
-"""Issue 12: hard cases held to the certificate, with checks that do not depend on kappa.
+"""Hard cases held to the certificate, with checks that do not depend on kappa.
 
 Every flight, whatever the input: at most ITERATION_LIMIT = 60 iterations, and a CONVERGED tau is
-finite, > 0 and inside the certified bracket of DESIGN fact 2 where one is known,
+finite, > 0 and inside the certified bracket of the concave gap where one is known,
 
     2*w0/(1 + |eps|) <= tau <= min(2*w0/(1 - |eps|), v + sqrt(v**2 + 4|eps|))     (|eps| <= 1)
 
 (the second bound from d <= 2|eps| + t*v - t**2/2). Where kappa is huge (the triple root of the
-family phi = -x, v = x near eps = 1, DESIGN fact 11) the accuracy is held in units of the backward
-error: the exact gap at the fast tau is within twice fastpath's own rounding bound ``gap_error``
-plus one ulp of tau times the slope. Against references (verify at 60 digits, or the exact 2x):
-never a wrong CONVERGED (off by more than K*kappa*u), and converged grazes within 2*kappa*u.
+family phi = -x, v = x near eps = 1, exact flight time 2x) the accuracy is held in units of the
+backward error: the exact gap at the fast tau is within twice fastpath's own rounding bound
+``gap_error`` plus one ulp of tau times the slope. Against references (verify at 60 digits, or the
+exact 2x): never a wrong CONVERGED (off by more than K*kappa*u), and converged grazes within
+2*kappa*u.
 """
 
 import math
@@ -25,8 +26,8 @@ import fastpath
 from fastpath.status import ITERATION_LIMIT
 
 TWO_PI = 2.0 * math.pi
-GRAZE_UNITS = 2.0  # brief: converged grazes within 2*kappa*u after the polish
-TRIPLE_UNITS = 2.0  # issue 12: near-triple roots within 2*kappa*u as well
+GRAZE_UNITS = 2.0  # converged grazes within 2*kappa*u after the polish
+TRIPLE_UNITS = 2.0  # near-triple roots within 2*kappa*u as well
 CONVERGED = fastpath.FlightStatus.CONVERGED
 
 
@@ -156,6 +157,7 @@ def test_eps_exactly_one_takes_the_concave_path(phi, log_w0):
     assert problem is None, (status, units, problem)
 
 
+@pytest.mark.slow
 @given(case=st.data())
 def test_grazes_just_above_one(case):
     import verify.strategies as vs
@@ -223,6 +225,7 @@ def check_impact(phi, v, eps, tau_flight):
         assert u - v_in >= -rounding
 
 
+@pytest.mark.slow
 def test_fixed_adversarial_set():
     """The fixed set (``adversarial.py``): no wrong CONVERGED, no valid departure rejected,
     <= 60 iterations, converged grazes within 2*kappa*u."""

@@ -69,7 +69,8 @@ def test_message_states_the_computed_w0():
 
 
 def test_valid_departure_at_huge_phase_is_accepted():
-    """Regression: phi = 1e12 with w0 = +1e-8 was rejected as 'w0 = 9.99e-09 <= 0'."""
+    """phi = 1e12 with w0 = +1e-8 (exact at 60 digits) is a departure: accepted, not rejected as
+    'w0 = 9.99e-09 <= 0'."""
     from mpmath import mp
 
     with mp.workdps(60):
@@ -243,4 +244,3 @@ def test_public_docstrings_name_their_parameters(func):
     doc = func.__doc__
     for name in inspect.signature(func).parameters:
         assert name in doc, (func.__name__, name)
-

@@ -1,4 +1,4 @@
-"""fastpath on the "chattering-graze" rows of ``verify.hard_cases`` (issue 16, item 6).
+"""fastpath on the "chattering-graze" rows of ``verify.hard_cases``.
 
 Near-grazes of a chattering departure (small w0 just before theta* = 2*pi - arccos(1/eps)):
 a dip right after the departure, tangent to the plate up to the row's clearance. Elastic rows
@@ -33,7 +33,7 @@ from verify.hard_cases import CHATTERING_GRAZES
 
 ELASTIC = [c for c in CHATTERING_GRAZES if c.drag == 0.0]
 DRAG = [c for c in CHATTERING_GRAZES if c.drag > 0.0]
-METHODS = ["auto", "seed"]
+METHODS = ["auto", "lower_bound"]
 
 
 def _drag_units(case, tau):
@@ -147,6 +147,7 @@ def _random_chattering_grazes(n, seed):
     return out
 
 
+@pytest.mark.slow
 def test_random_chattering_grazes_are_never_wrong():
     """fastpath on random members of the class: CONVERGED within the suite's tolerance of
     verify's certified first root, else (UNCERTAIN, MAX_ITERATIONS) short of that root."""

@@ -1,4 +1,4 @@
-"""Energy bookkeeping (DESIGN fact 6): E = v**2/2 + eps*cos(phase) at the plate.
+"""Energy bookkeeping: E = v**2/2 + eps*cos(phase) at the plate.
 
 Flight conserves E: (v - tau)**2/2 + eps*cos(phi1) - v**2/2 - eps*cos(phi) = -d(tau), so with
 the fast tau the residual is |d'(tau)|*(tau error) + |eps|*(phase rounding) to first order:
@@ -14,6 +14,7 @@ evaluated exactly (mpmath) from the float outputs.
 
 import math
 
+import pytest
 from fastpath_tolerances import DPS, K, U, phase_rounding
 from hypothesis import assume, given
 from hypothesis import strategies as st
@@ -71,6 +72,7 @@ def test_energy_in_one_collision(phi, w0, eps):
     assert abs(impact) <= _impact_tolerance(phi, v, eps, tau, v1), (impact, v1)
 
 
+@pytest.mark.slow
 def test_energy_over_an_orbit():
     """E_n - E_0 equals the sum of the impact changes over 10^4 collisions (eps = 0.6)."""
     eps, n = 0.6, 10_000

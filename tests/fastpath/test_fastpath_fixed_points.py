@@ -1,4 +1,4 @@
-"""Fixed points (0, pi*m) (DESIGN fact 7): map to themselves, linearisation, stability."""
+"""Fixed points (0, pi*m): map to themselves, linearisation, stability."""
 
 import math
 

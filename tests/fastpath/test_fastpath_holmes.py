@@ -1,4 +1,4 @@
-"""Agreement with the Holmes map at large velocity (DESIGN fact 5).
+"""Agreement with the Holmes map at large velocity, |tau - 2v| <= 4|eps|/tau.
 
 tau*(v - tau/2) = eps*(cos(phi + tau) - cos(phi)) gives |tau - 2v| <= 4|eps|/tau exactly; the
 fast tau adds at most K*kappa*u*tau, and 2v is exact in float64. One step of the two maps then

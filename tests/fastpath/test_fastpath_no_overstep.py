@@ -41,6 +41,7 @@ def test_random_departures_agree_with_verify(phi, w0, eps):
         bump("random departures: UNCERTAIN/MAX_ITERATIONS (justified)")
 
 
+@pytest.mark.slow
 @given(
     eps=st.floats(min_value=1.05, max_value=10.0),
     fraction=st.floats(min_value=0.1, max_value=1.0),
@@ -48,13 +49,13 @@ def test_random_departures_agree_with_verify(phi, w0, eps):
     t_guess=st.floats(min_value=0.5, max_value=8.0),
 )
 @example(eps=3.0, fraction=1.0, sign=1.0, t_guess=5.0)
-# Regression (found by this suite): phi = -0.3427 is reduced to 5.94 inside fastpath, whose
-# gap_error then scales with 5.94 instead of 0.34; tau is off by 19 kappa*u (kappa at the
-# caller's phi). Also in hard_cases.HARD_CASES as "negative-phase-short-graze".
+# phi = -0.3427 is reduced to 5.94 inside fastpath: a gap_error scaled with 5.94 instead of 0.34
+# would put tau off by 19 kappa*u (kappa at the caller's phi). Also in hard_cases.HARD_CASES as
+# "negative-phase-short-graze".
 @example(eps=1.05, fraction=0.125, sign=-1.0, t_guess=1.0)
-# Regression (found while adding the local lower-bound step): a dip at float resolution (minimum
-# -1.4e-17) whose computed discriminant was -1.6e-19: "no root", a jump to tau = 4.93 over the
-# first root 0.4453. The lower models now take d, d' and d'' at their rounding bounds.
+# A dip at float resolution (minimum -1.4e-17) whose computed discriminant is -1.6e-19: read as
+# "no root" it would jump to tau = 4.93 over the first root 0.4453. The lower models take d, d' and
+# d'' at their rounding bounds.
 @example(eps=2.0, fraction=0.25, sign=-1.0, t_guess=1.0)
 def test_grazing_departures_never_converge_to_a_wrong_root(eps, fraction, sign, t_guess):
     """eps*cos(psi) = 1 + fraction*(eps - 1) > 1: the contact is a dip (a graze from above)."""

@@ -1,4 +1,4 @@
-"""Reversibility (DESIGN fact 8), the eps -> -eps symmetry (fact 9) and eps = 0.
+"""Reversibility, the eps -> -eps symmetry (a shift by pi in phase) and eps = 0 (tau = 2v).
 
 Reversal: from (-phi1, tau - v) the gap is d_rev(s) = d(tau - s), so the flight time is tau
 again and the landing phase is -phi. The float reversed state carries the fast tau's error and
@@ -78,7 +78,7 @@ def test_eps_sign_symmetry(phi, w0, eps):
 
 @given(phi=st.floats(min_value=-1e6, max_value=1e6), v=st.floats(min_value=1e-300, max_value=1e6))
 @example(phi=0.0, v=3.0)
-@example(phi=0.0, v=1e-300)  # regression: v**2 underflowed in the bracket's bound
+@example(phi=0.0, v=1e-300)  # v**2 underflows: the bracket's bound must not
 def test_eps_zero_gives_2v_bitwise(phi, v):
     assert fastpath.flight_time(phi, v, 0.0) == 2.0 * v
     assert fastpath.flight_time(phi, v, -0.0) == 2.0 * v

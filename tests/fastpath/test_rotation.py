@@ -1,12 +1,11 @@
 """The sine and cosine that a flight returns are those of the exact angle phi + tau.
 
 ``fastpath.arithmetic.rotation.sin_cos_of_sum`` takes libm at a = fl(x + y) and adds the TwoSum
-remainder
-e = x + y - a by angle addition. Its error bound, from the precision: libm's sine and cosine are
-within 1 ulp (<= 2u for values below 1), the two products and the sum add 1.5u, the Taylor
-polynomials' truncation is below u/40: 4u in all (u = 2**-53). libm at fl(x + y) alone is off by
-up to |e| = ulp(x + y)/2, 16u at x + y ~ 24 and growing with the angle: the issue-12 finding that
-a carried sine was 9u off (``CARRIED_SINE_ERROR`` = 8u).
+remainder e = x + y - a by angle addition. Its error bound, from the precision: libm's sine and
+cosine are within 1 ulp (<= 2u for values below 1), the two products and the sum add 1.5u, the
+Taylor polynomials' truncation is below u/40: 4u in all (u = 2**-53). libm at fl(x + y) alone is
+off by up to |e| = ulp(x + y)/2, 16u at x + y ~ 24 and growing with the angle, more than the 8u a
+collision allows for a carried sine (``CARRIED_SINE_ERROR``).
 """
 
 import math
@@ -44,7 +43,7 @@ def test_sin_cos_of_sum_is_of_the_exact_sum(x, y):
 
 def test_the_rounded_angle_alone_is_not_enough():
     """The witness: libm at fl(x + y) misses by more than the carried bound, the sum does not."""
-    x, y = 2.8535527917488874, 21.44700044166408  # phi and 2v of the issue-12 reproducer
+    x, y = 2.8535527917488874, 21.44700044166408  # phi and 2v of a long Holmes step
     assert two_sum(x, y)[1] != 0.0
     found = False
     for k in range(-64, 65):  # neighbours of y: some give a remainder near ulp/2
@@ -89,3 +88,25 @@ def test_long_flights_carry_the_sine_of_the_exact_angle(eps, phi, v):
         angle = mp.mpf(phi) + mp.mpf(tau) + mp.mpf(tau_lo)  # the root as an unevaluated sum
         assert abs(s - mp.sin(angle)) <= CARRIED_SINE_ERROR, (phi, v, eps, tau)
         assert abs(c - mp.cos(angle)) <= CARRIED_SINE_ERROR, (phi, v, eps, tau)
+
+
+def test_collide_from_counts_the_carried_sine_error():
+    """``collide_from`` counts the carried sine's error in the departure's: ``sine_error`` bounds
+    the error of the given sine (CARRIED_SINE_ERROR, 8u, by default), and ``flight_from`` says
+    NOT_DEPARTING only where w0 <= 0 is certain: a w0 within the carried sine's error of 0 but
+    beyond its other error terms (2u|w0| + 3u|eps sin|, 1.5u here) is UNCERTAIN. phi = the float
+    next to pi/6 (already centred: no reduction error), the given sine 0.5 (mpmath: within u of
+    sin(phi)), eps = 1, v = -0.5 + j*u: w0 = j*u exactly, for j = -6 .. 6 (|w0| <= 6u < 8u)."""
+    from fastpath.elastic.collision import CARRIED_SINE_ERROR, collide_from
+    from fastpath.status import UNCERTAIN
+
+    u = 2.0**-53
+    phi = math.pi / 6
+    with mp.workprec(200):
+        assert abs(mp.sin(mp.mpf(phi)) - mp.mpf(0.5)) <= u
+    assert CARRIED_SINE_ERROR >= 8 * u
+    for j in (-6, -4, -2, 2, 4, 6):
+        v = -0.5 + j * u
+        assert v + 0.5 == j * u
+        status = collide_from(phi, 0.5, math.sqrt(3.0) / 2, v, 1.0)[6]
+        assert status == UNCERTAIN, (j, status)

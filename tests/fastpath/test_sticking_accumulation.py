@@ -49,6 +49,7 @@ def test_no_detachment_for_abs_eps_at_most_one(eps):
     assert math.isnan(detachment_phase(eps))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "eps, r, theta, w",
     [(1.5, 0.8, 2.0, 1e-9), (1.5, 0.8, 5.0, 1e-10), (0.5, 0.5, 1.0, 1e-9),
@@ -93,6 +94,7 @@ CHATTER_STARTS = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("eps, r, phi0, w0", CHATTER_STARTS)
 def test_accumulation_time_matches_reference(eps, r, phi0, w0):
     """sticking[0, 0] of an orbit started near chattering against the 60-digit impacts + tail."""

@@ -14,6 +14,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import fastpath
 
@@ -39,6 +40,7 @@ SCRIPT = textwrap.dedent("""
 """)
 
 
+@pytest.mark.slow
 def test_array_calls_from_four_threads_under_the_workqueue_layer():
     """Four threads, eight tasks of step/flight/holmes_step on 20,000 states: the process
     survives, every result equals the single-threaded one, and the layer was workqueue."""

@@ -10,6 +10,7 @@ phi_e.
 
 import math
 
+import pytest
 from fastpath_tolerances import U
 from hypothesis import example, given
 from hypothesis import strategies as st
@@ -100,3 +101,41 @@ def test_bound_is_far_below_the_generic_one_near_a_triple_root():
         assert gap_error(-x, x, 1.0, t) > x**4 / 24
         assert d_err < x**4 / 24 / 8 and d1_err < x**3 / 6 / 8, (x, d_err, d1_err)
     assert rate_error(-1e-5, 1e-5, 1.0, 2e-5) > 1e-15 / 6
+
+
+@pytest.mark.parametrize("sin_phi, cos_phi, v, eps, w0_error, t", [
+    (math.sin(1.0), math.cos(1.0), 0.7, 0.8, 3e-16, 0.9),
+    (math.sin(-2.5), math.cos(-2.5), 3.0, -0.95, 1e-15, 5.5),
+    (math.sin(-3e-5), math.cos(-3e-5), 3e-5, 1.0, 2e-21, 6e-5),  # the triple family's scale
+    (math.sin(2.0), math.cos(2.0), -0.4, 0.3, 5e-17, 0.2),
+    (0.0, 1.0, 2.0**-1000, 0.5, 0.0, 2.0**-1000),  # SMALLEST_T: the underflow allowance shows
+])
+def test_tight_bounds_are_the_documented_ones(sin_phi, cos_phi, v, eps, w0_error, t):
+    """``tight_gap``'s E and R are the module docstring's formulas (its proof), evaluated on the
+    computed terms, times 1 + 64u plus the underflow allowance; and d, d', d'', sin and cos of
+    phi + t are those of the half-angle form. Every term of E and R is of order u here (the
+    w0_error ones too), so a dropped or subtracted term moves E or R by far more than the few u
+    of evaluation order allowed. At t = SMALLEST_T the terms underflow and E is the allowance
+    2**-1060 alone (a positive bound)."""
+    from fastpath.elastic.tight_gap import tight_gap
+
+    d, d1, d2, s, c, d_err, d1_err = tight_gap(sin_phi, cos_phi, v, eps, w0_error, t)
+    with mp.workdps(DPS):
+        sp, cp, w, e, we, tt = (mp.mpf(x) for x in (sin_phi, cos_phi, v, eps, w0_error, t))
+        sh, ch = mp.sin(tt / 2), mp.cos(tt / 2)
+        m, cm = sp * ch + cp * sh, cp * ch - sp * sh
+        s_x, c_x = m * ch + cm * sh, cm * ch - m * sh
+        plate, flight = 2 * e * sh * m, tt * (w - tt / 2)
+        d_x, d1_x = plate + flight, (w - tt) + e * s_x
+        close = 64 * U
+        for got, want in ((d, d_x), (d1, d1_x), (d2, -1 + e * c_x), (s, s_x), (c, c_x)):
+            assert abs(got - want) <= close * (abs(plate) + abs(flight) + abs(w) + tt + 1), (
+                got, want)
+        ash, asp, ae = abs(sh), abs(sp), abs(e)
+        e_doc = U * (abs(d_x) + 5 * abs(plate) + 2 * abs(flight)) + 2 * ash * (
+            U * ae * (3 * asp + 5 * ash) + we * (1 + ash))
+        r_doc = U * (abs(d1_x) + abs(w - tt) + ae * (2 * abs(s_x) + 4 * abs(m) + 6 * asp
+                                                     + 14 * ash)) + we * (1 + 3 * ash)
+        for got, doc in ((d_err, e_doc), (d1_err, r_doc)):
+            want = doc * (1 + 64 * mp.mpf(U)) + mp.mpf(2) ** -1060  # docstring's factor, allowance
+            assert abs(got - want) <= close * want, (got, want)

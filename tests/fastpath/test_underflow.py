@@ -80,4 +80,3 @@ def test_departures_within_a_subnormal_of_zero_are_judged_by_the_exact_w0(eps):
         base = -(eps * math.sin(phi))
         for k in range(-2, 3):
             judge(phi, base + k * TINY, eps)
-

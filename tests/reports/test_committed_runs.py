@@ -20,6 +20,7 @@ def test_there_are_committed_runs():
     assert len(RUNS) >= 4, RUNS
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("run_dir", RUNS, ids=[p.name for p in RUNS])
 def test_committed_run_passes_bouncer_verify(run_dir):
     ok, lines = recheck(run_dir)

@@ -32,6 +32,7 @@ def test_report_rejects_bad_input(tmp_path, capsys):
     assert err.count("bouncer: error:") == 3 and "Traceback" not in err
 
 
+@pytest.mark.slow
 def test_bench_prints_ratios_to_the_holmes_map(capsys):
     assert main(["bench", "--collisions", "20000", "--repeats", "1", "--particles", "2000"]) == 0
     out = capsys.readouterr().out

@@ -17,7 +17,7 @@ import pytest
 from mpmath import mp
 
 import verify
-from tests.verify._cases import internal
+from tests.verify.cases import internal
 from verify.elastic import certificate
 from verify.elastic.gap import iv_gap, iv_gap_prime, mp_gap
 from verify.numerics import first_root
@@ -161,6 +161,7 @@ def _first_root_by_scanning(phi, v, eps, t_max, n=20000):
         return mp.findroot(lambda s: mp_gap(P, V, E, s), (t - step, t), solver="illinois")
 
 
+@pytest.mark.slow
 def test_eps_between_one_and_two_takes_the_general_path():
     """eps = 1.5 is not concave: a dip below 0 gives roots r1 < r2 < r3; the first is r1
     (a concave search from the right would return the last one)."""
@@ -309,6 +310,7 @@ def test_bad_max_dps_is_named(max_dps, message):
         verify.certify_flight(0.3, 1.0, 0.6, dps=30, max_dps=max_dps)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("dps", "reached"), [(50, 400), (120, 480)])
 def test_default_max_dps_is_max_of_4_dps_and_400(dps, reached):
     g = verify.grazing_contact(3.0, 0.2, 4.0, 0, dps=600)  # exact tangency to ~600 digits

@@ -8,7 +8,7 @@ import pytest
 from mpmath import mp
 
 import verify
-from tests.verify._cases import internal
+from tests.verify.cases import internal
 from verify.elastic import certificate
 from verify.elastic.gap import iv_gap, iv_gap_prime, iv_gap_second, mp_gap
 from verify.numerics import first_root
@@ -56,6 +56,7 @@ def _random_boxes(n, seed=12):
         yield float(g.phi), float(g.v), eps, float(g.T) - h * float(rng.uniform(0.1, 0.9)), h
 
 
+@pytest.mark.slow
 def test_box_bound_is_below_the_sampled_minimum_and_not_loose():
     """On 450 random boxes: bound <= min of d over 101 samples (60 digits), and
     bound >= d(a + s*) - |eps|*h**3/2 - rounding, where s* minimises the quadratic model: the

@@ -122,6 +122,7 @@ def test_drag_to_zero_limit_is_linear_in_drag(phi, v, eps, law):
     assert abs(tiny - tau0) <= mp.mpf(10) ** -38 * tau0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", DISSIPATIVE_CASES, ids=[c.id for c in DISSIPATIVE_CASES])
 def test_dissipative_hard_cases(case):
     cert = verify.certify_flight(case.phi, case.v, case.eps, drag=case.drag,

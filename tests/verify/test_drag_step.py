@@ -9,13 +9,14 @@ import pytest
 from mpmath import mp
 
 import verify
-from tests.verify._cases import STATES
+from tests.verify.cases import STATES
 from tests.verify.test_drag_flight import naive_motion
 from verify import flight
 
 TOL = mp.mpf(10) ** -45
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 @pytest.mark.parametrize("r", [1.0, 0.8, 0.3])
 @pytest.mark.parametrize(("phi", "v", "eps", "k"), [(4.0, 3.0, 0.6, 0.1), (0.3, 1.5, 1.5, 0.05),

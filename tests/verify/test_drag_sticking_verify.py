@@ -46,7 +46,7 @@ from fastpath.dissipative.short_flight import drag_short_window
 from fastpath.dissipative.sticking import drag_detachment_phase
 from fastpath.elastic.gap import departure
 from fastpath.physics import LINEAR, QUADRATIC
-from tests.verify._cases import internal
+from tests.verify.cases import internal
 from verify.dissipative.drag_sticking import drag_accumulation, leaves_plate_with_drag, riding
 
 U = 2.0**-53
@@ -168,6 +168,7 @@ def _detachment_impact_tol(eps, k, law, r, theta_star, dth, tau_fast):
     return phase, weight * phase + 4 * math.ulp(abs(vel) + abs(eps) + 1)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 def test_eps_1_5_r_0_8_sticks_detaches_at_theta_star_and_agrees_with_fastpath(law):
     """Two sticking episodes (dps = 30 keeps it to ~6 s a law: ~110 certified impacts per
@@ -219,6 +220,7 @@ def test_eps_1_5_r_0_8_sticks_detaches_at_theta_star_and_agrees_with_fastpath(la
             + 4 * math.ulp(abs(vel) + abs(eps) + 1)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law, eps, k", [("linear", -1.5, 0.3), ("linear", 0.9, 0.6),
                                          ("quadratic", -1.5, 0.3), ("quadratic", 0.9, 1.0)])
 def test_other_signs_and_drag_made_detachment_agree_with_fastpath(law, eps, k):
@@ -247,6 +249,7 @@ def test_other_signs_and_drag_made_detachment_agree_with_fastpath(law, eps, k):
     assert abs(fast.sticking[0, 1] - t_end) <= tol
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 def test_chatter_next_to_theta_star_rides_only_until_theta_star(law):
     """Hard case (fastpath's test_chattering_next_to_drag_detachment_leaves_the_plate): a chatter
@@ -274,6 +277,7 @@ def test_chatter_next_to_theta_star_rides_only_until_theta_star(law):
           f" against its documented bound {tol:.3g}")
 
 
+@pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="fastpath finding: near theta* (riding force a ~ 0.04) "
                    "fastpath's t_acc misses by 5.5e-14, 1.5x the bound of tests/fastpath/"
                    "test_drag_sticking.py (verify agrees with an independent 100-digit "
@@ -290,6 +294,7 @@ def test_fastpath_accumulation_bound_next_to_theta_star():
     assert abs(fast.sticking[0, 0] - t_acc) <= tol
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law, k", [("linear", 0.5), ("quadratic", 1.0)])
 def test_eps_half_r_half_with_drag_stops_stuck(law, k):
     """With drag: from (4, 3) the particle sticks for good (linear:
@@ -302,6 +307,7 @@ def test_eps_half_r_half_with_drag_stops_stuck(law, k):
     assert len(fast.sticking) == 1
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law, k", [("linear", 0.1), ("quadratic", 0.1)])
 def test_dps_50_against_70_and_the_proved_tail_enclosure(law, k):
     """eps = 1.5, r = 0.3 from next to chattering: the accumulation and detachment times at 50
@@ -348,6 +354,7 @@ def test_dps_50_against_70_and_the_proved_tail_enclosure(law, k):
     assert ratio <= 0.5
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 def test_vanishing_drag_reproduces_the_no_drag_orbit(law):
     """drag = 2**-100: the accumulation and detachment times and the impacts in between agree

@@ -18,7 +18,7 @@ import pytest
 from mpmath import mp
 
 import verify
-from tests.verify._cases import internal
+from tests.verify.cases import internal
 from verify.dissipative.sticking import accumulation, detachment_phase, detachment_step
 from verify.numerics.precision import to_user, working_dps
 
@@ -38,6 +38,7 @@ def _start(theta, w, eps):
         return phi0, +(mp.mpf(w) - eps * mp.sin(phi0))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("eps, r, theta, w", [(1.5, 0.8, 2.0, 1e-3), (0.5, 0.5, 1.0, 1e-2),
                                               (-3.0, 0.3, 1.0, 1e-3)])
 def test_accumulation_time_agrees_with_more_impacts_at_higher_precision(eps, r, theta, w):
@@ -52,6 +53,7 @@ def test_accumulation_time_agrees_with_more_impacts_at_higher_precision(eps, r, 
     assert abs(t50 - t70) <= tol, (t50 - t70, tol)
 
 
+@pytest.mark.slow
 def test_tail_enclosure_contains_the_tail_from_more_impacts():
     """The proved [T_lo, T_hi] of the last impact before the tail holds the 70-digit value."""
     eps, r = 1.5, 0.8
@@ -73,6 +75,7 @@ def test_tail_is_not_summed_before_w_is_tiny():
     assert accumulation(*internal(phi0, v0, eps, r), 50) is None
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("eps, r, theta", [(1.5, 0.8, math.pi), (3.0, 0.5, math.pi),
                                            (-1.5, 0.8, 0.5), (1.2, 0.3, math.pi)])
 def test_detaches_at_2pi_minus_arccos_one_over_eps(eps, r, theta):
@@ -136,6 +139,7 @@ def test_flat_plate_accumulates_after_2v_over_1_minus_r():
         assert abs(expected - 100) > 1e-14
 
 
+@pytest.mark.slow
 def test_eps_1_5_r_0_8_from_4_3_sticks_and_detaches():
     """The first episodes (about 2.5 s of certified impacts per
     hundred); every episode ends at theta*, (the orbit between episodes is chaotic: see the

@@ -110,6 +110,7 @@ def caller_precision():
     mpmath.mp.prec, mpmath.iv.prec = old
 
 
+@pytest.mark.slow
 def test_a_thread_pool_gives_the_single_threaded_results(caller_precision, frequent_switches):
     """Every public function over 8 departures x 3 precisions (15 to 60 digits; the drag
     flights at 15) and two sticking orbits, in a pool of 6 threads, each call submitted twice

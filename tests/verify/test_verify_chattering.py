@@ -85,6 +85,7 @@ def test_dip_is_as_recorded(case):
             assert abs(m / mp.mpf(nominal) - 1) < mp.mpf(10) ** -3
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", CHATTERING_GRAZES, ids=IDS)
 def test_verify_certifies_the_first_root(case):
     start = time.perf_counter()

@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from mpmath import iv, mp
 
 import verify
-from tests.verify._cases import STATES, float_gap, small_w0_velocity
+from tests.verify.cases import STATES, float_gap, small_w0_velocity
 
 DPS = 50
 TOL = mp.mpf(10) ** -45

@@ -13,7 +13,7 @@ from hypothesis import example, given, settings
 from mpmath import iv, mp
 
 import verify
-from tests.verify._cases import mpmath_dps, small_w0_velocity
+from tests.verify.cases import mpmath_dps, small_w0_velocity
 from verify import strategies as vs
 from verify.hard_cases import ALL_CASES, HARD_CASES, OVERFLOW_CASES
 from verify.numerics.inputs import exact_real
@@ -66,6 +66,7 @@ def _exact_w0(phi, v, eps):
         return mp.mpf(v) + mp.mpf(eps) * mp.sin(mp.mpf(phi))
 
 
+@pytest.mark.slow
 def test_near_triple_roots_just_above_eps_one_are_certified_in_milliseconds():
     """phi = -x, v = x (and phi = fl(pi - x) for eps < 0), x = 1e-3 .. 1e-8, |eps| = 1 + 2**-52
     .. 1 + 1e-6: d has a near-triple root at 2x where d'' ~ |eps| - 1 is tiny (the global

@@ -14,6 +14,7 @@ from reports.cli.check import add_parser, check_command, main
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 
 
+@pytest.mark.slow
 def test_fastpath_passes(capsys):
     code = main(["check", "fastpath:flight_time", "--step", "fastpath:step", "--suite", "fast"])
     out = capsys.readouterr().out
@@ -22,6 +23,7 @@ def test_fastpath_passes(capsys):
     assert out.count("PASS") == 6
 
 
+@pytest.mark.slow
 def test_planted_defect_fails_with_smallest_input(capsys):
     code = main(["check", "examples.planted_defects:biased_flight_time", "--suite", "accuracy"])
     out = capsys.readouterr().out
@@ -31,6 +33,7 @@ def test_planted_defect_fails_with_smallest_input(capsys):
     assert "accuracy: examples.planted_defects:biased_flight_time at phi=" in out
 
 
+@pytest.mark.slow
 def test_file_path_and_options(capsys):
     code = main(["check", "examples/planted_defects.py:holmes_flight_time", "--suite",
                  "fixed_points", "--max-examples", "7", "--seed", "5", "-k", "4"])
@@ -39,6 +42,7 @@ def test_file_path_and_options(capsys):
     assert "k = 4, seed 5, up to 7 inputs" in out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "argv, text",
     [
@@ -74,6 +78,7 @@ def test_parser_builder_composes_with_other_subcommands():
     assert (args.target, args.step, args.suite, args.seed, args.k) == ("m:f", "m:g", "fast", 0, 16)
 
 
+@pytest.mark.slow
 def test_users_own_file_in_the_current_directory(tmp_path):
     """A fresh process in the user's directory: their module imports, exit 1, no traceback."""
     (tmp_path / "mysolver.py").write_text(
@@ -96,6 +101,7 @@ def test_users_own_file_in_the_current_directory(tmp_path):
     assert bad.stderr.strip() == "bouncer: error: module 'mysolver' has no attribute 'nope'"
 
 
+@pytest.mark.slow
 def test_budget_spent_exits_3_with_counts_and_progress_on_stderr(capsys):
     code = main(["check", "examples.planted_defects:slow_flight_time", "--suite", "fast",
                  "--budget", "4"])
@@ -105,6 +111,7 @@ def test_budget_spent_exits_3_with_counts_and_progress_on_stderr(capsys):
     assert "bouncer check: no_overstep (20 inputs) ..." in captured.err  # stderr is no tty here
 
 
+@pytest.mark.slow
 def test_a_hang_exits_1_naming_the_input(capsys):
     code = main(["check", "examples.planted_defects:hanging_flight_time", "--suite",
                  "accuracy", "--call-timeout", "0.5", "--no-progress"])

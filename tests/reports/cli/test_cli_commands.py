@@ -44,6 +44,7 @@ def test_scenes_lists_the_builtins(capsys):
     assert "paper-escape" in out and "paper-transport" in out and "paper-phase-space" in out
 
 
+@pytest.mark.slow
 def test_run_plot_verify(tiny_run, capsys):
     assert json.loads((tiny_run / "manifest.json").read_text())["status"] == "complete"
     assert main(["plot", str(tiny_run)]) == 0

@@ -81,6 +81,7 @@ def run_cli(*args):
                           capture_output=True, text=True, cwd=ROOT)
 
 
+@pytest.mark.slow
 def test_json_contract_for_csv_and_run_directory(tmp_path):
     rng = np.random.default_rng(1)
     csv = write_csv(tmp_path / "h.csv", draw("power_law", 50_000, rng))
@@ -109,6 +110,7 @@ def test_json_contract_for_csv_and_run_directory(tmp_path):
         assert lo <= -np.log(1 - q) <= hi
 
 
+@pytest.mark.slow
 def test_table_and_figures(tmp_path):
     rng = np.random.default_rng(2)
     csv = write_csv(tmp_path / "h.csv", draw("exponential", 10_000, rng))
@@ -119,6 +121,7 @@ def test_table_and_figures(tmp_path):
     assert len(pngs) == 1 and pngs[0].read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+@pytest.mark.slow
 def test_figures_of_a_run_go_beside_it_never_into_it(tmp_path):
     """The run directory holds what its manifest records: the PNGs go to RUN_DIR-fit beside
     it (or to --out)."""
@@ -140,6 +143,7 @@ def test_add_parser_registers_fit():
     assert args.func is fit_cli.main and args.json and args.paths == ["x.csv"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("text, message", [
     (None, "no such file"),
     ("lower,upper\n1,2\n", "header"),
@@ -166,6 +170,7 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, text, message):
     assert len(lines) == 1 and message in lines[0] and "Traceback" not in proc.stderr
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("edit, field", [
     (lambda m: m.__setitem__("bins", []), "field bins"),
     (lambda m: m["curves"]["exp"].__setitem__("particles_done", "20000"), "field curves.exp"),
@@ -182,6 +187,7 @@ def test_run_directory_with_a_malformed_manifest_is_one_line(tmp_path, edit, fie
     assert f"{run / 'manifest.json'}: " in line and field in line
 
 
+@pytest.mark.slow
 def test_run_directory_that_does_not_add_up_is_rejected(tmp_path):
     run = write_run(tmp_path / "run")
     manifest = json.loads((run / "manifest.json").read_text())
@@ -191,6 +197,7 @@ def test_run_directory_that_does_not_add_up_is_rejected(tmp_path):
     assert proc.returncode == 2 and "particles_done" in proc.stderr
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["phase-space", "velocity", "escape"])
 def test_run_without_counts_names_its_kind(tmp_path, kind):
     """A phase-space or velocity run records no survival counts: the one-line error says so

@@ -62,6 +62,7 @@ def test_no_orbit_exits_1_with_one_line(capsys):
     assert err.count("\n") == 1
 
 
+@pytest.mark.slow
 def test_command_line_entry_point_runs_without_a_traceback():
     done = subprocess.run([sys.executable, "-m", "reports.cli", "orbits", "0", "x", "--eps",
                            "0.3"], capture_output=True, text=True)

@@ -45,6 +45,7 @@ def test_hole_membership_wraps_through_two_pi():
     assert got.tolist() == [0, -1, 0, -1]
 
 
+@pytest.mark.slow
 def test_the_fixed_point_is_on_the_large_island_and_a_sea_start_is_chaotic():
     """(0, pi): the large island; (3.14, 1.95): the small island below the hole at pi, regular
     but not locked to the period-1 resonance; (4, 3): the chaotic sea."""

@@ -1,13 +1,42 @@
 """The paper's figures section in quick mode: runs, figures (PNG + PDF), Markdown, and a verdict
-for every claim of the register (slow: the quick section takes a few minutes)."""
+for every claim of the register (slow: the quick section takes a few minutes; the quick tier
+checks only which runs it asks for)."""
 
 import pytest
 
+from reports.paper import figures
 from reports.paper.claims import FIELDS, claims_json
 from reports.paper.figures import paper_figures_section
 from reports.paper.register import entries
 
-pytestmark = pytest.mark.slow
+QUICK_RUNS = ["paper-phase-space-200", "paper-escape-2000", "paper-transport-2000",
+              "escape-second-box-2000", "escape-island-start-500"]
+
+
+class RunsInHand(Exception):
+    """Raised in place of the claims, to stop a section once its runs are in hand."""
+
+
+def stop_after_the_runs(monkeypatch):
+    def stop(*args, **kwargs):
+        raise RunsInHand
+
+    monkeypatch.setattr(figures, "decide", stop)
+
+
+def test_quick_section_asks_for_the_five_runs_at_their_quick_sizes(tmp_path, monkeypatch):
+    asked = []
+
+    def ensure_run(scene, runs_dir, particles, echo):
+        asked.append(f"{scene}-{particles}")
+        return runs_dir / asked[-1]
+
+    monkeypatch.setattr(figures, "ensure_run", ensure_run)
+    monkeypatch.setattr(figures, "largest_run", lambda scene, runs: None)
+    stop_after_the_runs(monkeypatch)
+    with pytest.raises(RunsInHand):
+        paper_figures_section(tmp_path, quick=True)
+    assert asked == QUICK_RUNS
 
 STEMS = ("paper_fig1_phase_space", "paper_fig2_escape", "paper_fig3_transport", "paper_fig4_h1",
          "paper_survivors", "paper_fermi", "paper_dissipation")
@@ -21,6 +50,7 @@ def section(tmp_path_factory):
     return out, md, claims, said
 
 
+@pytest.mark.slow
 def test_figures_exist_as_png_and_pdf(section):
     out, md, _, _ = section
     for stem in STEMS:
@@ -29,6 +59,7 @@ def test_figures_exist_as_png_and_pdf(section):
         assert f"]({stem}.png)" in md, stem
 
 
+@pytest.mark.slow
 def test_every_claim_of_the_register_has_a_verdict(section):
     out, md, claims, said = section
     ids = [c.id for c in claims]
@@ -39,15 +70,19 @@ def test_every_claim_of_the_register_has_a_verdict(section):
         assert list(c) == list(FIELDS)
         assert c["verdict"] in ("confirmed", "refuted", "inconclusive")
         assert c["rule"] and c["evidence"] and c["statement"] and c["source"]
-    for run in ("paper-phase-space-200", "paper-escape-2000", "paper-transport-2000",
-                "escape-second-box-2000", "escape-island-start-500"):
+    for run in QUICK_RUNS:
         assert (out / "runs" / run / "manifest.json").is_file(), run
     assert any(msg.startswith("running paper-escape") for msg in said)
 
 
-def test_complete_runs_are_reused(section):
+@pytest.mark.slow
+def test_complete_runs_are_reused(section, monkeypatch):
+    """A second section in the same folder reuses the five complete runs and runs none (it is
+    stopped once its runs are in hand: its claims and figures would be the first one's)."""
     out, md, _, _ = section
     said = []
-    again, _ = paper_figures_section(out, quick=True, echo=said.append)
+    stop_after_the_runs(monkeypatch)
+    with pytest.raises(RunsInHand):
+        paper_figures_section(out, quick=True, echo=said.append)
     assert sum(msg.startswith("reusing") for msg in said) == 5
     assert not any(msg.startswith("running") for msg in said)

@@ -92,6 +92,7 @@ def test_the_noise_of_a_small_sample_is_not_a_departure_from_its_law():
     assert verdict in (CONFIRMED, INCONCLUSIVE)  # inconclusive if a simple law is not rejected
 
 
+@pytest.mark.slow
 def test_a_sharp_bend_is_not_well_approximated_by_one_law():
     """An exponential followed by a much slower exponential (a sharp bend): the stretched law
     wins against both simple laws but misses the bend by far more than 10%."""

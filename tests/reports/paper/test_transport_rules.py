@@ -1,6 +1,7 @@
 """The transport rules (trapping, 'very strong P_11', eventual escape) on synthetic curves."""
 
 import numpy as np
+import pytest
 
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.transport_claims import (
@@ -49,6 +50,7 @@ def transport(p12_tail, rng, scale=1.0):
             2: {"time": entry2, "collisions": entry2}}
 
 
+@pytest.mark.slow
 def test_a_hole_that_traps_and_one_that_does_not():
     rng = np.random.default_rng(1)
     traps = transport(0.0, rng)
@@ -59,6 +61,7 @@ def test_a_hole_that_traps_and_one_that_does_not():
     assert trap_claim("fig3-h=0.1", leaks, "r", False).verdict == CONFIRMED
 
 
+@pytest.mark.slow
 def test_p11_is_very_strong_only_when_it_outlives_the_others_by_a_decade():
     rng = np.random.default_rng(2)
     assert strong_claim("1", transport(0.0, rng), "r").verdict == CONFIRMED

@@ -2,6 +2,7 @@
 
 import math
 
+import pytest
 from mpmath import mp
 
 from reports.precision.hard_case_table import (
@@ -22,6 +23,7 @@ def _case(case_id):
     return next(c for c in DISSIPATIVE_CASES if c.id == case_id)
 
 
+@pytest.mark.slow
 def test_rows_and_rendering():
     rows = dissipative_rows(SAMPLE)
     md = dissipative_case_markdown(rows)

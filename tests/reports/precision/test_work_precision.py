@@ -12,7 +12,7 @@ from reports.precision.work_precision import run_work_precision, work_precision_
 FASTPATH = ("fastpath auto", "fastpath seed")
 VERIFY = ("verify dps=20", "verify dps=50")
 SAMPLED = ("solve_ivp rtol=1e-06", "brentq grid 0.1")
-WORST_UNITS = 16  # fastpath's error bound in units of kappa*u (DESIGN fact 4)
+WORST_UNITS = 16  # fastpath's error bound in units of kappa*u
 
 
 @pytest.fixture(scope="module")
@@ -20,6 +20,7 @@ def result():
     return run_work_precision(quick=True)
 
 
+@pytest.mark.slow
 def test_section_builds_files_and_rows(tmp_path):
     md = work_precision_section(tmp_path, quick=True)
     assert (tmp_path / "work_precision.png").stat().st_size > 0
@@ -30,6 +31,7 @@ def test_section_builds_files_and_rows(tmp_path):
         assert sum(row.startswith(f"| {m.name} |") for row in rows) == 1, m.name
 
 
+@pytest.mark.slow
 def test_fastpath_error_within_bound_on_random_states(result):
     for name in FASTPATH:
         errs = result.group(name, "random")
@@ -38,7 +40,7 @@ def test_fastpath_error_within_bound_on_random_states(result):
         assert worst <= WORST_UNITS, (name, worst)
 
 
-def test_holmes_flight_time_obeys_fact5(result):
+def test_holmes_flight_time_is_within_4_eps_over_tau_of_2v(result):
     checked = 0
     for case, ref, err in zip(result.cases, result.references, result.errors["Holmes map"],
                               strict=True):
@@ -76,6 +78,7 @@ def test_user_method_from_callable():
     assert res.summaries[0].max_units <= WORST_UNITS
 
 
+@pytest.mark.slow
 def test_hard_case_section(tmp_path):
     md = hard_case_section(tmp_path, quick=True)
     cases = hard_cases(quick=True)

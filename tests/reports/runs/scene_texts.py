@@ -98,3 +98,45 @@ verify_samples = 6
 [physics]
 restitution = [1.0, 0.9]
 """
+
+# a phase-space scene of 300 particles over 12 collisions, on a 36 x 24 grid
+PORTRAIT_300 = """
+name = "portrait-settle"
+kind = "phase-space"
+eps = 0.6
+particles = 300
+seed = 5
+[start]
+phi = [0.0, 6.283185307179586]
+v = [1.0, 6.0]
+[horizon]
+collisions = 12
+[record]
+phi_bins = 36
+v_bins = 24
+v_range = [0.0, 8.0]
+"""
+
+# an escape scene of 300 particles in chunks of 128, with both horizons
+ESCAPE_300 = """
+name = "plan-small"
+kind = "escape"
+eps = 0.6
+particles = 300
+seed = 5
+chunk_size = 128
+[start]
+phi = [3.85, 4.15]
+v = [2.0, 4.0]
+[holes]
+centres = [2.0]
+widths = [0.3]
+[horizon]
+collisions = 40
+time = 60.0
+[record]
+verify_samples = 20
+"""
+
+# the scene STICK with 200 particles (one chunk)
+STICK_200 = STICK.replace("particles = 400", "particles = 200")

@@ -125,6 +125,7 @@ def chunks_computed(run_dir):
     return load_provenance(run_dir)["session"]["chunks_computed"]
 
 
+@pytest.mark.slow
 def test_cluster_run_is_bit_identical_to_local(scene, reference, local_cluster, tmp_path,
                                                capsys):
     path = tmp_path / "scene.toml"
@@ -138,6 +139,7 @@ def test_cluster_run_is_bit_identical_to_local(scene, reference, local_cluster, 
     assert session["scheduler"] == local_cluster.scheduler_address and session["workers"] == 2
 
 
+@pytest.mark.slow
 def test_resume_local_run_on_the_cluster(scene, reference, client, tmp_path, monkeypatch):
     real = executor.local
 
@@ -160,6 +162,7 @@ def test_resume_local_run_on_the_cluster(scene, reference, client, tmp_path, mon
     same_results(reference, tmp_path / "r")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("stop", [Interrupt, KeyboardInterrupt])
 def test_checkpoint_cadence(scene, reference, tmp_path, monkeypatch, stop):
     """With the default interval the checkpoint after the first chunk is the only one in a
@@ -187,6 +190,7 @@ def test_checkpoint_cadence(scene, reference, tmp_path, monkeypatch, stop):
     same_results(reference, tmp_path / "r")
 
 
+@pytest.mark.slow
 def test_resume_cluster_run_locally(scene, reference, client, tmp_path, monkeypatch):
     real_map = cluster.map_chunks
 
@@ -215,6 +219,7 @@ def test_resume_cluster_run_locally(scene, reference, client, tmp_path, monkeypa
     same_results(reference, tmp_path / "r")
 
 
+@pytest.mark.slow
 def test_sweep_on_the_cluster_equals_the_local_sweep(scene, client, tmp_path):
     grid = {"centre": [1.0, 2.5], "eps": [0.5, 0.7]}
     kw = dict(grid=grid, n_star=20, particles=600, verify_samples=40, progress=False)
@@ -225,6 +230,7 @@ def test_sweep_on_the_cluster_equals_the_local_sweep(scene, client, tmp_path):
         assert (tmp_path / "here" / name).read_bytes() == (tmp_path / "there" / name).read_bytes()
 
 
+@pytest.mark.slow
 def test_failed_chunk_fails_the_run(scene, client, tmp_path):
     def unsettled(*args):
         result = chunk.run_chunk(*args)
@@ -242,6 +248,7 @@ def test_failed_chunk_fails_the_run(scene, client, tmp_path):
         chunk.check_result(result)
 
 
+@pytest.mark.slow
 def test_unreachable_scheduler_exits_2(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(cluster, "CONNECT_TIMEOUT", "1s")
     path = tmp_path / "scene.toml"
@@ -259,6 +266,7 @@ def test_missing_distributed_is_a_one_line_error(monkeypatch):
         cluster.check_available()
 
 
+@pytest.mark.slow
 def test_a_killed_worker_loses_and_doubles_nothing(scene, reference, client, tmp_path,
                                                    monkeypatch):
     """The first task to start makes its worker process exit (os._exit) before it returns;

@@ -140,9 +140,10 @@ def test_edited_stuck_column_fails_the_audit(run_dir, capsys):
     assert "but 600 particles were run" in out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
 def test_drag_and_restitution_run_passes_the_audit(tmp_path, capsys, law):
-    """drag with r < 1 (issue 16 item 5): the run's samples, chattering ones included, are
+    """drag with r < 1: the run's samples, chattering ones included, are
     repeated by ``fastpath.carried_step`` with the drag and recomputed by verify."""
     physics = f'restitution = 0.8\ndrag = 0.2\ndrag_law = "{law}"'
     text = CHATTER.replace("restitution = 0.8", physics)

@@ -24,7 +24,15 @@ from hypothesis import strategies as st
 import fastpath
 import verify
 from fastpath.arithmetic.phase import TWO_PI
-from fastpath.kernels.arrays import Bins, EscapeCounts, Flags, Holes, Horizon, Sample, Starts
+from fastpath.kernels.arrays import (
+    Bins,
+    EscapeCounts,
+    Flags,
+    Holes,
+    Horizon,
+    Sample,
+    Starts,
+)
 from fastpath.kernels.escape import escape_chunk
 from fastpath.kernels.histogram import bin_index, exit_hole
 from fastpath.physics import elastic
@@ -240,3 +248,31 @@ def test_settled_and_fast_landings_differ_here():
     below fastpath's, so the edge cases really are different floats on the two paths."""
     assert verify_landing() == down(fast_landing())
 
+
+# a wide wrapped hole: its upper edge lo + width - TWO_PI is within 2**-51 of 3 (rounded)
+WIDE_LO = 5.0
+WIDE_WIDTH = (3.0 - WIDE_LO) + TWO_PI
+
+
+def _inside_wide(phi):
+    """The rule in exact rational arithmetic: ((phi - lo) mod TWO_PI) < width."""
+    return (Fraction(phi) - Fraction(WIDE_LO)) % Fraction(TWO_PI) < Fraction(WIDE_WIDTH)
+
+
+def test_wrapped_edge_of_a_wide_hole_with_a_fine_phase_grid():
+    """``exit_hole`` adds TWO_PI to a negative ``d = phi - lo`` with ``two_sum``; that sum is
+    exact (zero carry) whenever ``d_hi + TWO_PI`` stays on ``d_hi``'s grid, as for the phases in
+    [4, 8) (ulp 2**-50 like TWO_PI) of the other edge probes. A phase in [2, 4) (ulp 2**-51) with
+    a wide wrapped hole (``d >= 4``, ulp 2**-50) has a carry of +-2**-51, as large as the
+    distance of the nearest probes from the edge: the probes on either side of the upper edge
+    lo + width - TWO_PI must follow the rule in exact rational arithmetic."""
+    end = float(Fraction(WIDE_LO) + Fraction(WIDE_WIDTH) - Fraction(TWO_PI))
+    assert 2.0 <= end < 4.0 and WIDE_WIDTH >= 4.0  # phase ulp 2**-51, d ulp 2**-50: carry != 0
+    phis = [end]
+    for _ in range(6):
+        phis = [np.nextafter(phis[0], -np.inf), *phis, np.nextafter(phis[-1], np.inf)]
+    verdicts = [_inside_wide(float(p)) for p in phis]
+    assert True in verdicts and False in verdicts  # the probes straddle the edge
+    for phi, expected in zip(phis, verdicts, strict=True):
+        got = exit_hole(float(phi), np.array([WIDE_LO]), np.array([WIDE_WIDTH]))
+        assert (got == 0) == expected, phi

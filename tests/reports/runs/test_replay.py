@@ -31,6 +31,7 @@ def sampled_run(request, tmp_path_factory):
     return make_plan(scene), rows_of(out)
 
 
+@pytest.mark.slow
 def test_every_row_of_a_run_replays_from_its_seed(sampled_run):
     plan, rows = sampled_run
     assert len(rows) > 3 and any(r.n > 1 for r in rows)

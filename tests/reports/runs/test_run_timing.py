@@ -30,6 +30,7 @@ def slow_first_call(monkeypatch):
     monkeypatch.setattr(driver, "run_chunk", compiling)
 
 
+@pytest.mark.slow
 def test_the_rate_excludes_the_compile_time(tmp_path, monkeypatch):
     slow_first_call(monkeypatch)
     manifest = driver.run(parse_scene(TINY), tmp_path / "r", progress=False)
@@ -39,6 +40,7 @@ def test_the_rate_excludes_the_compile_time(tmp_path, monkeypatch):
     assert record["collisions_per_s"] == round(manifest["collisions"] / record["compute_s"])
 
 
+@pytest.mark.slow
 def test_a_slow_compile_is_said_on_stderr(tmp_path, monkeypatch, capsys):
     slow_first_call(monkeypatch)
     monkeypatch.setattr(driver, "COMPILE_NOTICE_S", 0.2)

@@ -70,6 +70,7 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
+@pytest.mark.slow
 def test_escape_run_outputs(tmp_path):
     scene = parse_scene(SMALL)
     manifest = driver.run(scene, tmp_path / "run", progress=False)
@@ -91,6 +92,7 @@ def test_escape_run_outputs(tmp_path):
     assert not list((tmp_path / "run").glob(".*tmp*"))  # atomic writes leave no temporaries
 
 
+@pytest.mark.slow
 def test_transport_probabilities_sum_to_one(tmp_path):
     manifest = driver.run(parse_scene(TRANSPORT), tmp_path / "t", progress=False)
     by = {(r["curve"], r["clock"]): r for r in reversed(rows(tmp_path / "t" / "survival.csv"))}
@@ -102,6 +104,7 @@ def test_transport_probabilities_sum_to_one(tmp_path):
         assert total_t + censored == pytest.approx(1.0, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_results_do_not_depend_on_threads(tmp_path):
     path = tmp_path / "small.toml"
     path.write_text(SMALL)
@@ -112,6 +115,7 @@ def test_results_do_not_depend_on_threads(tmp_path):
         assert (tmp_path / "t1" / name).read_bytes() == (tmp_path / "t2" / name).read_bytes()
 
 
+@pytest.mark.slow
 def test_kill_and_resume_gives_the_uninterrupted_result(tmp_path):
     path = tmp_path / "slow.toml"
     path.write_text(SLOW)
@@ -202,6 +206,7 @@ def test_flagged_particles_are_settled_by_verify_and_resume(monkeypatch):
         chunk.settle(0.0, -1.0, 0.6)  # not a departure: verify refuses, the run fails
 
 
+@pytest.mark.slow
 def test_survival_agrees_with_a_verify_only_simulation():
     """400 starts with a wide hole: fast survival P(n) vs an mpmath run of the same starts.
 

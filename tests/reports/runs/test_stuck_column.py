@@ -51,7 +51,7 @@ def test_elastic_checkpoint_has_no_stuck_arrays(tmp_path):
 
 
 def test_drag_with_restitution_runs_and_counts_stuck(tmp_path):
-    """drag and restitution < 1 together (issue 16 item 5): linear drag 0.1 at eps = 0.6 gives
+    """drag and restitution < 1 together: linear drag 0.1 at eps = 0.6 gives
     0.6*sqrt(1.01) < 1, so accumulated particles are stuck for good."""
     scene = parse_scene(STICK.replace("restitution = 0.5", "restitution = 0.5\ndrag = 0.1"))
     driver.run(scene, tmp_path / "run", progress=False)

@@ -33,6 +33,7 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
+@pytest.mark.slow
 def test_sweep_map_matches_single_runs(tmp_path):
     base = parse_scene(BASE)
     grid = {"centre": [1.0, 2.5, 4.0], "eps": [0.4, 0.7]}

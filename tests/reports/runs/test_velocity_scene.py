@@ -55,6 +55,7 @@ def test_builtin_scene_is_the_studys_eps_and_a_velocity_kind():
     assert [x.name for x in scene.experiments()] == [f"r={r:.4g}" for r in scene.restitutions]
 
 
+@pytest.mark.slow
 def test_run_outputs_and_invariants(small_run):
     out, manifest = small_run
     assert manifest["status"] == "complete"
@@ -120,6 +121,7 @@ def test_elastic_curve_is_fastpath_step_iterated():
         assert abs(float(result.counts.sum_v2[j]) - s2) <= (m + 1) * U * s2
 
 
+@pytest.mark.slow
 def test_same_counts_with_one_and_two_threads_and_any_merge_order():
     scene = _fresh(SMALL)
     plan = make_plan(scene)
@@ -141,6 +143,7 @@ def test_same_counts_with_one_and_two_threads_and_any_merge_order():
     assert len(texts) == 1
 
 
+@pytest.mark.slow
 def test_resume_gives_the_uninterrupted_result(small_run, tmp_path, monkeypatch):
     full, _ = small_run
     real = executor.run_chunk
@@ -315,6 +318,7 @@ def test_plot_draws_the_velocity_curves(small_run, tmp_path):
     assert main(["plot", str(small_run[0]), "--fit", "power", "--window", "1", "10"]) == 2
 
 
+@pytest.mark.slow
 def test_drag_with_restitution_runs_and_passes_bouncer_verify(tmp_path):
     """Drag together with r < 1 (sticking with drag): every curve takes the drag; the run's
     sampled collisions are re-derived bit for bit by ``bouncer verify``, and a particle stuck

@@ -1,8 +1,7 @@
-"""``bouncer verify`` on output files that the csv module cannot read (found by the recheck
-mutation pass, session 6): a bare CR inside a field, a field over csv's 131072-character limit,
-a count of 2**63 or more. Before, each ended the audit with a traceback (``_csv.Error``,
-``OverflowError``); now the audit fails with a line naming the file (exit 1, README: bad input
-gets a one-line error, never a traceback)."""
+"""``bouncer verify`` on output files that the csv module cannot read: a bare CR inside a field,
+a field over csv's 131072-character limit, a count of 2**63 or more. The audit fails with a line
+naming the file (exit 1: bad input gets a one-line error, never a traceback such as
+``_csv.Error`` or ``OverflowError``)."""
 
 import shutil
 from pathlib import Path
@@ -32,6 +31,7 @@ def _huge_field(line):
     return '"' + "1" * 200_000 + '"' + line[line.index(","):]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("source, name", [("tiny", "counts.csv"), ("tiny", "survival.csv"),
                                           ("tiny", "sample.csv"),
                                           ("velocity", "velocity.csv")])

@@ -41,6 +41,7 @@ def test_the_search_grid_is_bounded_and_merging_keeps_every_count():
     assert np.array_equal(small, np.arange(10, 101))
 
 
+@pytest.mark.slow
 def test_the_crossover_is_found_on_the_merged_grid_and_progress_is_reported():
     curve = two_regime_curve()
     said = []

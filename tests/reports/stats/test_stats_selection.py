@@ -96,6 +96,7 @@ def test_a_crossover_from_exponential_to_power_law_is_found():
     assert cross["p"] < 0.05
 
 
+@pytest.mark.slow
 def test_pure_laws_are_rarely_split():
     """The Bonferroni split test has level <= 5%: a single law is split rarely."""
     rng = np.random.default_rng(6)
@@ -118,6 +119,7 @@ def test_calibration_hit_rate_and_coverage(law):
     assert set(row["coverage"]) == set(TRUTH[law])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", ["exponential", "power_law"])
 def test_profile_intervals_cover_95_percent_on_a_fixed_window(law):
     """1000 replicates, fixed window [1, 10^3]: tight enough (band 0.95 +- 0.021) to tell a

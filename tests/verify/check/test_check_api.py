@@ -12,6 +12,7 @@ from examples import planted_defects
 from verify.check import SUITES
 
 
+@pytest.mark.slow
 def test_assert_integrator():
     with pytest.raises(AssertionError) as err:
         verify.assert_integrator(planted_defects.biased_flight_time, suite="fixed_points")
@@ -36,6 +37,7 @@ def test_bad_arguments():
         verify.check_integrator(3.0)
 
 
+@pytest.mark.slow
 def test_energy_is_skipped_without_step():
     report = verify.check_integrator(fastpath.flight_time, suite="fast", max_examples=3)
     assert report.result("energy").status == "SKIP"

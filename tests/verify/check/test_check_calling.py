@@ -25,6 +25,7 @@ def _pair(phi, v, eps):
     return (1.0, 2.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "fn, text",
     [(_raises, "RuntimeError: solver blew up"), (_nan, "not finite"), (_pair, "not a real")],

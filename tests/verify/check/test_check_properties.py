@@ -19,6 +19,7 @@ def fastpath_report():
     return verify.check_integrator(fastpath.flight_time, step=fastpath.step)
 
 
+@pytest.mark.slow
 def test_fastpath_passes_every_property(fastpath_report):
     report = fastpath_report
     assert report.ok, str(report)
@@ -30,6 +31,7 @@ def test_fastpath_passes_every_property(fastpath_report):
     assert "all properties hold" in str(report)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(planted_defects.DEFECTS))
 def test_planted_defect_is_caught_by_its_property(name):
     fn, prop = planted_defects.DEFECTS[name]
@@ -44,6 +46,7 @@ def test_planted_defect_is_caught_by_its_property(name):
     assert failure.obtained != failure.expected and failure.message
 
 
+@pytest.mark.slow
 def test_holmes_flight_time_is_exact_only_at_fixed_points():
     fn = planted_defects.holmes_flight_time
     assert verify.check_integrator(fn, suite="fixed_points").ok
@@ -51,6 +54,7 @@ def test_holmes_flight_time_is_exact_only_at_fixed_points():
     assert {f.property for f in report.failures} >= {"accuracy", "no_overstep"}
 
 
+@pytest.mark.slow
 def test_scanner_skips_close_root_pairs_for_eps_above_one():
     report = verify.check_integrator(planted_defects.scanner_flight_time, suite="no_overstep")
     (failure,) = report.failures
@@ -62,6 +66,7 @@ def test_scanner_skips_close_root_pairs_for_eps_above_one():
     assert verify.check_integrator(planted_defects.scanner_flight_time, suite="accuracy").ok
 
 
+@pytest.mark.slow
 def test_naive_gap_fails_accuracy_by_a_large_factor_at_small_departure_speed():
     report = verify.check_integrator(planted_defects.naive_gap_flight_time, suite="accuracy")
     assert report.worst_accuracy_k > 1e6
@@ -91,6 +96,7 @@ def _departure_plate_step(phi, v, eps):
     return phi1, tau - v - 2 * eps * math.sin(phi), tau
 
 
+@pytest.mark.slow
 def test_step_defects():
     report = verify.check_integrator(fastpath.flight_time, step=_holmes_step, suite="energy")
     assert [f.property for f in report.failures] == ["energy"]

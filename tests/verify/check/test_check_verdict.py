@@ -47,6 +47,7 @@ def test_a_property_with_no_checked_input_is_inconclusive(monkeypatch):
         verify.assert_integrator(verify.flight_time, suite="holmes_limit")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "ending, text",
     [("import sys\nsys.exit(0)\n", "called sys.exit(0)"),

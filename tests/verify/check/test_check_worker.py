@@ -23,6 +23,7 @@ def _timed(fn, **kwargs):
     return report, time.monotonic() - t0
 
 
+@pytest.mark.slow
 def test_a_hang_is_a_failure_naming_the_input():
     report, wall = _timed(pd.hanging_flight_time, suite="accuracy", call_timeout=0.5)
     (failure,) = report.failures
@@ -34,6 +35,7 @@ def test_a_hang_is_a_failure_naming_the_input():
     assert wall < 20, wall
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "fn, suite, death",
     [(pd.exiting_flight_time, "accuracy", "exit code 3"),
@@ -50,6 +52,7 @@ def test_a_crash_is_a_failure_naming_the_input(fn, suite, death):
         assert exact_w0(*failure.input) < pd.HANG_BELOW_W0
 
 
+@pytest.mark.slow
 def test_the_worker_restarts_after_a_crash():
     """holmes_limit segfaults (v > 1e3); the properties after it run on a fresh worker."""
     report = verify.check_integrator(pd.segfault_flight_time, suite="fast", max_examples=5)
@@ -59,6 +62,7 @@ def test_the_worker_restarts_after_a_crash():
     assert "1 timeouts or crashes, 1 restarts" in str(report)
 
 
+@pytest.mark.slow
 def test_slow_but_right_is_inconclusive_when_the_budget_runs_out():
     report, wall = _timed(pd.slow_flight_time, suite="fast", budget=4.0)
     assert report.verdict == "inconclusive" and not report.ok and report.failures == []
@@ -73,6 +77,7 @@ def test_slow_but_right_is_inconclusive_when_the_budget_runs_out():
     assert wall < 4.0 + 10, wall  # the budget plus stopping the worker and the report
 
 
+@pytest.mark.slow
 def test_a_hang_longer_than_the_budget_is_cut_by_the_budget():
     report, wall = _timed(pd.hanging_flight_time, suite="accuracy", call_timeout=1e6,
                           budget=3.0)
@@ -87,6 +92,7 @@ def test_unpicklable_callable_runs_in_process_with_a_note():
     assert [f.property for f in report.failures] == ["accuracy"]
 
 
+@pytest.mark.slow
 def test_spec_strings_are_loaded_by_the_worker():
     report = verify.check_integrator("examples/planted_defects.py:exiting_flight_time",
                                      suite="accuracy", max_examples=20)

@@ -1,6 +1,6 @@
-"""Tests that kill mutants of ``reports/runs/recheck.py`` (scripts/mutation.sh integrity):
-``bouncer verify RUN`` on a tiny transport run and a tiny phase-space run, each fault alone
-(its hash updated where the deeper check is the one under test), with the report's wording."""
+"""The audit of a finished run (``reports.runs.recheck``, ``bouncer verify RUN``) on a tiny
+transport run and a tiny phase-space run, each fault alone (its hash updated where the deeper check
+is the one under test), with the report's wording."""
 
 import json
 import math
@@ -424,8 +424,6 @@ def test_edited_sample_row_with_its_hash_updated(run):
     assert found[1].startswith("sample.csv:4: verify gives tau_ref ")
 
 
-
-
 @pytest.fixture(scope="module")
 def velocity_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("velocity") / "run"
@@ -472,7 +470,7 @@ def test_velocity_manifest_figures(velocity_run, tmp_path, key):
 
 # ---- the recomputed sample -------------------------------------------------------------------
 
-def _edit_sample(run_dir, edits):
+def edit_sample(run_dir, edits):
     """edits: {line: {column: value}} (lines numbered from the header, 1)."""
     def edit(rows):
         header = rows[0]
@@ -483,7 +481,7 @@ def _edit_sample(run_dir, edits):
     rehash(run_dir, "sample.csv")
 
 
-def _sample_problems(run_dir):
+def sample_problems(run_dir):
     """The discrepancies of step 5 (the recomputed sample): not the comparison with the
     checkpoint, nor the replay from the seed (an edited state fails that too)."""
     return [x for x in problems_of(recheck(run_dir)[1])
@@ -496,8 +494,8 @@ def test_a_sample_row_verify_refuses_fails_the_audit_by_line(run, capsys):
     ValueError ended the audit (exit 2, no file or line named)."""
     from reports.cli import main
 
-    _edit_sample(run, {3: {"v": "-1.0"}})
-    found = _sample_problems(run)
+    edit_sample(run, {3: {"v": "-1.0"}})
+    found = sample_problems(run)
     assert found[0].startswith("sample.csv:3: fastpath.step refuses the row: not a departure")
     assert found[1].startswith("sample.csv:3: verify refuses the row: no departure")
     assert len(found) == 2
@@ -506,9 +504,9 @@ def test_a_sample_row_verify_refuses_fails_the_audit_by_line(run, capsys):
 
 
 def test_unparsable_sample_rows_are_named_and_the_rest_checked(run):
-    _edit_sample(run, {2: {"phi": "x"}, 3: {"experiment": "x"}, 4: {"experiment": "x"},
+    edit_sample(run, {2: {"phi": "x"}, 3: {"experiment": "x"}, 4: {"experiment": "x"},
                        5: {"tau_ref": ""}, 6: {"error": "0.5"}})
-    found = _sample_problems(run)
+    found = sample_problems(run)
     assert found[:4] == [
         "sample.csv:2: not a sample row",
         "sample.csv:3: not a sample row (experiment)",
@@ -519,15 +517,15 @@ def test_unparsable_sample_rows_are_named_and_the_rest_checked(run):
 
 def test_a_velocity_sample_row_of_no_curve(velocity_run, tmp_path):
     run_dir = Path(shutil.copytree(velocity_run, tmp_path / "run"))
-    _edit_sample(run_dir, {2: {"experiment": "9"}})
-    assert _sample_problems(run_dir) == ["sample.csv:2: not a sample row (experiment)"]
+    edit_sample(run_dir, {2: {"experiment": "9"}})
+    assert sample_problems(run_dir) == ["sample.csv:2: not a sample row (experiment)"]
 
 
 def test_a_fast_result_not_reproduced_bit_for_bit(run):
     rows = (run / "sample.csv").read_text().splitlines()
     phi1 = float(rows[3].split(",")[6])
-    _edit_sample(run, {4: {"phi1": repr(float(np.nextafter(phi1, 10.0)))}})
-    found = _sample_problems(run)
+    edit_sample(run, {4: {"phi1": repr(float(np.nextafter(phi1, 10.0)))}})
+    found = sample_problems(run)
     assert len(found) == 1 and found[0].startswith("sample.csv:4: fastpath.step gives (")
     assert found[0].endswith(f", the file ({float(np.nextafter(phi1, 10.0))!r}, "
                              f"{float(rows[3].split(',')[7])!r}, "
@@ -537,7 +535,7 @@ def test_a_fast_result_not_reproduced_bit_for_bit(run):
 def test_an_overstep_is_counted_in_the_report(run):
     rows = (run / "sample.csv").read_text().splitlines()
     tau = float(rows[1].split(",")[8])
-    _edit_sample(run, {2: {"tau": repr(tau * (1 + 1e-9))}})
+    edit_sample(run, {2: {"tau": repr(tau * (1 + 1e-9))}})
     ok, lines = recheck(run)
     assert not ok and ", 1 overstepped (tolerance 16 kappa*u)" in lines[1]
     assert ("sample.csv:2: OVERSTEP: tau exceeds verify's first root by more than"
@@ -555,8 +553,8 @@ def test_progress_bar_counts_the_recomputed_collisions(run, capsys):
 
 @pytest.mark.parametrize(("key", "value"), [("censored", 5), ("stuck", 1)])
 def test_a_forged_phase_space_curve_figure_fails(portrait_run, tmp_path, key, value):
-    """The driver writes curves.portrait (zeros: a portrait records no escapes); until issue
-    12's mutation pass verify skipped it for phase-space runs and accepted any value."""
+    """The driver writes curves.portrait (zeros: a portrait records no escapes); the audit checks
+    those figures for phase-space runs too, and fails a forged one."""
     run_dir = Path(shutil.copytree(portrait_run, tmp_path / "run"))
     edit_manifest(run_dir, lambda m: m["curves"]["portrait"].__setitem__(key, value))
     ok, lines = recheck(run_dir)
@@ -602,19 +600,10 @@ def test_the_plan_is_the_manifests_seed_and_particles(run, capsys):
 def test_a_forged_checkpoint_that_breaks_the_invariants(run):
     """Its own digest recomputed and its hash recorded: the invariants name the fault, and the
     outputs are then checked from counts.csv alone (the checkpoint is not used)."""
-    import io
-
-    from reports.runs import counts
-
     path = run / "checkpoint.npz"
-    with np.load(path) as z:
-        arrays = {k: z[k] for k in z.files}
-    arrays["cens_n"] = arrays["cens_n"].copy()
-    arrays["cens_n"][0, 3] += 40
-    arrays["digest"] = np.array(counts._digest(arrays, str(arrays["meta"])))
-    buf = io.BytesIO()
-    np.savez(buf, **arrays)
-    path.write_bytes(buf.getvalue())
+    tally = Tally.load(path)
+    tally.cens_n[0, 3] += 40
+    tally.save(path)
     rehash(run, "checkpoint.npz")
     ok, lines = recheck(run)
     assert not ok and problems_of(lines) == [

@@ -1,6 +1,6 @@
-"""Tests written against surviving mutants of ``fastpath/elastic/lower_bound.py``,
-``fastpath/elastic/flight.py`` and ``fastpath/elastic/gap.py`` (the AST driver's ``solver`` group,
-``scripts/mutation/ensemble.py --group solver``).
+"""The lower-bound solver (``fastpath.elastic.lower_bound``, the paper's steps, used for every
+|eps| > 1 and by the "lower_bound" method), the departure checks of ``flight_from`` and the
+gap's rate bound (``fastpath.elastic.gap.rate_error``), each at its exact thresholds.
 
 Every expected value here follows from the docstrings' rules and exact float arithmetic (inputs
 chosen so that the compared quantities are exact), or from an error bound derived below from the
@@ -10,11 +10,10 @@ under NUMBA_DISABLE_JIT, with ``elastic_gap_bounds`` and ``next_point`` as plain
 ``gap`` and ``certified_step`` wrapped, to count the evaluations and to see the lower models each
 step is given; every other callee is the kernel itself (compiled unless NUMBA_DISABLE_JIT).
 
-Two surviving mutants of ``may_be_graze`` are equivalent and have no test: ``curvature < 0`` ->
-``<= 0`` and ``r < 0`` -> ``<= 0``. Where they differ (curvature = +-0, resp. r = +-0) the
+``may_be_graze``'s tests ``curvature < 0`` and ``r < 0`` are not pinned at +-0: there the
 shortcut's third condition reads 2*d_err < -r*(-curvature/|eps|) = +-0 (or NaN), false for every
-d_err >= 0, so both versions reach the same last line; d_err = gap_error(t) >= 0 at every t >= 0
-(each of its terms is), and lower_bound_flight only visits t > 0.
+d_err >= 0, so ``<`` and ``<=`` give the same answer (d_err = gap_error(t) >= 0 at every t >= 0,
+and lower_bound_flight only visits t > 0).
 """
 
 import importlib
@@ -22,26 +21,28 @@ import math
 
 import numpy as np
 import pytest
+from fastpath_tolerances import U
 from mpmath import mp
 
 import fastpath
 from fastpath.arithmetic.sincos import sin_cos
-from fastpath.elastic.flight import AUTO, GENERAL, departure_phase, flight_from
-from fastpath.elastic.flight import LOWER_BOUND as SEED
+from fastpath.elastic.flight import AUTO, GENERAL, LOWER_BOUND, departure_phase, flight_from
 from fastpath.elastic.gap import departure, gap, gap_error, gap_rate, rate_error
 from fastpath.elastic.lower_bound import first_root
 from fastpath.elastic.lower_bound import lower_bound_flight as _lower_bound_flight
 from fastpath.elastic.lower_bound import may_be_graze as _may_be_graze
 from fastpath.elastic.lower_bound import polish as _polish
-from fastpath.status import ITERATION_LIMIT, FlightStatus
+from fastpath.status import (
+    CONVERGED,
+    ITERATION_LIMIT,
+    MAX_ITERATIONS,
+    NOT_DEPARTING,
+    OVERFLOW,
+    UNCERTAIN,
+    FlightStatus,
+)
 
-U = 2.0**-53
 DPS = 40
-CONVERGED = int(FlightStatus.CONVERGED)
-UNCERTAIN = int(FlightStatus.UNCERTAIN)
-NOT_DEPARTING = int(FlightStatus.NOT_DEPARTING)
-MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
-OVERFLOW = int(FlightStatus.OVERFLOW)
 flight_module = importlib.import_module("fastpath.elastic.lower_bound")
 
 
@@ -98,9 +99,7 @@ def _departure(phi, v, eps):
 
 
 def test_first_root_counts_a_discriminant_exactly_at_its_threshold_as_a_root():
-    """Kills first_root ``disc < -4u*(...)`` -> ``<=`` (flight.py mutant 6).
-
-    "A discriminant within its rounding error of zero counts as zero (a root: the shorter step)";
+    """"A discriminant within its rounding error of zero counts as zero (a root: the shorter step)";
     within means up to and including the bound, as everywhere in fastpath (a gap d <= d_err is
     within rounding of zero). r = -1.1180339887498947 has r*r = 1.25 - 2**-51 (exact float
     product), k = 1.25 + 3*2**-52, d = 1/2: disc = (1.25 - 2*2**-52) - (1.25 + 3*2**-52) =
@@ -115,15 +114,14 @@ def test_first_root_counts_a_discriminant_exactly_at_its_threshold_as_a_root():
 
 
 @pytest.mark.parametrize("eps", [1.0, 2.0, -2.0])
-@pytest.mark.parametrize("method", [AUTO, SEED, GENERAL])
+@pytest.mark.parametrize("method", [AUTO, LOWER_BOUND, GENERAL])
 def test_a_departure_exactly_at_its_error_bound_is_uncertain(method, eps):
-    """Kills flight_from ``not w0 > w0_error`` -> ``>=`` (flight.py mutant 20).
-
-    phi = 0 (sin 0, cos 1), v = 1: w0 = 1 exactly, and with phase_error = (1 - 2**-52)/|eps|
-    (exact: |eps| is 1 or 2) the bound is fl(2u*1 + 3u*0) + |eps|*phase_error = 2**-52 + (1 -
-    2**-52) = 1 = w0 exactly. The exact w0 lies in [w0 - bound, w0 + bound] = [0, 2]: it may be
-    zero, so the departure is not certain: UNCERTAIN ("a w0 within its rounding bound of zero is
-    UNCERTAIN"), decided before any evaluation (0 iterations, NaN results)."""
+    """A departure whose w0 equals its error bound is not certain. phi = 0 (sin 0, cos 1), v = 1:
+    w0 = 1 exactly, and with phase_error = (1 - 2**-52)/|eps| (exact: |eps| is 1 or 2) the bound is
+    fl(2u*1 + 3u*0) + |eps|*phase_error = 2**-52 + (1 - 2**-52) = 1 = w0 exactly. The exact w0 lies
+    in [w0 - bound, w0 + bound] = [0, 2]: it may be zero, so the departure is not certain:
+    UNCERTAIN ("a w0 within its rounding bound of zero is UNCERTAIN"), decided before any
+    evaluation (0 iterations, NaN results)."""
     phase_error = (1.0 - 2.0**-52) / abs(eps)
     w0, bound = departure(0.0, 0.0, 1.0, eps, phase_error)
     assert w0 == bound == 1.0
@@ -134,15 +132,13 @@ def test_a_departure_exactly_at_its_error_bound_is_uncertain(method, eps):
 
 @pytest.mark.parametrize("eps", [0.5, -0.75, 1.0, 2.0, -3.0])
 def test_no_evaluation_before_a_non_departure_or_an_uncertain_departure(eps):
-    """Kills the iteration counts 0 -> 1 of flight_from's NOT_DEPARTING and UNCERTAIN returns
-    (flight.py mutants 25 and 26).
-
-    Both are decided from w0 and its bound alone, before the gap is evaluated once: 0 iterations.
-    NOT_DEPARTING: phi = -+pi/2 with the sign of eps (sin(phi) = -+1 up to ~1e-33), v = |eps|/2:
-    w0 = -|eps|/2 < 0 far beyond its bound, through the public fastpath.flight. UNCERTAIN:
-    v = -fl(eps*sin(phi)) with the same float sine makes w0 = fl(v + fl(eps*sin(phi))) = 0
-    exactly (a float plus its negation), while the bound 3u*|eps*sin(phi)| > 0."""
-    for method in ("auto", "seed"):
+    """NOT_DEPARTING and UNCERTAIN report 0 iterations: both are decided from w0 and its bound
+    alone, before the gap is evaluated once: 0 iterations. NOT_DEPARTING: phi = -+pi/2 with the sign
+    of eps (sin(phi) = -+1 up to ~1e-33), v = |eps|/2: w0 = -|eps|/2 < 0 far beyond its bound,
+    through the public fastpath.flight. UNCERTAIN: v = -fl(eps*sin(phi)) with the same float sine
+    makes w0 = fl(v + fl(eps*sin(phi))) = 0 exactly (a float plus its negation), while the bound
+    3u*|eps*sin(phi)| > 0."""
+    for method in ("auto", "lower_bound"):
         result = fastpath.flight(-math.copysign(math.pi / 2, eps), abs(eps) / 2, eps, method)
         assert result.status == NOT_DEPARTING and result.iterations == 0
         assert math.isnan(result.tau)
@@ -151,7 +147,7 @@ def test_no_evaluation_before_a_non_departure_or_an_uncertain_departure(eps):
     v = -(eps * s)
     w0, bound = departure(phi, s, v, eps, 0.0)
     assert w0 == 0.0 < bound
-    for method in (AUTO, SEED, GENERAL):
+    for method in (AUTO, LOWER_BOUND, GENERAL):
         tau, _, _, _, iterations, status = flight_from(phi, s, c, v, eps, method, 0.0)
         assert (status, iterations) == (UNCERTAIN, 0) and math.isnan(tau)
 
@@ -161,10 +157,7 @@ def test_no_evaluation_before_a_non_departure_or_an_uncertain_departure(eps):
 
 @pytest.mark.parametrize("eps", [0.5, -0.5, 1.0, -1.0])
 def test_no_graze_where_the_gap_is_concave_everywhere(eps):
-    """Kills may_be_graze ``|eps| - 1`` -> ``|eps| + 1`` and ``convex_bound <= 0`` -> ``< 0``
-    (flight.py mutants 27 and 28).
-
-    For |eps| <= 1, d'' = -1 + eps*cos(phi + t) <= -1 + |eps| <= 0 everywhere: the gap is
+    """For |eps| <= 1, d'' = -1 + eps*cos(phi + t) <= -1 + |eps| <= 0 everywhere: the gap is
     concave and has no dip, so a gap within rounding of zero is never a graze, whatever the slope
     (here r > 0, where the last test r > -2*sqrt(4*b*d_err) would say True for any b >= 0; at
     phi + t = 0 and eps = 1 the curvature bound is even positive)."""
@@ -175,9 +168,8 @@ def test_no_graze_where_the_gap_is_concave_everywhere(eps):
 
 @pytest.mark.parametrize("phi, t", [(0.0, 5.0 * math.pi / 3.0), (-1.5, 1.5)])
 def test_the_concave_shortcut_needs_a_certainly_negative_curvature(phi, t):
-    """Kills may_be_graze's curvature bound with its rounding margin subtracted instead of
-    added, with -eps*cos instead of +eps*cos, and with cos(phi - t) for cos(phi + t) (flight.py
-    mutants 29, 31 and 35).
+    """``may_be_graze`` takes its concave shortcut only where the curvature -1 + eps*cos(phi + t),
+    raised by its rounding margin, is certainly negative.
 
     "Where it is locally concave, d2 = d''(t) < 0, [...] with slope r < 0 it surely crosses zero
     within 2*d_err/|r| if that is shorter than R = -d2/|eps|"; otherwise the answer is whether
@@ -208,8 +200,8 @@ def test_the_concave_shortcut_needs_a_certainly_negative_curvature(phi, t):
 
 
 def test_may_be_graze_at_its_two_thresholds():
-    """Kills may_be_graze ``r > -2*sqrt(4*b*d_err)`` -> ``>=`` and ``2*d_err < -r*R`` -> ``<=``
-    (flight.py mutants 30 and 34); both comparisons are strict in the docstring.
+    """``may_be_graze``'s slope test ``r > -2*sqrt(4*b*d_err)`` and concave shortcut
+    ``2*d_err < -r*R`` at equality: both comparisons are strict in the docstring.
 
     Slope test: eps = 2 (b = 1), d_err = 1/16, r = -1 = -2*sqrt(4*1/16) exactly, at a convex
     point (phi + t = 0, d'' = 1): r is not > the threshold: False (a dip of depth <= 2*d_err
@@ -231,13 +223,12 @@ def test_may_be_graze_at_its_two_thresholds():
 
 @pytest.mark.parametrize("phi", [-3.0, 0.0, 2.5, 7.0])
 @pytest.mark.parametrize("v", [1e-7, 0.3, 1.0, 12.5, 2.0**40])
-def test_seed_flight_at_eps_zero_is_twice_v_in_one_evaluation(phi, v):
-    """Kills lower_bound_flight ``range(1, ...)`` -> ``range(2, ...)`` (flight.py mutant 38).
-
-    eps = 0 by the seed's steps: a = 1, the first iterate is 2*w0/a = 2v (w0 = v exactly), where
+def test_lower_bound_flight_at_eps_zero_is_twice_v_in_one_evaluation(phi, v):
+    """eps = 0 by the lower-bound steps: a = 1, the first iterate is 2*w0/a = 2v (w0 = v exactly),
+    where
     d = 0*sin*sin + 2v*(v - v) = 0 exactly: within rounding, no dip (|eps| <= 1), and the polish
-    t - 0/(-v) leaves 2v: tau = 2v (DESIGN fact 9) after one evaluation."""
-    result = fastpath.flight(phi, v, 0.0, "seed")
+    t - 0/(-v) leaves 2v: tau = 2v (exact at eps = 0) after one evaluation, reported as one."""
+    result = fastpath.flight(phi, v, 0.0, "lower_bound")
     assert (result.tau, result.iterations, result.status) == (2.0 * v, 1, CONVERGED)
 
 
@@ -250,10 +241,7 @@ FLIGHTS = [OUT_OF_ITERATIONS, (0.3, 6.0, 1.5), (-2.0, 4.0, 3.0), (1.0, 3.0, -2.5
 
 @pytest.mark.parametrize("phi, v, eps", FLIGHTS)
 def test_reported_iterations_are_the_gap_evaluations(monkeypatch, phi, v, eps):
-    """Kills lower_bound_flight's loop ``range(1, LIMIT + 1)`` -> ``range(2, ...)``,
-    ``range(1, LIMIT - 1)`` and ``range(1, LIMIT + 2)`` (flight.py mutants 38, 39 and 46).
-
-    "At most ITERATION_LIMIT evaluations for any input (then MAX_ITERATIONS)": the iterations a
+    """"At most ITERATION_LIMIT evaluations for any input (then MAX_ITERATIONS)": the iterations a
     flight reports are the gap evaluations it made (counted here), never more than 60, and a
     flight stopped by the limit has made exactly 60. The first flight is one that the limit
     stops (its row in test_fastpath_chattering.py); the others end CONVERGED or UNCERTAIN."""
@@ -269,9 +257,7 @@ def test_reported_iterations_are_the_gap_evaluations(monkeypatch, phi, v, eps):
 
 
 def test_a_gap_exactly_at_its_error_bound_ends_the_steps():
-    """Kills lower_bound_flight ``d <= d_err`` -> ``<`` (flight.py mutant 40).
-
-    "The iteration stops when the gap is within its rounding error of zero" (equality
+    """"The iteration stops when the gap is within its rounding error of zero" (equality
     included). Start at t = 1 with phi = -1/2, eps = 2**50, v = 2.75 + 2**-49: the plate term is
     2*eps*sin(0)*sin(1/2) = 0, so d = 1*(v - 1/2) = 2.25 + 2**-49 exactly; gap_error =
     4u*(2**50*1*(1/2 + 1 + 3) + 1*(v + 1)) = 2**-51*fl(4.5*2**50 + 3.75 + 2**-49), whose sum
@@ -284,16 +270,13 @@ def test_a_gap_exactly_at_its_error_bound_ends_the_steps():
 
 
 def test_an_overflowing_first_evaluation_is_an_overflow():
-    """Kills lower_bound_flight's finiteness test ``abs(d) < inf`` -> ``<=`` and
-    ``abs(r) < inf`` -> ``<=`` (flight.py mutants 48 and 49).
-
-    "A non-finite intermediate (v**2, t*v overflowing) gives OVERFLOW", at the evaluation where
+    """"A non-finite intermediate (v**2, t*v overflowing) gives OVERFLOW", at the evaluation where
     it happens. Gap: v = 5e307, eps = 2 (a = 3): the first iterate t = 2*w0/3 ~ 3.3e307, and
     t*(v - t/2) ~ 1.1e615 overflows while the slope v - t + eps*sin ~ 1.7e307 is finite.
     Slope: from start = 1e-300 with v = 1.7e308, eps = 8e307, phi = 1.5: the slope
     v - t + eps*sin(1.5) ~ 2.5e308 overflows while the gap ~ 2.5e8 is finite (2*eps = 1.6e308
     does not overflow). Either way (NaN, 1, OVERFLOW): one evaluation."""
-    for method in ("auto", "seed"):
+    for method in ("auto", "lower_bound"):
         result = fastpath.flight(1.0, 5e307, 2.0, method)
         assert (result.iterations, result.status) == (1, OVERFLOW) and math.isnan(result.tau)
     assert math.isfinite(gap(1.5, 1.7e308, 8e307, 1e-300))
@@ -314,11 +297,7 @@ LONG_FLIGHTS = [(0.3, 6.0, 1.5), (-2.0, 4.0, 3.0), (1.0, 3.0, -2.5), (-1.0, 8.0,
 
 @pytest.mark.parametrize("phi, v, eps", LONG_FLIGHTS)
 def test_the_lower_models_are_below_the_exact_slope_and_curvature(monkeypatch, phi, v, eps):
-    """Kills lower_bound_flight's curvature with its margin added instead of subtracted, with
-    the margin 4u|eps|*(1 - t) instead of (1 + t), and r + rate_error for r - rate_error
-    (flight.py mutants 42, 50 and 43).
-
-    "The models take the worst values within rounding: d, d' and d'' lowered by their bounds":
+    """"The models take the worst values within rounding: d, d' and d'' lowered by their bounds":
     at every step the slope r and curvature c given to certified_step are <= the exact d'(t) and
     d''(t) (mpmath). Why they are, from u (each float operation is within u of its exact
     result, libm's sine and cosine within one ulp, 2u): the computed d' = fl(fl(v - t) +
@@ -331,9 +310,9 @@ def test_the_lower_models_are_below_the_exact_slope_and_curvature(monkeypatch, p
     most u|eps|(|phi| + t + 3) + u(1 + |eps|), and subtracting the margin m rounds by
     u(1 + |eps| + m): in all <= u|eps|(|phi| + t + 7)
     (|eps| > 1), which m = 4u|eps|(1 + t) exceeds once 3t >= |phi| + 3: there c < d'' is
-    certain, and c + m (the margin added) > d''. With (1 - t) the curvature is raised by
-    4u|eps|(t - 1), above d'' once 3t > |phi| + 11: each flight here lasts longer than that
-    (tau > 6 > (pi + 11)/3), so its last steps test it."""
+    certain, and c + m (the margin added instead) > d''. A margin 4u|eps|*(1 - t) would raise
+    the curvature by 4u|eps|(t - 1), above d'' once 3t > |phi| + 11: each flight here lasts
+    longer than that (tau > 6 > (pi + 11)/3), so its last steps tell the two apart."""
     centred, w0 = _departure(phi, v, eps)
     _, _, steps = _traced_flight(monkeypatch, centred, v, eps, w0)
     assert steps
@@ -350,9 +329,7 @@ def test_the_lower_models_are_below_the_exact_slope_and_curvature(monkeypatch, p
 
 
 def test_polish_needs_a_slope_beyond_its_error():
-    """Kills polish ``r < -rate_error`` -> ``<=`` (flight.py mutant 53).
-
-    "One certified Newton correction [...] taken only where the slope d1 < 0 beyond its error":
+    """"One certified Newton correction [...] taken only where the slope d1 < 0 beyond its error":
     at r = -rate_error exactly the exact slope may be 0, so no correction: t itself; just beyond
     (the next float below) the correction t - d/r."""
     phi, v, eps, t, d = 0.5, 1.0, 2.0, 1.0, 1e-10
@@ -385,16 +362,15 @@ def _rate_points(seed):
 
 
 def test_rate_error_covers_the_rounding_of_gap_rate():
-    """Kills rate_error with |v| - t, (1 + |phi|) - t or 1 - |phi| (gap.py mutants 11, 12, 13).
-
-    gap_rate computes fl(fl(v - t) + fl(eps*fl(sin(fl(phi + t))))). Each float operation is
-    within u of its exact result (libm's sine within one ulp, 2u): |computed - exact d'| <=
-    u(|v| + t) (v - t)
-    + |eps|u(|phi| + t) (the argument; sin is 1-Lipschitz) + 2u|eps| (sine) + u|eps| (product)
-    + u(1 + u)(|v| + t + |eps|) (sum) <= B = u(1 + 2u)*(2(|v| + t) + |eps|(|phi| + t + 4)).
-    The test measures the actual error against mpmath, holds it to B (the derivation), and
-    holds rate_error to at least B: a bound on the error must cover its worst case. At these
-    points each mutant's value is below B, at some of them below the measured error itself."""
+    """rate_error covers the actual rounding error of gap_rate. gap_rate computes
+    fl(fl(v - t) + fl(eps*fl(sin(fl(phi + t))))). Each float operation is within u of its exact
+    result (libm's sine within one ulp, 2u), so |computed - exact d'| <=
+    u(|v| + t) (v - t) + |eps|u(|phi| + t) (the argument; sin is 1-Lipschitz) + 2u|eps| (sine)
+    + u|eps| (product) + u(1 + u)(|v| + t + |eps|) (sum)
+    <= B = u(1 + 2u)*(2(|v| + t) + |eps|(|phi| + t + 4)). The test measures the actual error
+    against mpmath, holds it to B (the derivation), and holds rate_error to at least B: a bound on
+    the error must cover its worst case. At these points a bound with |v| - t, (1 + |phi|) - t or
+    1 - |phi| in place of its terms is below B, at some of them below the measured error itself."""
     worst = 0.0
     with mp.workdps(DPS):
         for phi, v, eps, t in _rate_points(21):
@@ -408,19 +384,18 @@ def test_rate_error_covers_the_rounding_of_gap_rate():
 
 
 def test_the_concave_shortcut_allows_for_the_rounding_of_a_long_angle():
-    """Found by reviewing the may_be_graze mutants (session 6): its curvature margin was 4u|eps|
-    alone, but cos is taken of fl(phi + t), off by up to ulp(phi + t)/2 (16u at t ~ 26), and
-    d'' moves by |eps*sin| times that. Here phi + t is one such sum: the exact d'' is +5u > 0
-    (mpmath, exact sum) while -1 + 2*cos(fl(phi + t)) + 8u is -13u. The shortcut ("locally
-    concave, so it surely crosses within 2*d_err/|r|") does not apply: over [0, 2*d_err/|r|]
-    the gap's Taylor model with its remainder bounds (|d'''| and |eps|*s**4/24) stays positive
-    at 60 digits (checked on a fine grid; the quadratic part alone has its minimum
-    D - r**2/(2*d'') > 0 at s = |r|/d''), so a crossing there is not certain, and the answer
-    is the slope test's: True. The margin now includes the argument's rounding,
-    4u|eps|*(1 + t), as in lower_bound_flight."""
+    """``may_be_graze``'s curvature margin covers the rounding of the angle: cos is taken of
+    fl(phi + t), off by up to ulp(phi + t)/2 (16u at t ~ 26), and d'' moves by |eps*sin| times that,
+    more than a margin of 4u|eps| alone. Here phi + t is one such sum: the exact d'' is
+    +5u > 0 (mpmath, exact sum) while -1 + 2*cos(fl(phi + t)) + 8u is -13u. The shortcut ("locally
+    concave, so it surely crosses within 2*d_err/|r|") does not apply: over [0, 2*d_err/|r|] the
+    gap's Taylor model with its remainder bounds (|d'''| and |eps|*s**4/24) stays positive at 60
+    digits (checked on a fine grid; the quadratic part alone has its minimum D - r**2/(2*d'') > 0 at
+    s = |r|/d''), so a crossing there is not certain, and the answer is the slope test's: True. The
+    margin includes the argument's rounding, 4u|eps|*(1 + t), as in lower_bound_flight."""
     phi, t, eps = 0.5000000000000019, 25.67993877991494, 2.0
-    r, d_err = -1e-32, 1e-48  # |r| between 2*d_err/R (old shortcut) and sqrt(4*d_err*d'')
-    assert -1.0 + eps * math.cos(phi + t) + 4.0 * U * abs(eps) < 0.0  # the old margin
+    r, d_err = -1e-32, 1e-48  # |r| between 2*d_err/R (4u|eps| margin) and sqrt(4*d_err*d'')
+    assert -1.0 + eps * math.cos(phi + t) + 4.0 * U * abs(eps) < 0.0  # a margin of 4u|eps| alone
     with mp.workdps(DPS):
         theta = mp.mpf(phi) + mp.mpf(t)
         d2, d3 = -1 + eps * mp.cos(theta), -eps * mp.sin(theta)
@@ -433,3 +408,23 @@ def test_the_concave_shortcut_allows_for_the_rounding_of_a_long_angle():
             assert low > 0, s
     assert r > -2.0 * math.sqrt(4.0 * (abs(eps) - 1.0) * d_err)
     assert may_be_graze(phi, eps, t, r, d_err)
+
+
+def test_first_root_without_a_root_and_at_its_rounding_threshold():
+    """d + r*s + k*s**2/2 with d > 0: r = k = 0 (or r >= 0, k >= 0) has no root: inf. A
+    discriminant r**2 - 2*k*d that is negative by less than 4u*(r**2 + 2|k|*d) counts as zero:
+    r = -1, k*d = (1 + 2**-51)/2 gives -2**-51 (exact), within 4u*2: the double root 2*d/(-r)."""
+    from fastpath.elastic.lower_bound import first_root
+
+    assert first_root(1.0, 0.0, 0.0) == math.inf
+    assert first_root(1.0, 0.5, 0.0) == math.inf
+    assert first_root(0.5, -1.0, 1.0 + 2.0**-51) == 1.0
+    assert first_root(0.5, -1.0, 1.0 + 2.0**-40) == math.inf  # clearly negative: no root
+
+
+def test_an_overflowing_w0_is_an_overflow():
+    """w0 = v + eps*sin(phi) = inf: OVERFLOW (not UNCERTAIN), before any evaluation."""
+    s, c = math.sin(1.0), math.cos(1.0)
+    for method in (0, GENERAL):
+        tau, _, _, _, evaluations, status = flight_from(1.0, s, c, 1.5e308, 1e308, method, 0.0)
+        assert status == int(FlightStatus.OVERFLOW) and evaluations == 0 and math.isnan(tau)

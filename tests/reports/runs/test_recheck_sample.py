@@ -1,7 +1,6 @@
-"""Tests that kill mutants of ``reports/runs/recheck.py``'s ``_sample`` and ``_outputs``
-(scripts/mutation.sh integrity without integrity.names): step 5 of the audit, the recomputed
-sample, and the output files of steps 3 and 4, on the tiny runs of ``test_mutants_recheck.py``
-(each fault alone, its hash updated where the deeper check is the one under test)."""
+"""The audit's recomputed sample (step 5 of ``bouncer verify RUN``) and its re-derived output
+files (steps 3 and 4), on the tiny runs of ``test_recheck.py`` (each fault alone, its hash
+updated where the deeper check is the one under test)."""
 
 import shutil
 import warnings
@@ -10,13 +9,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scene_texts import TINY
-from test_mutants_recheck import (
-    _edit_sample,
-    _sample_problems,
+from test_recheck import (
     edit_rows,
+    edit_sample,
     manifest_of,
     problems_of,
     rehash,
+    sample_problems,
 )
 
 from reports.cli import main
@@ -28,7 +27,7 @@ from reports.runs.scenes import parse_scene
 
 
 def test_progress_bar_is_labelled_verify_sample(run, capsys):
-    """_sample mutant 29 (the bar's label "XXverify sampleXX"; 20-32 too): ``bouncer verify``
+    """``bouncer verify``
     without --quiet shows a progress bar on stderr (reports/cli/verify.py: --quiet is "no progress
     bar"); every refresh of it reads "verify sample: ", counts the sampled collisions of the
     manifest (n/n) in collisions per second, and nothing else is written to stderr."""
@@ -47,11 +46,10 @@ def test_progress_bar_is_labelled_verify_sample(run, capsys):
 
 
 def test_a_sample_with_cr_line_ends_is_still_checked_by_line(run, capsys):
-    """_sample mutant 14 (``io.StringIO(text)`` without ``newline=""``: csv then raises
-    ``_csv.Error`` on a bare CR, a traceback): a sample.csv with CR line ends (its hash updated)
+    """A sample.csv with CR line ends (its hash updated)
     is read as csv's own files are, and an edited row is reported by file and line (exit 1),
-    by the comparison with the checkpoint and by verify's recomputation."""
-    _edit_sample(run, {4: {"tau_ref": "1.5"}})
+    by the comparison with the checkpoint and by verify's recomputation, never a csv traceback."""
+    edit_sample(run, {4: {"tau_ref": "1.5"}})
     text = (run / "sample.csv").read_text()
     (run / "sample.csv").write_bytes(text.replace("\n", "\r").encode())
     rehash(run, "sample.csv")
@@ -65,11 +63,11 @@ def test_a_sample_with_cr_line_ends_is_still_checked_by_line(run, capsys):
 
 
 def test_rows_after_a_refused_row_are_still_recomputed(run):
-    """_sample mutant 139 (``continue`` -> ``break`` after verify refuses a row): step 5 covers
+    """Step 5 covers
     *every* row of sample.csv; a row verify refuses (v = -1, no departure) is reported by line and
     the rows after it are still recomputed: an edited error two rows on is reported too."""
-    _edit_sample(run, {2: {"v": "-1.0"}, 4: {"error": "0.5"}})
-    found = _sample_problems(run)
+    edit_sample(run, {2: {"v": "-1.0"}, 4: {"error": "0.5"}})
+    found = sample_problems(run)
     assert found[0].startswith("sample.csv:2: fastpath.step refuses the row: not a departure")
     assert found[1].startswith("sample.csv:2: verify refuses the row: no departure")
     assert found[2].startswith("sample.csv:4: verify gives tau_ref ")
@@ -77,13 +75,13 @@ def test_rows_after_a_refused_row_are_still_recomputed(run):
 
 
 def test_sample_returns_the_overstepped_lines(run):
-    """_sample mutant 147 (``overstepped.append(None)``): ``_sample`` returns (rows, worst
+    """``_sample`` returns (rows, worst
     recomputed error, overstepped *lines*, discrepancies) (its docstring): the line numbers of
     sample.csv (header = 1) whose tau oversteps, not only how many. (Through ``bouncer verify`` only
     their count is shown; the line is in the OVERSTEP message.)"""
     rows = (run / "sample.csv").read_text().splitlines()
     tau = float(rows[2].split(",")[8])
-    _edit_sample(run, {3: {"tau": repr(tau * (1 + 1e-9))}})
+    edit_sample(run, {3: {"tau": repr(tau * (1 + 1e-9))}})
     scene = parse_scene((run / "scene.toml").read_text())
     got_rows, worst, overstepped, out, parsed = _sample(run, scene, False)
     assert [r.line for r in parsed] == list(range(2, len(rows) + 1))
@@ -103,28 +101,26 @@ def drag_run(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow
 def test_a_drag_run_with_restitution_1_is_repeated_with_its_drag(drag_run, tmp_path):
-    """_sample mutant 111 (``fastpath.step(phi, v, eps)`` without the scene's physics when the
-    step carries nothing): step 5 repeats each row with ``fastpath.step(phi, v, eps)`` *of the
+    """Step 5 repeats each row with ``fastpath.step(phi, v, eps)`` *of the
     run's physics*; a drag run with r = 1 passes the audit (the drag-free step would give other
     results on every row), and an edited phi1 is still named as fastpath.step's."""
     run_dir = Path(shutil.copytree(drag_run, tmp_path / "run"))
     ok, lines = recheck(run_dir)
     assert ok is True, lines
     phi1 = float((run_dir / "sample.csv").read_text().splitlines()[1].split(",")[6])
-    _edit_sample(run_dir, {2: {"phi1": repr(phi1 + 1e-6)}})
-    found = _sample_problems(run_dir)
+    edit_sample(run_dir, {2: {"phi1": repr(phi1 + 1e-6)}})
+    found = sample_problems(run_dir)
     assert len(found) == 1 and found[0].startswith("sample.csv:2: fastpath.step gives (")
     assert found[0].endswith("(not reproduced bit for bit)")
-
 
 
 # ---- the output files (_outputs) ------------------------------------------------------------
 
 
 def test_a_curve_with_no_rows_in_counts_is_named_without_a_line(run):
-    """_outputs mutants 108, 111 and 110 (a timeout in the run) (the line of a curve absent from
-    counts.csv given as None or 'XX?XX'): per curve and clock escapes + censored + stuck =
+    """Per curve and clock escapes + censored + stuck =
     particles; a curve and clock with no row left in counts.csv (its rows deleted, the hash
     updated) is reported as counts.csv:?, the file named and no line to name."""
     edit_rows(run / "counts.csv", lambda rows: rows.__setitem__(
@@ -137,11 +133,10 @@ def test_a_curve_with_no_rows_in_counts_is_named_without_a_line(run):
 
 
 def test_stuck_counts_are_summed_exactly(run):
-    """_outputs mutants 115 and 119 (``curve_problems(plan, counts, done, None)`` or without its
-    last argument: stuck summed from
-    counts.csv's int64 arrays instead of parse_counts' exact dict): escapes + censored + stuck =
-    particles holds in integers; four forged stuck rows of 2**62 sum to 2**64, which an int64
-    sum wraps to 0, and the invariant still names the curve with its true total."""
+    """Escapes + censored + stuck = particles holds in integers (stuck taken from parse_counts'
+    exact dict, not summed from counts.csv's int64 arrays): four forged stuck rows of 2**62 sum to
+    2**64, which an int64 sum wraps to 0, and the invariant still names the curve with its true
+    total."""
     edit_rows(run / "counts.csv", lambda rows: rows.extend(
         ["from hole 1", "collisions", "stuck", edge, str(2**62)]
         for edge in ("1.0", "2.0", "3.0", "5.0")))
@@ -154,7 +149,7 @@ def test_stuck_counts_are_summed_exactly(run):
 
 
 def test_inconsistent_counts_give_no_numpy_warning(run):
-    """_outputs mutant 120 (``np.errstate(invalid=None)``): counts that break the invariant give
+    """Counts that break the invariant give
     p > 1 and an invalid band when survival.csv is re-derived; that is reported as a discrepancy
     by file and line, not as a numpy RuntimeWarning on stderr."""
     edit_rows(run / "counts.csv", lambda rows: rows[1].__setitem__(4, str(int(rows[1][4]) + 50)))
@@ -165,4 +160,3 @@ def test_inconsistent_counts_give_no_numpy_warning(run):
     assert not ok and [str(w.message) for w in caught] == []
     assert ("counts.csv:2: curve 'from hole 1', clock collisions: 249 escaped + 1 censored + 0"
             " stuck = 250, but 200 particles were run") in problems_of(lines)
-

@@ -1,6 +1,6 @@
-"""Tests that kill mutants of ``reports/runs/integrity.py`` (scripts/mutation.sh integrity): the
-invariants that ``bouncer verify`` and a resume check, each fault on its own so that a weakened
-check cannot hide behind another one."""
+"""The invariants of a run's checkpoint and outputs (``reports.runs.integrity``) that
+``bouncer verify`` and a resume check, each fault on its own so that a weakened check cannot hide
+behind another one."""
 
 from fractions import Fraction
 
@@ -273,8 +273,6 @@ def test_curve_problems_take_stuck_from_the_dict_when_given(tplan):
     assert curve_problems(tplan, tally, [64, 0]) == [
         (0, "collisions", "curve 'from hole 1', clock collisions: 0 escaped + 64 censored + 5"
          " stuck = 69, but 64 particles were run")]
-
-
 
 
 def test_phase_space_has_no_curves_but_its_visits_are_bounded():

@@ -1,44 +1,28 @@
-"""Tests that kill mutants of the ensemble bookkeeping (scripts/mutation.sh runs):
-``chunk.simulate_chunk`` (the settled path of phase-space scenes, the time horizon of a settled
-flight, which sample rows are kept), ``chunk.run_chunk`` (its arguments, the failure result,
-threads, seconds), ``plan.chunk_starts`` (the verification picks) and ``Tally.load``.
+"""One chunk of a run (``reports.runs.chunk``): ``simulate_chunk`` (the settled path of
+phase-space scenes, the time horizon of a settled flight, which sample rows are kept),
+``run_chunk`` (its arguments, the failure result, threads, seconds), ``verify_rows``,
+``check_sample`` and ``settle`` (verify's view of the sampled collisions), and ``kernel``: a
+second pass adds to the counts, the dissipative kernel stops at each horizon and gets the
+scene's physics.
 """
 
 import dataclasses
-import io
-import math
 import time
-import zipfile
 
 import numba
 import numpy as np
 import pytest
+from scene_texts import ESCAPE_300, PORTRAIT_300, STICK_200
 
 import fastpath
 import verify
 from fastpath.arithmetic.phase import TWO_PI
 from fastpath.kernels.arrays import Flags, Sample, Starts
 from reports.runs import chunk
-from reports.runs.counts import CheckpointError, Finished, Tally
-from reports.runs.plan import SAMPLE_DEPTH, chunk_starts, make_plan
+from reports.runs.chunk import kernel
+from reports.runs.counts import Counts
+from reports.runs.plan import chunk_starts, make_plan
 from reports.runs.scenes import parse_scene
-
-PORTRAIT = """
-name = "portrait-settle"
-kind = "phase-space"
-eps = 0.6
-particles = 300
-seed = 5
-[start]
-phi = [0.0, 6.283185307179586]
-v = [1.0, 6.0]
-[horizon]
-collisions = 12
-[record]
-phi_bins = 36
-v_bins = 24
-v_range = [0.0, 8.0]
-"""
 
 
 def fast_settle(phi, v, eps):
@@ -69,7 +53,7 @@ def flagging_portrait(real, choose):
 def _portrait_plan():
     """The scene with v_range's ends set to two velocities the orbits actually take: the lower
     end is a collision velocity (counted: lo <= v), the upper one another (not counted)."""
-    plan = make_plan(parse_scene(PORTRAIT))
+    plan = make_plan(parse_scene(PORTRAIT_300))
     phi, v, *_ = chunk_starts(plan, 0, 0)
     velocities = []
     for p, w in zip(phi[:40], v[:40], strict=True):
@@ -160,7 +144,7 @@ def _flag_everything(physics, starts, holes, horizon, bins, sample, counts, flag
 def test_rows_are_the_reached_samples_only():
     """max_collisions = 1: every pick's target is collision 1; all rows have n = 1. With a
     time horizon before the first landing no particle makes a collision: no rows at all."""
-    one = make_plan(parse_scene(PORTRAIT.replace("collisions = 12", "collisions = 1")))
+    one = make_plan(parse_scene(PORTRAIT_300.replace("collisions = 12", "collisions = 1")))
     _, rows = chunk.simulate_chunk(one, 0, 0)
     assert len(rows) == one.samples_per_chunk > 0
     assert all(row[3] == 1 for row in rows)
@@ -172,7 +156,7 @@ def test_rows_are_the_reached_samples_only():
 # --- run_chunk ------------------------------------------------------------------------------
 
 def test_run_chunk_passes_particles_and_seed():
-    sc = parse_scene(PORTRAIT)
+    sc = parse_scene(PORTRAIT_300)
     result = chunk.run_chunk(sc, 11, 0, 0, particles=40)
     counts, rows = chunk.simulate_chunk(make_plan(sc, 40, 11), 0, 0)
     assert result.failure is None and result.code == chunk.CODE_DIGEST
@@ -186,7 +170,7 @@ def test_run_chunk_passes_particles_and_seed():
 ])
 def test_run_chunk_refuses_a_chunk_outside_the_run(curve, chunk_index, needle):
     with pytest.raises(ValueError, match=needle):
-        chunk.run_chunk(parse_scene(PORTRAIT), 1, curve, chunk_index, particles=10)
+        chunk.run_chunk(parse_scene(PORTRAIT_300), 1, curve, chunk_index, particles=10)
 
 
 def test_run_chunk_failure_is_data(monkeypatch):
@@ -200,7 +184,7 @@ def test_run_chunk_failure_is_data(monkeypatch):
                         flagging_portrait(chunk.portrait_chunk, lambda n: np.ones(len(n), bool)))
     monkeypatch.setattr(verify, "step", undecidable)
     t0 = time.perf_counter()
-    result = chunk.run_chunk(parse_scene(PORTRAIT), 1, 0, 0, particles=10)
+    result = chunk.run_chunk(parse_scene(PORTRAIT_300), 1, 0, 0, particles=10)
     wall = time.perf_counter() - t0
     assert (result.curve, result.chunk) == (0, 0)
     assert result.failure.startswith("verify could not settle the flagged collision from phi=")
@@ -217,7 +201,7 @@ def test_run_chunk_failure_is_data(monkeypatch):
 
 def test_run_chunk_seconds_are_its_wall_time():
     t0 = time.perf_counter()
-    result = chunk.run_chunk(parse_scene(PORTRAIT), 1, 0, 0, particles=10)
+    result = chunk.run_chunk(parse_scene(PORTRAIT_300), 1, 0, 0, particles=10)
     assert 0 <= result.seconds <= time.perf_counter() - t0
 
 
@@ -226,7 +210,7 @@ def test_run_chunk_seconds_are_its_wall_time():
 def test_run_chunk_sets_the_numba_threads(threads, expected):
     before = numba.get_num_threads()
     try:
-        result = chunk.run_chunk(parse_scene(PORTRAIT), 1, 0, 0, particles=10, threads=threads)
+        result = chunk.run_chunk(parse_scene(PORTRAIT_300), 1, 0, 0, particles=10, threads=threads)
         assert numba.get_num_threads() == expected
     finally:
         numba.set_num_threads(before)
@@ -249,75 +233,8 @@ def test_verify_rows_failure_names_the_sampled_collision(monkeypatch):
 
 # --- chunk_starts: the verification picks ---------------------------------------------------
 
-def test_picks_are_distinct_particles():
-    """Every start of a small chunk is picked (samples_per_chunk >= chunk size): the picks are
-    a permutation of the chunk, never a particle twice."""
-    plan = make_plan(parse_scene(PORTRAIT), particles=12)
-    plan.samples_per_chunk = 12
-    phi, v, slot, target, picks = chunk_starts(plan, 0, 0)
-    assert sorted(picks.tolist()) == list(range(12))
-    assert sorted(slot.tolist()) == list(range(12)) and (target >= 1).all()
-
-
-def test_sampled_collision_indices_are_log_uniform():
-    """targets = floor(depth**U), U uniform: log-uniform in [1, depth]. For depth = 10**6
-    (escape horizon without a collision limit) P(target < 1000) = 1/2; 2000 picks give
-    1000 +- 22.4 (binomial sd); an accepted range of +-5 sd."""
-    text = PORTRAIT.replace('kind = "phase-space"', 'kind = "escape"').replace(
-        "phi = [0.0, 6.283185307179586]", "phi = [3.0, 5.0]").replace(
-        "[horizon]\ncollisions = 12", "[holes]\ncentres = [1.0]\nwidths = [0.1]\n[horizon]\n"
-        "time = 1e6").replace("[record]\nphi_bins = 36\nv_bins = 24\nv_range = [0.0, 8.0]",
-                              "[record]\nverify_samples = 2000")
-    plan = make_plan(parse_scene(text), particles=20000)
-    assert plan.scene.max_collisions is None and plan.samples_per_chunk == 2000
-    _, _, slot, target, picks = chunk_starts(plan, 0, 0)
-    t = target[picks]
-    assert t.min() >= 1 and t.max() <= SAMPLE_DEPTH
-    assert len(np.unique(t)) > 500
-    below = int((t < math.sqrt(SAMPLE_DEPTH)).sum())
-    assert abs(below - 1000) <= 5 * math.sqrt(2000 * 0.25)
-
 
 # --- Tally.load ---------------------------------------------------------------------------------
-
-def _tally():
-    return Tally(np.zeros((1, 1, 3), np.int64), np.zeros((1, 1, 4), np.int64),
-                 np.zeros((1, 3), np.int64), np.zeros((1, 4), np.int64),
-                 np.zeros((0, 0), np.int64), collisions=5, settled=1,
-                 finished=Finished([1]), samples=[[0, 0, 2, 1.0], [0, 0, 1, 2.0]],
-                 elapsed=3.5, started="2026-11-23T16:00:00Z")
-
-
-def test_load_keeps_every_bookkeeping_field(tmp_path):
-    t = _tally()
-    t.samples.sort()
-    t.save(tmp_path / "c.npz")
-    back = Tally.load(tmp_path / "c.npz")
-    assert (back.collisions, back.settled, back.elapsed, back.started) == (
-        5, 1, 3.5, "2026-11-23T16:00:00Z")
-    assert back.samples == [[0, 0, 1, 2.0], [0, 0, 2, 1.0]] and back.finished == Finished([1])
-
-
-def test_load_messages(tmp_path):
-    path = tmp_path / "c.npz"
-    path.write_bytes(b"not a zip file")
-    with pytest.raises(CheckpointError, match=r"is unreadable \(ValueError: "):
-        Tally.load(path)
-    t = _tally()
-    t.save(path)
-    with zipfile.ZipFile(path) as z:
-        members = {n: z.read(n) for n in z.namelist()}
-    with zipfile.ZipFile(path, "w") as z:  # a count edited, the digest kept
-        for name, data in members.items():
-            if name == "esc_n.npy":
-                buf = io.BytesIO()
-                np.save(buf, np.ones((1, 1, 3), np.int64))
-                data = buf.getvalue()
-            z.writestr(name, data)
-    with pytest.raises(CheckpointError,
-                       match=r"fails its content hash \(edited or corrupted\)$"):
-        Tally.load(path)
-
 
 
 def test_settled_states_on_the_portrait_edges_land_in_the_last_bins(monkeypatch):
@@ -325,7 +242,7 @@ def test_settled_states_on_the_portrait_edges_land_in_the_last_bins(monkeypatch)
     and (v - lo)/(hi - lo) may round to 1 for v < hi: both are clamped into the last bin, as in
     the kernel. Every collision is settled here at (TWO_PI, 2.0), with v_range = (-2**60, the
     float after 2.0)."""
-    plan = make_plan(parse_scene(PORTRAIT), particles=5)
+    plan = make_plan(parse_scene(PORTRAIT_300), particles=5)
     plan.scene = dataclasses.replace(plan.scene, v_range=(-(2.0**60), np.nextafter(2.0, 3.0)))
     monkeypatch.setattr(chunk, "portrait_chunk",
                         flagging_portrait(chunk.portrait_chunk, lambda n: np.ones(len(n), bool)))
@@ -405,3 +322,89 @@ def test_check_sample_overstep_is_strictly_beyond_16_kappa_u():
     assert verify.condition_number(0.0, 0.5, 0.0, 1.0) == 3
     assert chunk.check_sample(0.0, 0.5, at, 0.0) == (1.0, 16.0, False)
     assert chunk.check_sample(0.0, 0.5, np.nextafter(at, 2.0), 0.0)[2]
+
+
+def test_a_second_kernel_pass_adds_to_the_counts():
+    plan = make_plan(parse_scene(ESCAPE_300))
+    exp = plan.experiments[0]
+    phi, v, slot, target, _ = chunk_starts(plan, 0, 0)
+    m = len(phi)
+
+    def one_pass(out):
+        kernel(plan, exp, (phi, v, np.zeros(m), np.zeros(m, np.int64)), np.full(m, -1),
+               np.zeros(m, np.int64), np.zeros((0, 6)), out)
+
+    once, twice = Counts.zeros(plan, 1), Counts.zeros(plan, 1)
+    one_pass(once)
+    one_pass(twice)
+    one_pass(twice)
+    assert once.cens_t.sum() > 0 and once.esc_t.sum() > 0  # the time clock is exercised
+    for name in ("esc_n", "esc_t", "cens_n", "cens_t"):
+        np.testing.assert_array_equal(getattr(twice, name), 2 * getattr(once, name))
+    assert twice.collisions == 2 * once.collisions
+
+
+def _pass(plan, out):
+    exp = plan.experiments[0]
+    phi, v, _, _, _ = chunk_starts(plan, 0, 0)
+    m = len(phi)
+    return kernel(plan, exp, (phi, v, np.zeros(m), np.zeros(m, np.int64)), np.full(m, -1),
+                  np.zeros(m, np.int64), np.zeros((0, 6)), out)
+
+
+def test_a_second_dissipative_pass_adds_to_every_count():
+    plan = make_plan(parse_scene(STICK_200))
+    once, thrice = Counts.zeros(plan, 1), Counts.zeros(plan, 1)
+    _pass(plan, once)
+    for _ in range(3):
+        _pass(plan, thrice)
+    assert once.stuck_n.sum() > 0 and once.stuck_t.sum() > 0 and once.esc_n.sum() > 0
+    for name in ("esc_n", "esc_t", "cens_n", "cens_t", "stuck_n", "stuck_t"):
+        np.testing.assert_array_equal(getattr(thrice, name), 3 * getattr(once, name), name)
+    assert thrice.collisions == 3 * once.collisions
+    # every particle ends once on each clock: escaped, censored or stuck (per bin, not the
+    # total added to every bin)
+    for esc, cens, stuck in ((once.esc_n, once.cens_n, once.stuck_n),
+                             (once.esc_t, once.cens_t, once.stuck_t)):
+        assert esc.sum() + cens.sum() + stuck.sum() == 200
+
+
+def test_the_dissipative_kernel_stops_at_each_horizon():
+    """A short collision horizon (then a short time horizon) censors particles there: no
+    escape or sticking is counted beyond it on its clock."""
+    plan = make_plan(parse_scene(STICK_200.replace("collisions = 2000", "collisions = 30")))
+    out = Counts.zeros(plan, 1)
+    _pass(plan, out)
+    beyond = plan.n_edges > 30
+    assert out.cens_n.sum() > 0 and out.esc_n[0, beyond].sum() == 0
+    assert out.stuck_n[beyond].sum() == 0 and out.cens_n[beyond].sum() == 0
+    assert out.esc_n.sum() + out.cens_n.sum() + out.stuck_n.sum() == 200
+    plan = make_plan(parse_scene(STICK_200.replace("time = 1e5", "time = 10.0")))
+    out = Counts.zeros(plan, 1)
+    _pass(plan, out)
+    beyond = plan.t_edges > 10.0  # (a censored particle's time is its first beyond 10)
+    assert out.cens_t.sum() > 0 and out.esc_t[0, beyond].sum() == 0
+    assert out.stuck_t[beyond].sum() == 0
+    # censored per bin, not the chunk's total added to every bin
+    assert out.esc_t.sum() + out.cens_t.sum() + out.stuck_t.sum() == 200
+
+
+def _counts_for(text):
+    plan = make_plan(parse_scene(text))
+    out = Counts.zeros(plan, 1)
+    _pass(plan, out)
+    return out
+
+
+def test_the_dissipative_kernel_gets_the_scenes_physics():
+    """Drag on or off, and its law, change the counts: the kernel is given sc.drag and
+    _law_code(sc.drag_law), not defaults."""
+    base = _counts_for(STICK_200)
+    linear = _counts_for(STICK_200.replace("restitution = 0.5", "restitution = 0.5\ndrag = 0.05"))
+    quadratic = _counts_for(STICK_200.replace("restitution = 0.5", "restitution = 0.5\ndrag = 0.05"
+                                          '\ndrag_law = "quadratic"'))
+    r8 = _counts_for(STICK_200.replace("restitution = 0.5", "restitution = 0.8"))
+    for other in (linear, quadratic, r8):
+        assert not np.array_equal(other.esc_n, base.esc_n) or other.collisions != base.collisions
+    assert (not np.array_equal(linear.esc_n, quadratic.esc_n)
+            or linear.collisions != quadratic.collisions)

@@ -1,14 +1,12 @@
-"""Tests written against the surviving mutants of ``fastpath/concave.py`` as changed by ab4d97e
-(``_finish`` and ``rotate`` take the departure phase; issue 12's solver pass,
-``scripts/mutation/ensemble.py --group solver --files fastpath/concave.py``). Mutant numbers are
-the driver's (``--list``) on that code.
+"""The concave solver's loops (``fastpath.elastic.concave``): the evaluation budget, Halley's
+step, the refinement's rule at its exact ties, overflow, and ``bracket`` at its ties.
 
 Some facts are about how many times the gap is evaluated. The solver bodies are run here as plain
 Python (``py_func``; their callees stay compiled), so that the module globals they call can be
 wrapped to count the evaluations: one ``classify`` per evaluation of the loose gap, one
-``tight_gap`` per evaluation of the refinement. Issue 12 demands "at most 60 iterations per flight
-for any input"; the reported count must be the number made, and MAX_ITERATIONS must mean that
-all ITERATION_LIMIT were made (module docstring: "At most ITERATION_LIMIT evaluations (then
+``tight_gap`` per evaluation of the refinement. A flight makes at most ITERATION_LIMIT = 60
+evaluations for any input; the reported count must be the number made, and MAX_ITERATIONS must mean
+that all ITERATION_LIMIT were made (module docstring: "At most ITERATION_LIMIT evaluations (then
 MAX_ITERATIONS)").
 
 The budget, the overflow check and a start on a bracket end cannot be reached through
@@ -18,7 +16,8 @@ bracket, which is what the loops are specified for; the exact ties of ``_refine`
 states (eps = 0, or a flight found by search) with a w0_error chosen to put d or d' exactly on
 its bound.
 
-Not killed (equivalent): ``bracket``'s ``1e-150 < |v| < 1e150`` ends (at |v| = 1e150,
+Comparisons whose strict and non-strict forms give the same result on every input, and so have
+no test: ``bracket``'s ``1e-150 < |v| < 1e150`` ends (at |v| = 1e150,
 sqrt(fl(v*v)) = |v| = hypot; at 1e-150 the two roots differ, by an ulp, only for |eps| below
 ~1e-284, and with w0_error < w0 the energy bound is used only for |eps| > 1/3),
 ``hi_energy < hi_concave`` and
@@ -27,8 +26,7 @@ sqrt(fl(v*v)) = |v| = hypot; at 1e-150 the two roots differ, by an ulp, only for
 formula bit for bit), the Holmes loop's ``d1 < -d1_err`` before ``newton_is_final`` at
 d' = -R (there |d| > E, so |h|*R >= |d|*(1 - u)**2 > E/16: not final either way),
 ``_refine``'s ``d >= -d_err`` at d = -E with d' > R (d' > R proves d' > 0, so the exact gap,
-concave with d(0) = 0, is >= t*d' > 0, and the computed one > -E). Open: ``_refine``'s
-``step < 0.5*last_step`` at exact halving (not constructed).
+concave with d(0) = 0, is >= t*d' > 0, and the computed one > -E).
 """
 
 import math
@@ -86,8 +84,7 @@ def _exact_gap(phi, v, eps, t):
 
 
 def test_half_angle_loop_makes_exactly_the_budget(evaluations):
-    """Mutants 86, 87, 96: ``flight_half_angle``'s ``range(1, ITERATION_LIMIT + 1)`` with
-    start 2, ``ITERATION_LIMIT - 1`` or ``ITERATION_LIMIT + 2``.
+    """``flight_half_angle`` makes exactly ITERATION_LIMIT evaluations before MAX_ITERATIONS.
 
     A flight that cannot converge within the budget, built so that this follows from the
     maths alone: eps = 1e-3 and a sound but loose bracket [lo, 2**200], lo the solver's own
@@ -97,7 +94,7 @@ def test_half_angle_loop_makes_exactly_the_budget(evaluations):
     step gives t_next/t = (1/2 + eps*c/2)/(3/2 + eps*c/2) in [0.3331, 0.3336] (to relative
     O(1/t)): inside the bracket (no bisection), so 60 steps end above 2**199 * 0.3331**60 >
     2**103, far from the root (~0.5). The loop must make all 60 evaluations, report 60 and
-    MAX_ITERATIONS: the mutants make 59 (reporting 60), 58 (reporting 60) or 61."""
+    MAX_ITERATIONS (not 58 or 59 evaluations reported as 60, nor 61)."""
     phi, v, eps = -1.5, 0.25, 1e-3
     sin_phi, cos_phi = math.sin(phi), math.cos(phi)
     w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
@@ -115,8 +112,7 @@ def test_half_angle_loop_makes_exactly_the_budget(evaluations):
 
 
 def test_holmes_loop_makes_exactly_the_budget(evaluations):
-    """Mutants 46, 51: ``flight_from_holmes``'s ``range(1, ITERATION_LIMIT + 1)`` with
-    ``ITERATION_LIMIT - 1`` or ``ITERATION_LIMIT + 2``.
+    """``flight_from_holmes`` makes exactly ITERATION_LIMIT evaluations before MAX_ITERATIONS.
 
     A Holmes flight (2*w0 >= 1 + |eps|) given the loose but sound bracket [lo, 2**600]: phi =
     1.2, v = 0.3, eps = 0.5. At the start t = 2v = 0.6 the gap is positive and rising (d' =
@@ -125,7 +121,7 @@ def test_holmes_loop_makes_exactly_the_budget(evaluations):
     as for the half-angle test, t_next/t = (1/2 + eps*c/2)/(3/2 + eps*c/2) in [0.2, 0.43]
     (|eps*c| <= 1/2), inside the bracket, and t**3 ~ 2**899 does not overflow: after 58 more
     steps t is still above 2**299 * 0.2**59 > 2**160, far from the root (~1.2). The loop must
-    make all 60 evaluations and say so; the mutants make 58 (reporting 60) or 61."""
+    make all 60 evaluations and say so (not 58 reported as 60, nor 61)."""
     phi, v, eps = 1.2, 0.3, 0.5
     sin_phi, cos_phi = math.sin(phi), math.cos(phi)
     w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
@@ -142,12 +138,9 @@ def test_holmes_loop_makes_exactly_the_budget(evaluations):
 
 @pytest.mark.parametrize("done", [0, 50, 57, 58, 59])
 def test_refinement_makes_at_most_the_evaluations_left(evaluations, done):
-    """Mutants 64, 65, 67, 68: ``_refine``'s ``range(done + 1, ITERATION_LIMIT + 1)`` with
-    ``done - 1``, ``ITERATION_LIMIT - 1``, ``done + 2`` or ``ITERATION_LIMIT + 2``.
-
-    ``_refine`` continues a flight that has made ``done`` evaluations: it may make at most
+    """``_refine`` continues a flight that has made ``done`` evaluations: it may make at most
     ITERATION_LIMIT - done more, and reports the total, done + the number it made. Started on
-    the triple family (phi = -x, v = x, eps = 1: the exact root is 2x, DESIGN fact 11) at
+    the triple family (phi = -x, v = x, eps = 1: the exact root is 2x) at
     64 times the root, it needs about ten Halley steps (each shrinks t by about 3/5, the rate
     on the quartic d ~ -t**4/24, until the tight bound can place the root): with done = 0 it
     converges to the root (within 2*kappa*u, the triple family's bound) in fewer than 60; with
@@ -188,8 +181,7 @@ def _exact_derivatives(phi, v, eps, t):
     (0.5, 0.7, -0.95),  # half-angle start
 ])
 def test_the_second_point_is_halleys_step_from_the_first(evaluations, phi, v, eps):
-    """Mutants 55 and 99: the d'' passed to ``halley`` as -1 - eps*cos(phi + t) instead of
-    -1 + eps*cos(phi + t) (Holmes and half-angle loops).
+    """Both loops (Holmes and half-angle) step by Halley with d'' = -1 + eps*cos(phi + t).
 
     The module docstring's step is Halley's, t - 2*d*d'/(2*d'**2 - d*d''), with
     d'' = -1 + eps*cos(phi + t). On these flights the first step stays inside the bracket, so
@@ -219,12 +211,10 @@ def test_the_second_point_is_halleys_step_from_the_first(evaluations, phi, v, ep
 
 
 def test_newton_inexact_at_its_threshold():
-    """Mutant 61: ``newton_inexact``'s ``>`` -> ``>=``.
-
-    Whether the Newton point may miss the root by MORE than u*t/2 in second order
-    (docstring): (|d''| + |eps*delta|)*delta**2 > u*t*|d'| with delta = d/d'. At equality it is
-    not inexact (the answer is final). With eps = 0, d'' = -1, d' = -1, d = 2**-30 and
-    t = 2**-7 both sides are exactly 2**-60."""
+    """``newton_inexact`` at its threshold: whether the Newton point may miss the root by MORE than
+    u*t/2 in second order (docstring): (|d''| + |eps*delta|)*delta**2 > u*t*|d'| with delta = d/d'.
+    At equality it is not inexact (the answer is final). With eps = 0, d'' = -1, d' = -1, d = 2**-30
+    and t = 2**-7 both sides are exactly 2**-60."""
     from fastpath.elastic.concave import newton_inexact
 
     t, d, d1 = 2.0**-7, 2.0**-30, -1.0
@@ -266,16 +256,16 @@ _PHI = 0.5  # any phase: with eps = 0 it enters only the returned sine and cosin
 @pytest.mark.parametrize("t, side", [(2.0 - 2.0**-30, 1.0), (2.0 + 2.0**-29, -1.0)],
                          ids=["d=+E", "d=-E"])
 def test_refinement_at_a_gap_exactly_on_its_bound_is_at_the_root(t, side):
-    """Mutants 69 (``d > d_err`` -> ``>=``) and 70 (``d < -d_err`` -> ``<=``) in ``_refine``.
+    """``_refine`` at a gap exactly on its bound, |d| = E: the side is not proved.
 
-    eps = 0, v = 1: d(t) = t*(1 - t/2), d' = 1 - t, the root exactly 2 (DESIGN fact 9). At
+    eps = 0, v = 1: d(t) = t*(1 - t/2), d' = 1 - t, the root exactly 2 (eps = 0: tau = 2v). At
     t = 2 - 2**-30 (2 + 2**-29) the computed d is exact, 2**-30 - 2**-61 (-(2**-29 + 2**-59)),
     and w0_error is chosen so that the bound E is exactly |d| (asserted). |d| <= E proves
     nothing about the side, d' = 1 - t ~ -1 is far beyond R: the point is after the maximum
     with the root within rounding (module docstring), so the refinement answers at once with
     the Newton point t - d/d' = 2 + O(2**-59), i.e. exactly 2.0, after one evaluation
-    (the correction is not inexact: (d/d')**2 ~ 2**-60 <= u*t*|d'| ~ 2**-52). The mutants
-    take d = +E as "before" (d = -E as "after") and spend a Halley step: two evaluations."""
+    (the correction is not inexact: (d/d')**2 ~ 2**-60 <= u*t*|d'| ~ 2**-52). Taking d = +E as
+    "before" (d = -E as "after") would spend a Halley step: two evaluations."""
     from fastpath.elastic.tight_gap import tight_gap
 
     sin_phi, cos_phi, v = math.sin(_PHI), math.cos(_PHI), 1.0
@@ -291,12 +281,12 @@ def test_refinement_at_a_gap_exactly_on_its_bound_is_at_the_root(t, side):
 
 
 def test_refinement_at_a_slope_exactly_minus_its_bound_is_flat():
-    """Mutant 74: ``_refine``'s ``d1 < -d1_err`` -> ``<=``.
+    """``_refine`` at a slope exactly minus its bound, d' = -R: no certain descent.
 
     eps = 0, v = 1, t = 2 (the root): d = 0 and d' = -1 exactly, and w0_error is chosen so that
     the slope's bound R is exactly 1 (asserted). |d| <= E, and d' = -R does not prove d' < 0
     (the exact slope may be 0): float64 cannot tell a root from a flat top there, and the
-    refinement must say UNCERTAIN (at t, after one evaluation). The mutant calls it a root."""
+    refinement must say UNCERTAIN (at t, after one evaluation), not call it a root."""
     from fastpath.elastic.tight_gap import tight_gap
 
     sin_phi, cos_phi, v, t = math.sin(_PHI), math.cos(_PHI), 1.0, 2.0
@@ -310,7 +300,7 @@ def test_refinement_at_a_slope_exactly_minus_its_bound_is_flat():
 
 
 def test_refinement_at_a_slope_exactly_its_bound_is_flat():
-    """Mutant 73: ``_refine``'s ``(d >= -d_err and d1 > d1_err)`` -> ``d1 >= d1_err``.
+    """``_refine`` at a slope exactly its bound, d' = R, with |d| <= E: a flat top.
 
     A point with |d| <= E is before the maximum (so the root lies beyond it) only if d' > R
     proves d' > 0; at d' = R exactly the exact slope may be 0: a flat top, UNCERTAIN after one
@@ -319,7 +309,7 @@ def test_refinement_at_a_slope_exactly_its_bound_is_flat():
     d'' = -1 + cos(t - x) ~ -x**2/2), x = 9.03e-9, a departure w0 = 1.5e-23 and t = 2.05e-10,
     found by a search over such flights; w0_error (above the departure's own bound, so still a
     valid bound) is chosen so that R is exactly the computed d' (asserted, with |d| <= E). The
-    mutant takes the point as "before" and goes on."""
+    point must not be taken as "before"."""
     from fastpath.elastic.tight_gap import tight_gap
 
     phi, v, eps, t = 3.141592644557456, 9.032337222943266e-09, -1.0, 2.054437778516293e-10
@@ -379,9 +369,7 @@ _NEAR_TRIPLE = [  # phi = -x*(1 + a), v = x, eps ~ 1, x ~ 1e-9: flat to rounding
 
 
 def test_refinement_stops_where_its_rule_says(evaluations):
-    """Mutants 63 (``stalls = 0`` -> 1), 71 (``stalls += 1`` -> ``-= 1``), 76 (the step
-    ``|t_next - t|`` -> ``|t_next + t|``), 78 (``stalls += 2``), 79 (``stalls > _NEWTON_STALLS``
-    -> ``>=``) in ``_refine``.
+    """``_refine`` stops where its rule says: the stall counter and the Newton steps.
 
     Near-triple flights (eps -> 1, phi ~ -v ~ -1e-9) whose root float64 can only place to
     within the noise of the computed gap: the refinement goes on from Newton point to Newton
@@ -412,7 +400,7 @@ def test_refinement_stops_where_its_rule_says(evaluations):
 
 
 def test_an_overflowing_gap_is_an_overflow():
-    """Mutants 53 and 98: ``not abs(d) < math.inf`` -> ``<=`` (Holmes and half-angle loops).
+    """A gap that overflows ends a flight as OVERFLOW (Holmes and half-angle loops).
 
     Given the brackets ``concave_flight`` builds, every iterate is below ~2|v| + 2 and d stays
     finite; given a sound but loose bracket [lo, 2**1023] the loops reach points where
@@ -447,15 +435,13 @@ def test_an_overflowing_gap_is_an_overflow():
 @pytest.mark.parametrize("phi, v, eps, end", [(-1.5, 0.6, 0.5, "lo"), (1.5, 0.25, 0.5, "hi")])
 def test_a_first_guess_on_a_bracket_end_is_replaced_by_the_midpoint(evaluations, phi, v, eps,
                                                                      end):
-    """Mutants 84, 85: ``flight_half_angle``'s ``not lo < t < hi`` with either ``<`` -> ``<=``.
-
-    The half-angle start is the root of the frozen-acceleration parabola,
+    """The half-angle start is the root of the frozen-acceleration parabola,
     2*w0/(1 - eps*cos(phi)), if it lies strictly inside the bracket, else the bracket's midpoint
     (an end is a bound, not a candidate). Here the bracket is given with that guess as one end,
     a sound one: for phi = -1.5 the plate's pull weakens along the flight (cos(phi + t) rises),
     so the exact gap is still positive at the guess and it is a lower end; for phi = 1.5 it
     strengthens, the gap is negative there and the guess is an upper end (both checked in
-    mpmath). The first evaluation must be at the midpoint, which the mutants skip."""
+    mpmath). The first evaluation must be at the midpoint, not at the guess."""
     sin_phi, cos_phi = math.sin(phi), math.cos(phi)
     w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
     assert 2.0 * w0 < 1.0 + abs(eps)  # the half-angle start
@@ -482,8 +468,7 @@ def test_a_first_guess_on_a_bracket_end_is_replaced_by_the_midpoint(evaluations,
     (-0.002435281146165613, 0.0024352801687179157, 1.0),
 ])
 def test_no_refinement_where_the_newton_correction_is_exact(evaluations, phi, v, eps):
-    """Mutant 107: the d'' passed to ``newton_inexact`` from ``flight_half_angle`` as
-    -1 - eps*cos(phi + t) instead of -1 + eps*cos(phi + t).
+    """``flight_half_angle`` judges its Newton correction with d'' = -1 + eps*cos(phi + t).
 
     Short near-triple flights (found by a search over such flights) whose loose loop stops at a
     point with |d| <= E and d' < -R where the Newton correction delta = d/d' is exact to second
@@ -491,7 +476,7 @@ def test_no_refinement_where_the_newton_correction_is_exact(evaluations, phi, v,
     eps*cos(phi + t) (small here: eps*cos ~ 1), is below u*t*|d'|/100 (checked in mpmath from
     the computed d, d'). The module docstring's rule then answers with that correction: no
     refinement, no ``tight_gap`` evaluation. With d'' = -1 - eps*cos(phi + t) ~ -2 the same
-    term exceeds 100*u*t*|d'| (checked), and the mutant refines."""
+    term exceeds 100*u*t*|d'| (checked): a solver using it would refine."""
     sin_phi, cos_phi = math.sin(phi), math.cos(phi)
     w0, w0_error = departure(phi, sin_phi, v, eps, 0.0)
     assert 2.0 * w0 < 1.0 + abs(eps)
@@ -509,16 +494,14 @@ def test_no_refinement_where_the_newton_correction_is_exact(evaluations, phi, v,
 
 
 def test_the_refinement_is_tried_at_the_smallest_t():
-    """Mutant 103: ``t >= SMALLEST_T`` -> ``>`` in ``flight_half_angle``.
-
-    ``tight_gap`` is proved for t >= SMALLEST_T = 2**-1000 (t/2 exact, the underflow
+    """``tight_gap`` is proved for t >= SMALLEST_T = 2**-1000 (t/2 exact, the underflow
     allowance), and a point the loose bound leaves flat at such a t goes to the refinement.
     The flight phi = 0, eps = 1/2, v = 2**-1001 (exact root 4v*(1 - O(v**2)), just below
     2**-999) with the sound bracket (0, 2**-999): the frozen guess 2*w0/(1 - eps) = 2**-999 is
     its upper end, so the first point is the midpoint, exactly 2**-1000. There the gap and its
     slope are below every rounding bound (both underflow): flat by the loose test, and the
     refinement must evaluate ``tight_gap`` there (it finds it flat too: UNCERTAIN after two
-    evaluations). The mutant stops at the loose verdict without trying."""
+    evaluations), not stop at the loose verdict without trying."""
     from fastpath.elastic.tight_gap import SMALLEST_T
 
     phi, v, eps = 0.0, 2.0**-1001, 0.5
@@ -550,17 +533,17 @@ def test_the_refinement_is_tried_at_the_smallest_t():
 
 
 def test_bracket_at_its_ties():
-    """Mutants 8 (``not hi_concave <= 2|v| + 2`` -> ``<``) and 6 (``v >= 0`` -> ``>``) in
-    ``bracket_from_root``. Both alternatives give certified upper bounds; these pin the
-    documented choice (``test_mutants_solver._documented_bracket``: the concave bound unless it
-    EXCEEDS 2|v| + 2, the energy bound v + sqrt(v**2 + 4|eps|) in that form for v >= 0).
+    """``bracket_from_root`` at its ties: the concave bound unless it EXCEEDS 2|v| + 2, the
+    energy bound v + sqrt(v**2 + 4|eps|) in that form for v >= 0 (its docstring, and
+    ``test_concave_flight._documented_bracket``). Other choices at the ties would give certified
+    upper bounds too; these pin the documented one.
 
     v = 1, w0 = 1, w0_error = 0 (phi = 0: w0 = v exactly), eps = 1/2: the concave bound
-    2*w0/(1 - |eps|) = 4 is exactly 2|v| + 2, so it is the bound, hi = 4*(1 + 4u); the mutant
-    takes the energy bound 1 + sqrt(3). v = 0 (a departure at rest, w0 = eps*sin(phi)) with
+    2*w0/(1 - |eps|) = 4 is exactly 2|v| + 2, so it is the bound, hi = 4*(1 + 4u), not the energy
+    bound 1 + sqrt(3). v = 0 (a departure at rest, w0 = eps*sin(phi)) with
     eps = 0.6066357757671799 and a concave bound above 2: the energy bound is
-    0 + sqrt(4|eps|), one correctly rounded square root; the mutant's 4|eps|/sqrt(4|eps|)
-    rounds a second time and lands one ulp lower here."""
+    0 + sqrt(4|eps|), one correctly rounded square root; the form 4|eps|/sqrt(4|eps|) (the one
+    for v < 0) rounds a second time and lands one ulp lower here."""
     lo, hi = bracket(1.0, 1.0, 0.0, 0.5)
     assert 2.0 * 1.0 / (1.0 - 0.5) == 2.0 * 1.0 + 2.0  # the tie, exact
     assert hi == 4.0 * (1.0 + 4.0 * U)
@@ -574,8 +557,7 @@ def test_bracket_at_its_ties():
 
 
 def test_a_newton_step_of_exactly_half_the_previous_is_a_stall(monkeypatch):
-    """Mutant 77 (``step < 0.5*last_step`` -> ``<=``), left open by the first pass, killed with
-    a stand-in gap (session 6). The rule (``_refine`` docstring) counts a Newton step that
+    """The rule (``_refine`` docstring) counts a Newton step that
     fails to HALVE the previous one as a stall, so a step of exactly half is one. The stand-in
     puts every point at the root (|d| <= E = 1, d' = -1 < -R = 0) with Newton steps 2**-10,
     2**-11, ... (all iterates exact dyadics) and a large |d''| so that the correction is never

@@ -1,14 +1,15 @@
-"""Tests written against surviving mutants of the scalar flight solvers (issue 12; the AST
-driver's ``solver`` group, ``scripts/mutation/ensemble.py --group solver``).
+"""The concave solver (``fastpath.elastic.concave``, |eps| <= 1): answers and helpers.
 
 The solver behind ``fastpath.flight`` answers most |eps| <= 1 flights in the lockstep lanes
 (``fastpath.elastic.lockstep``); ``fastpath.elastic.concave`` is reached from orbits, the ensembles'
 fallback and the flights the lanes give up. These tests call ``concave_flight`` (and ``flight_from``
 with GENERAL) directly, and hold every answer to plain facts: CONVERGED, inside the certified
-bracket of DESIGN fact 2 (exact, mpmath), within K*kappa*u of the root (``fastpath_tolerances``),
-the
-returned sine and cosine of phi + tau within the carried-sine bound the collision assumes
-(``fastpath.elastic.collision.CARRIED_SINE_ERROR``), and eps = 0 exactly tau = 2v (DESIGN fact 9).
+bracket 2*w0/(1 + |eps|) <= tau <= min(2*w0/(1 - |eps|), v + sqrt(v**2 + 4|eps|)) (exact,
+mpmath), within K*kappa*u of the root (``fastpath_tolerances``), the returned sine and cosine of
+phi + tau within the carried-sine bound the collision assumes
+(``fastpath.elastic.collision.CARRIED_SINE_ERROR``), and eps = 0 exactly tau = 2v. The helpers
+(``classify``, ``halley``, ``newton_is_final``, ``bracket``) are held to their docstrings at
+their exact thresholds.
 """
 
 import math
@@ -18,14 +19,14 @@ import pytest
 from fastpath_tolerances import K, U, kappa
 from mpmath import mp
 
+from fastpath.arithmetic.rounding import two_sum
 from fastpath.elastic.collision import CARRIED_SINE_ERROR
 from fastpath.elastic.concave import concave_flight
-from fastpath.elastic.flight import GENERAL, certified_flight, flight_from
+from fastpath.elastic.flight import GENERAL, certified_flight
 from fastpath.elastic.gap import departure
-from fastpath.status import ITERATION_LIMIT, FlightStatus
+from fastpath.status import CONVERGED, ITERATION_LIMIT, FlightStatus
 
 DPS = 40
-CONVERGED = int(FlightStatus.CONVERGED)
 
 
 def _solve(phi, v, eps):
@@ -43,7 +44,7 @@ def _exact_gap(phi, v, eps, t):
 
 def _exact_root(phi, v, eps, tau):
     """The positive root of the exact gap, by Newton from the fast tau, checked: the gap changes
-    sign around it (|eps| <= 1: the only positive root, DESIGN fact 2)."""
+    sign around it (|eps| <= 1: the gap is concave, its only positive root)."""
     with mp.workdps(DPS):
         p, w, e = mp.mpf(phi), mp.mpf(v), mp.mpf(eps)
         t = mp.mpf(tau)
@@ -110,7 +111,7 @@ def test_concave_flights_are_in_the_bracket_and_accurate(w0_range):
 @pytest.mark.parametrize("v", [2.0**-30, 1e-7, 0.1, 0.25, 0.7, 1.0, 3.0, 12.5, 1e3, 2.0**40])
 @pytest.mark.parametrize("phi", [-3.0, -0.5, 0.0, 1.0, 2.5])
 def test_eps_zero_gives_exactly_twice_v(phi, v):
-    """eps = 0: d(t) = t*(v - t/2), tau = 2v exactly (DESIGN fact 9), for both starts, and the
+    """eps = 0: d(t) = t*(v - t/2), tau = 2v exactly, for both starts, and the
     sine and cosine of phi + 2v."""
     tau, s, c, evaluations, status = _solve(phi, v, 0.0)
     assert status == CONVERGED and tau == 2.0 * v
@@ -132,89 +133,45 @@ def test_general_method_is_the_concave_solver():
             phi, s, c, v, eps, w0_error)
 
 
-@pytest.mark.parametrize("sin_phi, cos_phi, v, eps, w0_error, t", [
-    (math.sin(1.0), math.cos(1.0), 0.7, 0.8, 3e-16, 0.9),
-    (math.sin(-2.5), math.cos(-2.5), 3.0, -0.95, 1e-15, 5.5),
-    (math.sin(-3e-5), math.cos(-3e-5), 3e-5, 1.0, 2e-21, 6e-5),  # the triple family's scale
-    (math.sin(2.0), math.cos(2.0), -0.4, 0.3, 5e-17, 0.2),
-    (0.0, 1.0, 2.0**-1000, 0.5, 0.0, 2.0**-1000),  # SMALLEST_T: the underflow allowance shows
-])
-def test_tight_bounds_are_the_documented_ones(sin_phi, cos_phi, v, eps, w0_error, t):
-    """``tight_gap``'s E and R are the module docstring's formulas (its proof), evaluated on the
-    computed terms, times 1 + 64u plus the underflow allowance; and d, d', d'', sin and cos of
-    phi + t are those of the half-angle form. Every term of E and R is of order u here (the
-    w0_error ones too), so a dropped or subtracted term moves E or R by far more than the few u
-    of evaluation order allowed. At t = SMALLEST_T the terms underflow and E is the allowance
-    2**-1060 alone (a positive bound)."""
-    from fastpath.elastic.tight_gap import _SLACK, _UNDERFLOW, tight_gap
-
-    d, d1, d2, s, c, d_err, d1_err = tight_gap(sin_phi, cos_phi, v, eps, w0_error, t)
-    with mp.workdps(DPS):
-        sp, cp, w, e, we, tt = (mp.mpf(x) for x in (sin_phi, cos_phi, v, eps, w0_error, t))
-        sh, ch = mp.sin(tt / 2), mp.cos(tt / 2)
-        m, cm = sp * ch + cp * sh, cp * ch - sp * sh
-        s_x, c_x = m * ch + cm * sh, cm * ch - m * sh
-        plate, flight = 2 * e * sh * m, tt * (w - tt / 2)
-        d_x, d1_x = plate + flight, (w - tt) + e * s_x
-        close = 64 * U
-        for got, want in ((d, d_x), (d1, d1_x), (d2, -1 + e * c_x), (s, s_x), (c, c_x)):
-            assert abs(got - want) <= close * (abs(plate) + abs(flight) + abs(w) + tt + 1), (
-                got, want)
-        ash, asp, ae = abs(sh), abs(sp), abs(e)
-        e_doc = U * (abs(d_x) + 5 * abs(plate) + 2 * abs(flight)) + 2 * ash * (
-            U * ae * (3 * asp + 5 * ash) + we * (1 + ash))
-        r_doc = U * (abs(d1_x) + abs(w - tt) + ae * (2 * abs(s_x) + 4 * abs(m) + 6 * asp
-                                                     + 14 * ash)) + we * (1 + 3 * ash)
-        for got, doc in ((d_err, e_doc), (d1_err, r_doc)):
-            want = doc * mp.mpf(_SLACK) + _UNDERFLOW
-            assert abs(got - want) <= close * want, (got, want)
-
-
 # --- the concave solver's helpers at their boundaries (exact floats, no tolerance needed) ---
 
 
 def test_classify_at_the_error_bounds():
     """A gap exactly at +-E (or a slope exactly at +-R) proves nothing: d > E is needed for
     "before", d < -E for "after", d' < -R for "at the root", d' > R for "before"; else flat."""
-    from fastpath.elastic.concave import AFTER as _AFTER
-    from fastpath.elastic.concave import AT_ROOT as _AT_ROOT
-    from fastpath.elastic.concave import BEFORE as _BEFORE
-    from fastpath.elastic.concave import FLAT as _FLAT
-    from fastpath.elastic.concave import classify
+    from fastpath.elastic.concave import AFTER, AT_ROOT, BEFORE, FLAT, classify
     from fastpath.elastic.gap import gap_error, rate_error
 
     phi, v, eps, t = 0.5, 1.0, 0.5, 1.0
     e, r = gap_error(phi, v, eps, t), rate_error(phi, v, eps, t)
-    assert classify(phi, v, eps, t, e, 0.0) == _FLAT
-    assert classify(phi, v, eps, t, -e, 0.0) == _FLAT
-    assert classify(phi, v, eps, t, 0.0, -r) == _FLAT
-    assert classify(phi, v, eps, t, 0.0, r) == _FLAT
-    assert classify(phi, v, eps, t, math.nextafter(e, 1.0), 0.0) == _BEFORE
-    assert classify(phi, v, eps, t, math.nextafter(-e, -1.0), 0.0) == _AFTER
-    assert classify(phi, v, eps, t, 0.0, math.nextafter(-r, -1.0)) == _AT_ROOT
-    assert classify(phi, v, eps, t, 0.0, math.nextafter(r, 1.0)) == _BEFORE
+    assert classify(phi, v, eps, t, e, 0.0) == FLAT
+    assert classify(phi, v, eps, t, -e, 0.0) == FLAT
+    assert classify(phi, v, eps, t, 0.0, -r) == FLAT
+    assert classify(phi, v, eps, t, 0.0, r) == FLAT
+    assert classify(phi, v, eps, t, math.nextafter(e, 1.0), 0.0) == BEFORE
+    assert classify(phi, v, eps, t, math.nextafter(-e, -1.0), 0.0) == AFTER
+    assert classify(phi, v, eps, t, 0.0, math.nextafter(-r, -1.0)) == AT_ROOT
+    assert classify(phi, v, eps, t, 0.0, math.nextafter(r, 1.0)) == BEFORE
 
 
 def test_halley_steps_and_its_bisections():
     """The Halley step t - 2*d*d'/(2*d'**2 - d*d''); a step onto or beyond a bracket end is
     replaced by the arithmetic midpoint, or the geometric one where lo > 0 and hi > 4*lo (both
     strict: at lo = 0 the geometric mean is lo itself, a step that ends the flight at lo)."""
-    from fastpath.elastic.concave import AFTER as _AFTER
-    from fastpath.elastic.concave import BEFORE as _BEFORE
-    from fastpath.elastic.concave import halley
+    from fastpath.elastic.concave import AFTER, BEFORE, halley
 
     # inside: the Halley point (d'' = -1: 1 + 0.25/0.75)
-    t_next, lo, hi = halley(1.0, 0.25, -0.5, -1.0, _BEFORE, 0.5, 3.0)
+    t_next, lo, hi = halley(1.0, 0.25, -0.5, -1.0, BEFORE, 0.5, 3.0)
     assert (lo, hi) == (1.0, 3.0)
     with mp.workdps(DPS):
         assert abs(t_next - mp.mpf(4) / 3) <= 2 * U
     # d'' = 0: the Newton step, exactly onto hi (before) or lo (after): bisected
-    assert halley(1.0, 0.25, -0.5, 0.0, _BEFORE, 0.5, 1.5) == (1.25, 1.0, 1.5)
-    assert halley(1.5, -0.25, -0.5, 0.0, _AFTER, 1.0, 2.0) == (1.25, 1.0, 1.5)
+    assert halley(1.0, 0.25, -0.5, 0.0, BEFORE, 0.5, 1.5) == (1.25, 1.0, 1.5)
+    assert halley(1.5, -0.25, -0.5, 0.0, AFTER, 1.0, 2.0) == (1.25, 1.0, 1.5)
     # beyond the bracket: lo = 0 takes the arithmetic midpoint, hi = 4*lo too, hi > 4*lo not
-    assert halley(8.0, -1.0, 0.1, 0.0, _AFTER, 0.0, 9.0) == (4.0, 0.0, 8.0)
-    assert halley(4.0, -1.0, 0.1, 0.0, _AFTER, 1.0, 9.0) == (2.5, 1.0, 4.0)
-    assert halley(8.0, -1.0, 0.1, 0.0, _AFTER, 1.0, 9.0) == (math.sqrt(8.0), 1.0, 8.0)
+    assert halley(8.0, -1.0, 0.1, 0.0, AFTER, 0.0, 9.0) == (4.0, 0.0, 8.0)
+    assert halley(4.0, -1.0, 0.1, 0.0, AFTER, 1.0, 9.0) == (2.5, 1.0, 4.0)
+    assert halley(8.0, -1.0, 0.1, 0.0, AFTER, 1.0, 9.0) == (math.sqrt(8.0), 1.0, 8.0)
 
 
 def test_newton_is_final_at_its_threshold():
@@ -231,7 +188,6 @@ def test_two_sum_is_exact():
     """s + e == x + y exactly (Knuth's TwoSum), the Holmes start's angle phi + 2v."""
     from fractions import Fraction
 
-    from fastpath.arithmetic.rounding import two_sum
 
     assert two_sum(1.0, 2.0**-60) == (1.0, 2.0**-60)
     rng = np.random.default_rng(3)
@@ -321,48 +277,17 @@ def test_a_first_evaluation_at_the_root_takes_the_newton_correction(phi, v):
         assert abs(c - mp.cos(angle)) <= CARRIED_SINE_ERROR, (c, float(mp.cos(angle)))
 
 
+# --- fastpath.flight helpers (the lower-bound steps of |eps| > 1, the departure) ---
+
+
 def test_long_holmes_step_sine_within_the_carried_bound():
-    """Found by the solver mutation pass (issue 12) and fixed in session 6. From the Holmes
-    start 2v a step longer than SMALL_ANGLE = 0.125 took libm's sine of fl(fl(theta0 +
-    theta0_error) + delta) + h, an angle rounded twice at ~24 (ulp 32u) with the TwoSum remainder
-    lost: the returned sin(phi + tau) was 9.07u off, above the 8u that ``collide_from`` adds to
-    the next departure's phase error (``CARRIED_SINE_ERROR``). ``rotate`` now takes libm afresh
-    at the exact sum phi + t (``sin_cos_of_sum``)."""
+    """A step from the Holmes start 2v longer than SMALL_ANGLE = 0.125 returns the sine of the
+    exact sum phi + tau within the 8u that ``collide_from`` adds to the next departure's phase
+    error (``CARRIED_SINE_ERROR``). Here the angle is ~24 (ulp 32u): libm's sine of the angle
+    rounded twice, fl(fl(theta0 + theta0_error) + delta) + h, with the TwoSum remainder lost,
+    would be 9.07u off; ``rotate`` takes it of the exact sum (``sin_cos_of_sum``)."""
     phi, v, eps = 2.8535527917488874, 10.72350022083204, 1.0
     tau, s, _, _, status = _solve(phi, v, eps)
     assert status == CONVERGED
     with mp.workdps(DPS):
         assert abs(s - mp.sin(mp.mpf(phi) + mp.mpf(tau))) <= CARRIED_SINE_ERROR
-
-
-# --- fastpath.flight helpers (the lower-bound steps of |eps| > 1, the departure) ---
-
-
-def test_first_root_without_a_root_and_at_its_rounding_threshold():
-    """d + r*s + k*s**2/2 with d > 0: r = k = 0 (or r >= 0, k >= 0) has no root: inf. A
-    discriminant r**2 - 2*k*d that is negative by less than 4u*(r**2 + 2|k|*d) counts as zero:
-    r = -1, k*d = (1 + 2**-51)/2 gives -2**-51 (exact), within 4u*2: the double root 2*d/(-r)."""
-    from fastpath.elastic.lower_bound import first_root
-
-    assert first_root(1.0, 0.0, 0.0) == math.inf
-    assert first_root(1.0, 0.5, 0.0) == math.inf
-    assert first_root(0.5, -1.0, 1.0 + 2.0**-51) == 1.0
-    assert first_root(0.5, -1.0, 1.0 + 2.0**-40) == math.inf  # clearly negative: no root
-
-
-def test_phase_error_of_a_centred_phase():
-    """0 for a phase used as given, one ulp-scale bound 2u*|centred| for a reduced one."""
-    from fastpath.arithmetic.phase import centre_phase
-    from fastpath.elastic.flight import phase_error_of
-
-    assert phase_error_of(1.0, 1.0) == 0.0
-    centred = centre_phase(7.0)
-    assert centred != 7.0 and phase_error_of(7.0, centred) == 2.0 * U * abs(centred)
-
-
-def test_an_overflowing_w0_is_an_overflow():
-    """w0 = v + eps*sin(phi) = inf: OVERFLOW (not UNCERTAIN), before any evaluation."""
-    s, c = math.sin(1.0), math.cos(1.0)
-    for method in (0, GENERAL):
-        tau, _, _, _, evaluations, status = flight_from(1.0, s, c, 1.5e308, 1e308, method, 0.0)
-        assert status == int(FlightStatus.OVERFLOW) and evaluations == 0 and math.isnan(tau)

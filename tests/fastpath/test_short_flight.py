@@ -1,5 +1,5 @@
-"""Tests written against the survivors of the solver mutation pass on ``fastpath/short_flight.py``
-(issue 12, ``scripts/mutation.sh solver``): the relative-coordinate gap of chattering impacts.
+"""The short-flight solver (``fastpath.dissipative.short_flight``): the relative-coordinate gap of
+chattering impacts, its series and closed forms, the window it is used in, and its iterations.
 
 The solver only evaluates S3 and C4 for t <= SERIES_LIMIT = 1 (the window h <= 1), so their
 closed forms for t > 1 were never run by the flight tests; they are public helpers (the drag
@@ -38,11 +38,10 @@ def _c4(t):
 
 @pytest.mark.parametrize("t", [math.nextafter(1.0, 2.0), 1.5, 2.0, 3.0, 7.5, 40.0])
 def test_closed_forms_beyond_the_series(t):
-    """Mutants ``t - sin(t)`` -> ``t + sin(t)``, ``2*sin(t/2)**2 - t**2/2`` -> ``+``, and the
-    square -> a cube. For t > 1: t - sin(t) has the error of libm's sine (<= 2u) and one
-    subtraction (u*|S3|); 2*sin(t/2)**2 - t**2/2 that of the sine squared and doubled
-    (<= 3*2u*2*sin**2... bounded by 8u*2*sin(t/2)**2) and of t*t/2 and the subtraction
-    (u*t**2/2 each, and u*|C4|)."""
+    """The closed forms of S3 = t - sin(t) and C4 = 1 - cos(t) - t**2/2 for t > 1: t - sin(t) has
+    the error of libm's sine (<= 2u) and one subtraction (u*|S3|); 2*sin(t/2)**2 - t**2/2 that of
+    the sine squared and doubled (<= 3*2u*2*sin**2... bounded by 8u*2*sin(t/2)**2) and of t*t/2 and
+    the subtraction (u*t**2/2 each, and u*|C4|)."""
     s_ref, c_ref = _s3(t), _c4(t)
     assert abs(s3(t) - s_ref) <= 2 * U + U * abs(s_ref)
     sq = 2.0 * math.sin(0.5 * t) ** 2
@@ -63,8 +62,8 @@ def test_series_within_a_few_u_relative(t):
 @pytest.mark.parametrize("cos_phi", [-1.0, -0.4, 0.0, 0.3, 0.999])
 def test_departure_deceleration_is_a_lower_bound_by_the_documented_margin(eps, cos_phi):
     """a = 1 - eps*cos(phi) lowered by 8u*(1 + 14|eps|): below the exact value of the given
-    cosine (kills the margin added instead of subtracted, and 1 + 14|eps| -> 1 - 14|eps|, which
-    turns the margin negative for |eps| > 1/14), and not by more than the margin plus the
+    cosine (so the margin is subtracted, and positive: 1 + 14|eps|, not 1 - 14|eps|, which
+    turns it negative for |eps| > 1/14), and not by more than the margin plus the
     rounding of the products (2u*(1 + |eps|))."""
     a = departure_deceleration(cos_phi, eps)
     with mp.workdps(DPS):
@@ -81,8 +80,8 @@ def test_departure_deceleration_is_a_lower_bound_by_the_documented_margin(eps, c
 ])
 def test_short_window_rounds_its_bound_up(sin_phi, cos_phi, w, eps):
     """The window is 2*w/m_h (m_h from the lowered deceleration a, h = 4w/a) rounded UP by the
-    factor 1 + 4u: never below the exact quotient of the float w and m_h (kills 1 + 4u -> 1 - 4u,
-    which gives at most (1 + u)*(1 - 4u) < 1 times it). m_h is formed here as the docstring
+    factor 1 + 4u: never below the exact quotient of the float w and m_h (a factor 1 - 4u
+    would give at most (1 + u)*(1 - 4u) < 1 times it). m_h is formed here as the docstring
     defines it, from a and h, each exact quotient rounded once (relative 1e-15 of m_h at most,
     covered by the 2u below the 4u factor)."""
     upper = short_window(sin_phi, cos_phi, w, eps)
@@ -98,7 +97,7 @@ def test_short_window_rounds_its_bound_up(sin_phi, cos_phi, w, eps):
 
 def test_the_window_is_open_at_h_exactly_one():
     """The window needs h = 4w/a <= SERIES_LIMIT = 1 (the series hold for t <= 1, and the flight
-    ends before 2w/m_h <= h): at h = 1 exactly it is open (kills h <= 1 -> h < 1). w = a/4 is
+    ends before 2w/m_h <= h): at h = 1 exactly it is open. w = a/4 is
     an exact scaling, so h = 4w/a is exactly 1; eps = 0.1 at cos(phi) = -1 keeps m_h >= a/2."""
     eps, sin_phi, cos_phi = 0.1, 0.0, -1.0
     a = departure_deceleration(cos_phi, eps)
@@ -108,7 +107,7 @@ def test_the_window_is_open_at_h_exactly_one():
 
 
 def test_the_window_is_open_at_m_h_exactly_half_a():
-    """The window needs m_h >= a/2; at equality it is open (kills >= -> >). With sin(phi) = 0,
+    """The window needs m_h >= a/2; at equality it is open. With sin(phi) = 0,
     m_h = a - (|eps|/2)*h*h, and a - X is exact for X near a/2 (Sterbenz), so m_h == a/2
     exactly when the rounded X is a/2: h is searched among the floats next to sqrt(a/|eps|),
     then w such that fl(4w/a) is that h."""
@@ -157,8 +156,8 @@ def _count_gap_evaluations(monkeypatch, gap=None, rate=None):
 
 
 def test_reported_iterations_are_the_gap_evaluations(monkeypatch):
-    """The iterations returned are the number of gap evaluations (kills range(1, ...) ->
-    range(2, ...), which reports one fewer evaluation than it made)."""
+    """The iterations returned are the number of gap evaluations (not one fewer
+    than it made)."""
     solve, calls = _count_gap_evaluations(monkeypatch)
     sin_phi, cos_phi, w, eps = 0.6, -0.8, 1e-5, 1.5
     upper = short_window(sin_phi, cos_phi, w, eps)
@@ -170,7 +169,7 @@ def test_reported_iterations_are_the_gap_evaluations(monkeypatch):
 def test_at_most_sixty_evaluations_then_the_limit(monkeypatch):
     """A gap that stays negative while Newton keeps moving down (a stand-in: d = -1, d' = -1e3,
     every step 1e-3) exhausts the solver: exactly ITERATION_LIMIT = 60 evaluations, reported as
-    60 (kills the loop bound 60 -> 59 and -> 61, and the start 1 -> 2)."""
+    60 (not 59 or 61, nor 60 made and 59 reported)."""
     from fastpath.status import ITERATION_LIMIT
 
     solve, calls = _count_gap_evaluations(
@@ -182,8 +181,8 @@ def test_at_most_sixty_evaluations_then_the_limit(monkeypatch):
 
 def test_a_step_below_the_spacing_ends_newton(monkeypatch):
     """Newton stops when the step no longer decreases t (docstring): a stand-in gap d = -1e-30,
-    d' = -1 at t = 1 gives t - d/d' == t, so the answer is t after one evaluation (kills
-    ``not t_next < t`` -> ``not t_next <= t``, which would repeat the same point 60 times)."""
+    d' = -1 at t = 1 gives t - d/d' == t, so the answer is t after one evaluation
+    (not the same point repeated 60 times)."""
     solve, calls = _count_gap_evaluations(
         monkeypatch, gap=lambda *args: -1e-30, rate=lambda *args: -1.0)
     tau, rate, iterations = solve(0.0, -1.0, 1.0, 0.5, 1.0)
