@@ -23,7 +23,7 @@ Accuracy: the rounding of the result, plus an absolute error below PAYNE_HANEK_E
 from the small pieces (lo < 2**-23 turns, summed with relative rounding) and the inner sum of the
 product: it matters only for results near 0 or near a turn, where the relative error can be
 large (measured 1.4e-23 absolute at x = 1.5312731109035593e60, whose remainder is 1.3e-17:
-``tests/fastpath/test_mutants_phase.py`` builds such arguments from continued fractions).
+``tests/fastpath/test_fastpath_phase.py`` builds such arguments from continued fractions).
 """
 
 import math

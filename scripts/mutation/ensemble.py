@@ -103,13 +103,11 @@ SOLVER_DESELECT = [
 GROUPS = {  # name: (targets, tests, deselected, glob of its own tests, timeout, environment)
     # both groups: hypothesis derandomized and without its database (``nopython_shims``), so
     # that an example stored by one mutant's run is not replayed into the next
-    "ensemble": (TARGETS, TESTS, DESELECT, "tests/**/test_mutants_ensemble*.py", TIMEOUT,
-                 {"HYPOTHESIS_PROFILE": "mutation"}),
+    "ensemble": (TARGETS, TESTS, DESELECT, (), TIMEOUT, {"HYPOTHESIS_PROFILE": "mutation"}),
     "solver": (SOLVER_TARGETS, SOLVER_TESTS, SOLVER_DESELECT,
-               ("tests/fastpath/test_mutants_solver*.py", "tests/fastpath/test_mutants_concave*.py",
-                "tests/fastpath/test_mutants_flight*.py",
-                "tests/fastpath/test_mutants_short_flight*.py",
-                "tests/fastpath/test_mutants_phase*.py"),
+               ("tests/fastpath/test_concave_flight.py", "tests/fastpath/test_concave_loops.py",
+                "tests/fastpath/test_lower_bound_flight.py",
+                "tests/fastpath/test_short_flight.py"),
                SOLVER_TIMEOUT, {"HYPOTHESIS_PROFILE": "mutation"}),
 }
 _SWAP = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt,
