@@ -293,10 +293,11 @@ def default_methods() -> list[Method]:
                iterations_label="gap evaluations (Halley) or lower-bound steps",
                description="fastpath.flight(method='auto'): bracketed Halley for |eps| < 1, "
                "the paper's lower-bound steps otherwise"),
-        Method("fastpath seed", FLOAT64, _fastpath_solve("seed"), _fastpath_batch("seed"),
-               vectorised=True,
+        Method("fastpath lower_bound", FLOAT64, _fastpath_solve("lower_bound"),
+               _fastpath_batch("lower_bound"), vectorised=True,
                iterations_label="lower-bound steps",
-               description="fastpath.flight(method='seed'): the paper's lower-bound steps"),
+               description="fastpath.flight(method='lower_bound'): the paper's lower-bound "
+               "steps for every flight"),
         Method("Holmes map", FLOAT64, _holmes_solve, _holmes_batch, model="holmes", vectorised=True,
                description="tau = 2v, phi1 = phi + 2v, v1 = |v - 2 eps sin(phi1)| "
                "(error = modelling error against the exact map)"),

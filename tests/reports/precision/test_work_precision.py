@@ -9,7 +9,7 @@ from reports.precision.hard_case_table import hard_case_section, hard_cases
 from reports.precision.methods import FLOAT64, default_methods, method_from_callable
 from reports.precision.work_precision import run_work_precision, work_precision_section
 
-FASTPATH = ("fastpath auto", "fastpath seed")
+FASTPATH = ("fastpath auto", "fastpath lower_bound")
 VERIFY = ("verify dps=20", "verify dps=50")
 SAMPLED = ("solve_ivp rtol=1e-06", "brentq grid 0.1")
 WORST_UNITS = 16  # fastpath's error bound in units of kappa*u
