@@ -47,7 +47,7 @@ terms with the bounds of ``fastpath.elastic.gap``.
 import math
 
 from fastpath.arithmetic.jit import jit
-from fastpath.arithmetic.rounding import SUBNORMAL, UNIT_ROUNDOFF
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, plus_underflow
 from fastpath.physics import LINEAR, QUADRATIC
 
 ROUNDING_FACTOR = 16.0
@@ -210,8 +210,8 @@ def gap_state(phi, v, eps, k, law, t):
     u = UNIT_ROUNDOFF
     # subnormal results round in absolute terms: <= 8 roundings of each of the particle's terms,
     # the plate's sines scaled by |eps| (``fastpath.elastic.gap``)
-    d_err = (y_err + 4.0 * u * abs(eps) * min(t, 2.0) * (abs(phi) + t + 3.0)
-             + 2.0 * u * (abs(y) + abs(plate)) + SUBNORMAL * (16.0 + 2.0 * abs(eps)))
-    d1_err = (v_err + 4.0 * u * abs(eps) * (1.0 + abs(phi) + t) + 2.0 * u * abs(vel)
-              + SUBNORMAL * (16.0 + abs(eps)))
+    d_err = plus_underflow(y_err + 4.0 * u * abs(eps) * min(t, 2.0) * (abs(phi) + t + 3.0)
+                           + 2.0 * u * (abs(y) + abs(plate)), 16.0 + 2.0 * abs(eps))
+    d1_err = plus_underflow(v_err + 4.0 * u * abs(eps) * (1.0 + abs(phi) + t)
+                            + 2.0 * u * abs(vel), 16.0 + abs(eps))
     return d, d1, d2, d_err, d1_err, vel, v_err

@@ -8,13 +8,15 @@ For a departure at phase phi with velocity v, after a time t (docs/model.md):
 
 ``gap_error`` and ``rate_error`` bound the rounding errors of ``gap`` and ``gap_rate`` in float64
 (phi reduced); ``departure`` computes w0 = d'(0) = v + eps*sin(phi) with its error bound, and
-``departure_verdict`` says whether the particle leaves the plate.
+``departure_verdict`` says whether the particle leaves the plate. The three bounds are inlined
+where they are called, so that the lanes of ``fastpath.kernels.escape`` still vectorise with
+their underflow allowance (``fastpath.arithmetic.rounding.plus_underflow``).
 """
 
 import math
 
-from fastpath.arithmetic.jit import jit
-from fastpath.arithmetic.rounding import SUBNORMAL, UNIT_ROUNDOFF
+from fastpath.arithmetic.jit import inline_jit, jit
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, plus_underflow
 from fastpath.status import CONVERGED, NOT_DEPARTING, OVERFLOW, UNCERTAIN
 
 
@@ -30,7 +32,7 @@ def gap_rate(phi, v, eps, t):
     return v - t + eps * math.sin(phi + t)
 
 
-@jit
+@inline_jit
 def gap_error(phi, v, eps, t):
     """A bound on |computed gap - exact gap| at the float t.
 
@@ -42,19 +44,19 @@ def gap_error(phi, v, eps, t):
     """
     plate = abs(eps) * min(t, 2.0) * (abs(phi) + t + 3.0)
     flight = t * (abs(v) + t)
-    return 4.0 * UNIT_ROUNDOFF * (plate + flight) + SUBNORMAL * (4.0 + 2.0 * abs(eps))
+    return plus_underflow(4.0 * UNIT_ROUNDOFF * (plate + flight), 4.0 + 2.0 * abs(eps))
 
 
-@jit
+@inline_jit
 def rate_error(phi, v, eps, t):
     """A bound on |computed d' - exact d'| at the float t: a few u of each term of
     v - t + eps*sin(phi + t), the sine's argument carrying u*(|phi| + t); in the subnormal
     range (2 + |eps|)*SUBNORMAL for the absolute rounding of the sum and the sine."""
-    return (4.0 * UNIT_ROUNDOFF * (abs(v) + t + abs(eps) * (1.0 + abs(phi) + t))
-            + SUBNORMAL * (2.0 + abs(eps)))
+    return plus_underflow(4.0 * UNIT_ROUNDOFF * (abs(v) + t + abs(eps) * (1.0 + abs(phi) + t)),
+                          2.0 + abs(eps))
 
 
-@jit
+@inline_jit
 def departure(phi, sin_phi, v, eps, phase_error):
     """(w0, bound) with w0 = fl(v + eps*sin_phi) and |w0 - (v + eps*sin(phi_exact))| <= bound.
 
@@ -68,8 +70,7 @@ def departure(phi, sin_phi, v, eps, phase_error):
     w0 = v + eps * sin_phi
     bound = 2.0 * UNIT_ROUNDOFF * abs(w0) + 3.0 * UNIT_ROUNDOFF * abs(eps * sin_phi)
     exact = eps == 0.0 or (phi == 0.0 and sin_phi == 0.0)
-    underflow = 0.0 if exact else SUBNORMAL * (2.0 + abs(eps))
-    return w0, bound + abs(eps) * phase_error + underflow
+    return w0, plus_underflow(bound + abs(eps) * phase_error, 0.0 if exact else 2.0 + abs(eps))
 
 
 @jit

@@ -12,10 +12,13 @@ import math
 import numpy as np
 import pytest
 from fastpath_tolerances import tau_tolerance
+from hypothesis import example, given
+from hypothesis import strategies as st
 from mpmath import mp
 
 import fastpath
 import verify
+from fastpath.arithmetic.rounding import SUBNORMAL, plus_underflow
 from fastpath.status import FlightStatus
 
 TINY = 5e-324  # the smallest subnormal, 2**-1074
@@ -80,3 +83,29 @@ def test_departures_within_a_subnormal_of_zero_are_judged_by_the_exact_w0(eps):
         base = -(eps * math.sin(phi))
         for k in range(-2, 3):
             judge(phi, base + k * TINY, eps)
+
+
+# bounds from the subnormal range to the largest floats, and the weights the bounds use
+_BOUNDS = st.one_of(
+    st.floats(min_value=0.0, max_value=2.0**-1000),
+    st.floats(min_value=0.0, allow_nan=False),
+    st.sampled_from([0.0, 2.0**-1074, 2.0**-1022, 2.0**-900, math.nextafter(2.0**-900, 0.0),
+                     math.inf, math.nan]),
+)
+_WEIGHTS = st.one_of(
+    st.floats(min_value=0.0, max_value=1e6),
+    st.floats(min_value=0.0, allow_nan=False),
+    st.sampled_from([0.0, 2.0, 2.5, 2.0**100, math.nextafter(2.0**100, 0.0), math.inf]),
+)
+
+
+@given(bound=_BOUNDS, weight=_WEIGHTS)
+@example(bound=2.0**-1040, weight=2.0)  # the allowance moves a bound this small
+@example(bound=2.0**-900, weight=2.0**150)  # and a larger one, by a large weight
+def test_underflow_allowance_is_the_plain_sum_bit_for_bit(bound, weight):
+    """plus_underflow skips the subnormal product where it cannot change the sum: its result is
+    the float bound + SUBNORMAL*weight exactly, wherever that skip applies and wherever not."""
+    expected = bound + SUBNORMAL * weight
+    got = plus_underflow(bound, weight)
+    assert np.float64(got).tobytes() == np.float64(expected).tobytes() or (
+        math.isnan(got) and math.isnan(expected)), (bound, weight, got, expected)
