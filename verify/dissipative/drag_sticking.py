@@ -121,7 +121,7 @@ from ..numerics.precision import (
 from .drag import LAWS, DragFlight
 from .drag_gap import DragGap
 from .impact import Impact, detachment_impact, landing
-from .sticking import WINDOW, Accumulation, geometric_enclosure
+from .sticking import WINDOW, Accumulation, geometric_enclosure, summed_tail
 
 _MAX_DEPTH = 60  # halvings of a box in the sign proofs of the riding force
 _MAX_ARC_BOXES = 20_000  # boxes per sign proof of an arc: beyond it, NotDecided
@@ -159,14 +159,8 @@ def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
         enclosure = _enclosure(iphi, iw, iv.mpf(eps), iv.mpf(k), law, iv.mpf(r), WINDOW * t0)
         if enclosure is None:
             return None
-        tail = t0 + jerk * t0**2 / (3 * a) - c * t0**2 / 6
-        if not enclosure[0] <= tail <= enclosure[1]:
-            raise ArithmeticError(
-                f"drag accumulation tail {mp.nstr(tail, 20)} outside its proved enclosure "
-                f"[{mp.nstr(enclosure[0], 20)}, {mp.nstr(enclosure[1], 20)}] "
-                f"(phi={phi}, v={v}, drag={k}, {law})"
-            )
-        return Accumulation(tail, enclosure, mid(iphi) + tail)
+        return summed_tail(t0 + jerk * t0**2 / (3 * a) - c * t0**2 / 6, enclosure, iphi,
+                           f"phi={phi}, v={v}, drag={k}, {law}")
 
 
 class _TailModel(NamedTuple):

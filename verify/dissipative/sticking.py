@@ -113,13 +113,20 @@ def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
         enclosure = _enclosure(iphi, iw, ieps, ir, WINDOW * t0)
         if enclosure is None:
             return None
-        tail = t0 + jerk * t0**2 / (3 * a)
-        if not enclosure[0] <= tail <= enclosure[1]:
-            raise ArithmeticError(
-                f"accumulation tail {mp.nstr(tail, 20)} outside its proved enclosure "
-                f"[{mp.nstr(enclosure[0], 20)}, {mp.nstr(enclosure[1], 20)}] (phi={phi}, v={v})"
-            )
-        return Accumulation(tail, enclosure, mid(iphi) + tail)
+        return summed_tail(t0 + jerk * t0**2 / (3 * a), enclosure, iphi, f"phi={phi}, v={v}")
+
+
+def summed_tail(tail, enclosure, iphi, inputs: str) -> Accumulation:
+    """The :class:`Accumulation` of the model's ``tail`` from the phase enclosure ``iphi``, after
+    checking that it lies in its proved ``enclosure`` (an ``ArithmeticError`` naming the
+    ``inputs`` otherwise: the model and the proof disagree). Shared by :func:`accumulation` and
+    :func:`verify.dissipative.drag_sticking.drag_accumulation`."""
+    if not enclosure[0] <= tail <= enclosure[1]:
+        raise ArithmeticError(
+            f"accumulation tail {mp.nstr(tail, 20)} outside its proved enclosure "
+            f"[{mp.nstr(enclosure[0], 20)}, {mp.nstr(enclosure[1], 20)}] ({inputs})"
+        )
+    return Accumulation(tail, enclosure, mid(iphi) + tail)
 
 
 def _enclosure(iphi, iw, ieps, ir, window):
