@@ -26,8 +26,9 @@ def plus_underflow(bound, weight):
     ordinary weight (computed in the gap's bounds it took 18% of an elastic orbit's time on the
     AMD EPYC of docs/performance.md). Where
     bound >= 2**-900 and weight < 2**100 the allowance (< 2**-973) is below half an ulp of bound
-    (>= 2**-953) and the sum is bound: the weight is then multiplied by 0 (a product, not a
-    branch or a select, so that the compiler cannot compute the subnormal product anyway).
+    (>= 2**-953) and the sum is bound: the weight is then multiplied by 0 before any scaling
+    (a product with a select of the constants 1 and 0: a branch or a select on the product
+    itself is turned by the compiler into computing the subnormal product anyway).
     Otherwise the allowance is (weight*2**-537)*2**-537, an exact product rounded once, as
     SUBNORMAL*weight is.
     """

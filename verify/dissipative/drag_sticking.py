@@ -160,7 +160,7 @@ def drag_accumulation(phi, v, eps, k, law, r, dps: int) -> Accumulation | None:
         if enclosure is None:
             return None
         return summed_tail(t0 + jerk * t0**2 / (3 * a) - c * t0**2 / 6, enclosure, iphi,
-                           f"phi={phi}, v={v}, drag={k}, {law}")
+                           phi=phi, v=v, drag=k, drag_law=law)
 
 
 class _TailModel(NamedTuple):

@@ -113,18 +113,19 @@ def accumulation(phi, v, eps, r, dps: int) -> Accumulation | None:
         enclosure = _enclosure(iphi, iw, ieps, ir, WINDOW * t0)
         if enclosure is None:
             return None
-        return summed_tail(t0 + jerk * t0**2 / (3 * a), enclosure, iphi, f"phi={phi}, v={v}")
+        return summed_tail(t0 + jerk * t0**2 / (3 * a), enclosure, iphi, phi=phi, v=v)
 
 
-def summed_tail(tail, enclosure, iphi, inputs: str) -> Accumulation:
+def summed_tail(tail, enclosure, iphi, **inputs) -> Accumulation:
     """The :class:`Accumulation` of the model's ``tail`` from the phase enclosure ``iphi``, after
     checking that it lies in its proved ``enclosure`` (an ``ArithmeticError`` naming the
     ``inputs`` otherwise: the model and the proof disagree). Shared by :func:`accumulation` and
     :func:`verify.dissipative.drag_sticking.drag_accumulation`."""
     if not enclosure[0] <= tail <= enclosure[1]:
+        named = ", ".join(f"{name}={value}" for name, value in inputs.items())
         raise ArithmeticError(
             f"accumulation tail {mp.nstr(tail, 20)} outside its proved enclosure "
-            f"[{mp.nstr(enclosure[0], 20)}, {mp.nstr(enclosure[1], 20)}] ({inputs})"
+            f"[{mp.nstr(enclosure[0], 20)}, {mp.nstr(enclosure[1], 20)}] ({named})"
         )
     return Accumulation(tail, enclosure, mid(iphi) + tail)
 
