@@ -22,8 +22,11 @@ O((h w)^2) instead of O(h w) for censoring at either edge.
 Run directories (``bouncer run``): ``manifest.json`` (per experiment ``particles_done``,
 ``censored``, ``escaped``; ``bins``) and ``counts.csv`` with header
 ``experiment,clock,outcome,lower_edge,count``. The bin grid is rebuilt from ``bins`` exactly as
-the runner built it (``fastpath.kernels.escape.log_edges``): collisions
+the runner built it (``fastpath.kernels.histogram.log_edges``): collisions
 unique(round(10**(k/per_decade))), time [0] + first*10**(k/per_decade); the last bin is open.
+numpy's vectorised power may differ in the last bits between machines (its SIMD code paths), so
+a recorded edge is matched to the grid edge within ``EDGE_ULPS`` units in the last place; the
+grid's neighbouring edges lie a factor 10**(1/per_decade) apart, far beyond that.
 
 CSV histograms: header ``lower,upper,count``, rows counting lower <= X < upper, increasing and
 not overlapping (gaps are empty bins), edges in [0, 2**53] and counts adding up to at most 2**53
@@ -48,6 +51,7 @@ CLOCKS = ("collisions", "time")
 # integers merge, would be silently rounded).
 MAX_COUNT = 2**53
 MAX_CLOCK = float(2**53)
+EDGE_ULPS = 16  # a recorded bin edge is the grid's edge within this many units in the last place
 
 
 @dataclass(frozen=True)
@@ -96,6 +100,16 @@ def run_edges(bins, clock):
     if "below_first" in spec:
         edges = np.concatenate([[float(spec["below_first"][0])], edges])
     return edges.astype(np.float64)
+
+
+def grid_index(edges, edge):
+    """Index of the grid edge that ``edge`` is, within ``EDGE_ULPS`` units in the last place
+    (module docstring), or None."""
+    k = int(np.searchsorted(edges, edge))
+    for i in (k - 1, k):
+        if 0 <= i < len(edges) and abs(edges[i] - edge) <= EDGE_ULPS * np.spacing(edges[i]):
+            return i
+    return None
 
 
 def _int_count(text, where):
@@ -157,8 +171,8 @@ def read_run(path, clocks=CLOCKS):
             for outcome in [*outcomes, "censored"]:
                 counts = np.zeros(len(edges), dtype=np.int64)
                 for edge, count in rows.get((exp, clock, outcome), []):
-                    k = np.searchsorted(edges, edge)
-                    if k == len(edges) or edges[k] != edge:
+                    k = grid_index(edges, edge)
+                    if k is None:
                         raise ValueError(f"{counts_file}: {exp}/{clock}/{outcome}: lower_edge "
                                          f"{edge!r} is not on the manifest's bin grid")
                     counts[k] += count
