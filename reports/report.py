@@ -41,6 +41,7 @@ from reports.paper.claims import claims_markdown, write_report_json
 from reports.paper.dynamics import dynamics_section
 from reports.paper.figures import paper_figures_section
 from reports.paper.physics_checks import physics_checks_section
+from reports.paper.specification_figure import specification_markdown
 from reports.precision.bench import ensemble_table, orbit_table, time_ensembles, time_orbits
 from reports.precision.hard_case_table import dissipative_case_section, hard_case_markdown
 from reports.precision.methods import default_methods
@@ -186,11 +187,17 @@ def claim_sections(out_dir, particles, quick, echo, include_runs):
     ]
 
 
-def claims_heading_text(stored):
+def claims_heading_text(stored, families=""):
+    """The claims section: the claims rendered from ``report.json`` and the specification
+    plots of the contested ones (``families``, ``specification_markdown``)."""
     return (f"{CLAIMS_HEADING}\n\nRendered from `report.json` (every claim with its quote, "
-            "reading, rule, tolerance, evidence, uncertainties and run). Rules and tolerances: "
+            "reading, family of analyses, rule, tolerance, evidence, uncertainties and run). A "
+            "verdict is the agreement of the claim's family: confirmed or refuted only where "
+            "every analysis its words allow gives it; an inconclusive one says why: too few "
+            "data (`data`), precise but between the word's two bounds (`between-bounds`), or "
+            "analyses that disagree (`analysis`). Rules and tolerances: "
             "`reports/paper/rules.py`; the register: `reports/paper/register.py`.\n\n"
-            + claims_markdown(stored))
+            + claims_markdown(stored) + ("\n" + families if families else ""))
 
 
 def splice(old_md, sections):
@@ -259,12 +266,13 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
     write_report_json(out_dir / "report.json", claims, built=_now_utc(),
                       particles_per_curve=particles, quick=quick)
     stored = json.loads((out_dir / "report.json").read_text(encoding="utf-8"))["claims"]
+    families = specification_markdown(stored, out_dir)
     path = out_dir / "report.md"
     if paper_only and path.is_file():
         old = path.read_text(encoding="utf-8")
         note = (f"{REBUILD_NOTE} {_now_utc()} from the runs in {out_dir}; the speed and "
                 "work-precision sections are from the build named above.")
-        new = splice(old, {CLAIMS_HEADING: claims_heading_text(stored),
+        new = splice(old, {CLAIMS_HEADING: claims_heading_text(stored, families),
                            FIGURES_HEADING: "\n".join(claim_md), PHYSICS_HEADING: physics})
         rundir.write_atomic(path, with_rebuild_note(new, note))
         echo(f"paper sections of {path} rebuilt in {time.perf_counter() - start:.0f} s")
@@ -283,7 +291,7 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
     rows = "\n".join(f"| {label} | {seconds:.0f} |" for label, seconds in timings)
     parts.append("## How long this report took\n\n| section | seconds |\n|---|---|\n"
                  f"{rows}\n| total | {total:.0f} |\n")
-    parts.insert(1, claims_heading_text(stored))
+    parts.insert(1, claims_heading_text(stored, families))
     rundir.write_atomic(path, "\n".join(parts))
     echo(f"report written to {path} in {total:.0f} s")
     return path

@@ -64,7 +64,8 @@ import numpy as np
 
 import fastpath
 from fastpath.kernels.moments import moments
-from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim
+from reports.paper import family as F
+from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim, agreement
 from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit
 from reports.runs.chunk import check_sample
 
@@ -115,15 +116,17 @@ def velocity_strip(r, eps):
 
 
 def strip_maxima(phi0, v0, eps, one_minus_r, n_max):
-    """max |v_n| over ``fastpath.orbit`` of each start (n_max collisions), per 1 - r."""
+    """Per 1 - r, max |v_n| over ``fastpath.orbit`` of each start (n_max collisions), over the
+    first and over the second half of the starts (two independent samples)."""
     out = []
     for x in one_minus_r:
-        top = 0.0
+        tops = []
         for p, v in zip(phi0, v0, strict=True):
             orb = fastpath.orbit(float(p), float(v), eps, n_max, on_uncertain="stop",
                                  restitution=1.0 - float(x))
-            top = max(top, float(np.max(np.abs(orb.v))))
-        out.append(top)
+            tops.append(float(np.max(np.abs(orb.v))))
+        half = max(1, len(tops) // 2)
+        out.append((max(tops[:half]), max(tops[half:], default=max(tops[:half]))))
     return out
 
 
@@ -148,6 +151,7 @@ class Dissipation:
     seconds: float
     strip_max: list = None  # max |v_n| over STRIP_ORBITS orbits, per 1 - r (velocity strip)
     strip_orbits: int = 0
+    strip_halves: list = None  # the same over each half of the orbits, per 1 - r
 
 
 def plateau(n, mean_v, lo, hi):
@@ -277,34 +281,46 @@ def dissipation_study(quick=False):
                     {"drag": STUDY["drag"]["quadratic"][-1], "drag_law": "quadratic"}]
     ver = verify_dissipative(starts, eps, physics_list, min(cfg["n_max"], 3000), cfg["verify"])
     k = STRIP_ORBITS[bool(quick)]
-    strip = strip_maxima(phi0[:k], v0[:k], eps, omr, cfg["n_max"])
+    halves = strip_maxima(phi0[:k], v0[:k], eps, omr, cfg["n_max"])
     return Dissipation(eps, m, nf, window, elastic, rest, drag, omr, beta, beta_err, beta_sys,
                        math.exp(amp) if math.isfinite(amp) else math.nan, sticking, ver,
-                       time.perf_counter() - t0, strip, k)
+                       time.perf_counter() - t0, [max(h) for h in halves], k, halves)
 
 
-def saturation_verdict(elastic, curves):
-    """Verdict of "dissipation makes <v_n> saturate" from the slopes over the plateau window.
+PLATEAU_WINDOWS = (1.0, 0.5)  # the plateau: the last decade of n, and the last half decade
 
-    U = 1.96 sigma (bootstrap over particle blocks) + the window family's half-range, per curve.
-    inconclusive when the elastic slope is not above its U (no Fermi acceleration in the window
-    to suppress); else refuted: some dissipative curve grows as fast as the elastic one (slope
-    >= elastic slope - U - U_elastic: no suppression seen); confirmed: every dissipative slope
-    within U of 0; inconclusive otherwise.
-    """
-    def u(c):
-        return 1.96 * c.slope_err + c.slope_sys
 
-    u_el = u(elastic)
-    if not all(math.isfinite(u(c)) and math.isfinite(c.slope) for c in [elastic, *curves]):
-        return INCONCLUSIVE
-    if not elastic.slope > u_el:
-        return INCONCLUSIVE
-    if any(c.slope >= elastic.slope - u(c) - u_el for c in curves):
-        return REFUTED
-    if all(abs(c.slope) <= u(c) for c in curves):
-        return CONFIRMED
-    return INCONCLUSIVE
+def plateau_windows(window):
+    """The plateau windows of the family: [n_max 10^-d, n_max] for d in PLATEAU_WINDOWS."""
+    return [(window[1] * 10 ** -d, window[1]) for d in PLATEAU_WINDOWS]
+
+
+def saturation_member(n, elastic, c, window):
+    """Does <v_n> of ``c`` saturate over ``window`` while the elastic curve grows? The slope of
+    log<v_n> with U = 1.96 sigma (bootstrap over particle blocks): inconclusive when the elastic
+    slope is not above its U (no Fermi acceleration to suppress); refuted if the curve grows as
+    fast as the elastic one (slope >= elastic slope - U - U_elastic); confirmed if its slope is
+    within U of 0; inconclusive otherwise."""
+    def slope_u(curve):
+        s = log_slope(n, curve.mean_v, *window)
+        err = bootstrap_blocks(curve.sum_v, curve.count, lambda m: log_slope(n, m, *window))
+        return s, 1.96 * err
+    el, u_el = slope_u(elastic)
+    sl, u = slope_u(c)
+    variant = (f"{c.label}, n in [{window[0]:g}, {window[1]:g}]: slope {sl:.3f} +- {u:.3f} "
+               f"(elastic {el:.3f} +- {u_el:.3f})")
+    if not all(math.isfinite(x) for x in (el, u_el, sl, u)):
+        return F.too_few(variant, "slope of log<v_n>", sl)
+    if not el > u_el:
+        verdict, note = INCONCLUSIVE, F.TOO_FEW
+    elif sl >= el - u - u_el:
+        verdict, note = REFUTED, ""
+    elif abs(sl) <= u:
+        verdict, note = CONFIRMED, ""
+    else:
+        verdict, note = INCONCLUSIVE, F.STRADDLES
+    return F.Analysis(variant, verdict, "slope of log<v_n>", sl, sl - u, sl + u, (0.0, 0.0),
+                      ((el - u_el, math.inf),), note)
 
 
 def exponent_verdict(beta, sigma, systematic, expected=RANDOM_PHASE_BETA):
@@ -317,94 +333,117 @@ def exponent_verdict(beta, sigma, systematic, expected=RANDOM_PHASE_BETA):
     return REFUTED if off > u else CONFIRMED if u <= RESOLUTION else INCONCLUSIVE
 
 
-def strip_verdict(one_minus_r, maxima, eps):
-    """confirmed: every max |v_n| <= V*(r) (``velocity_strip``); refuted: some orbit leaves
-    the strip; inconclusive: no maxima. No tolerance: a rounding error of the orbit is ~1e-16
-    relative, and an orbit that reaches V* at all is already far outside what chaos gives."""
-    if not maxima or not all(math.isfinite(m) for m in maxima):
-        return INCONCLUSIVE
-    inside = all(m <= velocity_strip(1.0 - x, eps)
-                 for x, m in zip(one_minus_r, maxima, strict=True))
-    return CONFIRMED if inside else REFUTED
+def exponent_members(d):
+    """beta of V_sat ~ (1 - r)^beta over each plateau window and two fit ranges (every 1 - r,
+    and without the largest), each with its bootstrap sigma, under ``exponent_verdict``."""
+    out = []
+    x_all = np.asarray(d.one_minus_r, float)
+    for window in plateau_windows(d.window):
+        for keep, name in ((len(x_all), "every 1 - r"), (len(x_all) - 1, "without the largest")):
+            x, curves = x_all[:keep], d.restitution[:keep]
+            beta = exponent(x, [plateau(d.n, c.mean_v, *window) for c in curves])[0]
+            num, den = np.hstack([c.sum_v for c in curves]), np.hstack([c.count for c in curves])
+            sigma = bootstrap_blocks(num, den, _beta_of_stacked(d.n, x, window))
+            verdict = exponent_verdict(beta, sigma, 0.0)
+            u = 1.96 * sigma
+            out.append(F.Analysis(
+                f"n in [{window[0]:g}, {window[1]:g}], {name}: beta = {beta:.3f} +- {u:.3f}",
+                verdict, "beta", beta, beta - u, beta + u,
+                (RANDOM_PHASE_BETA - RESOLUTION, RANDOM_PHASE_BETA + RESOLUTION), (),
+                "" if verdict != INCONCLUSIVE else F.STRADDLES))
+    return out
+
+
+def strip_members(d):
+    """Per 1 - r (a part each), max |v_n| of each half of the strip orbits against V*(r):
+    confirmed inside, refuted outside (a rigorous bound: no tolerance)."""
+    out = []
+    for x, halves in zip(d.one_minus_r, d.strip_halves or [], strict=False):
+        edge = velocity_strip(1.0 - x, d.eps)
+        for i, m in enumerate(halves):
+            verdict = CONFIRMED if m <= edge else REFUTED
+            out.append(F.Analysis(f"half {i + 1} of the orbits: max |v| = {m:.4g}, V* = "
+                                  f"{edge:.4g}", verdict, "max |v| / V*", m / edge, m / edge,
+                                  m / edge, (0.0, 1.0), ((1.0, math.inf),), "",
+                                  f"1 - r = {x:g}"))
+    return out
+
+
+def _claim(members, **fields):
+    verdict, kind = agreement(F.analyses_json(members))
+    return Claim(**fields, verdict=verdict, inconclusive=kind,
+                 analyses=F.analyses_json(members))
 
 
 def dissipation_claims(d):
     """Claims ``dissipation-saturates``, ``dissipation-exponent`` and
-    ``dissipation-velocity-strip`` (rules in the verdict functions' docstrings)."""
+    ``dissipation-velocity-strip``, each the agreement of its family (the member rules:
+    ``saturation_member``, ``exponent_verdict``, ``strip_members``)."""
     curves = d.restitution + d.drag
-    sat = saturation_verdict(d.elastic, curves)
-    worst = max(curves, key=lambda c: abs(c.slope) / (1.96 * c.slope_err + c.slope_sys))
-    u_beta = 1.96 * d.beta_err + d.beta_sys
+    sat = [saturation_member(d.n, d.elastic, c, w) for w in plateau_windows(d.window)
+           for c in curves]
+    beta = exponent_members(d)
+    strip = strip_members(d)
     where = (f"eps = {d.eps:g}, {d.particles} starts in the paper's escape box, plateau window "
              f"n in [{d.window[0]:g}, {d.window[1]:g}]")
+    windows = "the plateau windows: the last decade of n and the last half decade"
     return [
-        Claim(
-            id="dissipation-saturates", figure="dissipation",
+        _claim(
+            sat, id="dissipation-saturates", figure="dissipation",
             statement="dissipation suppresses Fermi acceleration: <v> grows, then bends to a "
                       "constant (the source shows it for linear drag; checked here for "
                       "restitution and both drag laws)",
             quote="the average velocity starts growing at first and then bends towards a regime "
                   "of constant value, thus confirming that the introduction of drag force is a "
                   "sufficient condition to suppress Fermi acceleration",
-            observable="slope of log<v_n> against log n over the last decade of n, eps = 2",
+            observable="slope of log<v_n> against log n over the plateau window, eps = 2",
             regime="the plateau: n in the last decade of the study",
-            tolerance="a slope compatible with 0 within its uncertainty (1.96 sigma + window "
-                      "systematic) is a plateau",
+            family=f"every dissipative physics (restitution and both drag laws) over {windows}",
+            tolerance="a slope compatible with 0 within 1.96 sigma is a plateau",
             source="de Souza, Simoes, da Silva, Leonel, Math. Probl. Eng. 2009, 409857 "
                    "(abstract; not the paper)",
-            verdict=sat,
-            evidence=f"{where}: slope of log<v_n> vs log n, elastic {d.elastic.slope:.3f} +- "
-                     f"{d.elastic.slope_err:.3f}; dissipative slopes "
-                     + ", ".join(f"{c.label}: {c.slope:.3f} +- {c.slope_err:.3f}"
-                                 for c in curves)
-                     + f" (+- bootstrap over {BLOCKS} particle blocks); the farthest from 0 is "
-                     f"{worst.label} at {abs(worst.slope):.3f} against U = "
-                     f"{1.96 * worst.slope_err + worst.slope_sys:.3f}.",
+            evidence=f"{where}: {F.family_text(sat)} (bootstrap over {BLOCKS} particle "
+                     "blocks).",
             particles_per_curve=d.particles,
             statistical={c.label: c.slope_err for c in [d.elastic, *curves]},
             systematic={c.label: c.slope_sys for c in [d.elastic, *curves]}, run=None,
-            rule="every dissipative slope within 1.96 sigma + window systematic of 0 while the "
-                 "elastic one grows; refuted if one grows as fast as the elastic curve"),
-        Claim(
-            id="dissipation-exponent", figure="dissipation",
+            rule="each member: its slope within 1.96 sigma of 0 while the elastic one grows; "
+                 "refuted if it grows as fast as the elastic curve; the claim is the agreement "
+                 "of its members"),
+        _claim(
+            beta, id="dissipation-exponent", figure="dissipation",
             statement="V_sat ~ (1 - r)^(-1/2), our random-phase estimate (no published value "
                       "found: Livorati, Ladeira, Leonel, PRE 78, 056205 (2008) and the other "
                       "sources in reports/paper/dissipation.py give none in their abstracts)",
             quote="",
             observable="least-squares slope of log V_sat against log(1 - r), eps = 2",
             regime="the plateau of each r",
-            tolerance="|beta + 1/2| within 1.96 sigma + systematic, resolving U <= 1/4",
+            family=f"{windows}; the fit over every 1 - r and without the largest",
+            tolerance="|beta + 1/2| within 1.96 sigma, resolving U <= 1/4",
             source="this project",
-            verdict=exponent_verdict(d.beta, d.beta_err, d.beta_sys),
-            evidence=f"{where}: least-squares slope of log V_sat against log(1 - r) for 1 - r "
-                     f"in {', '.join(f'{x:g}' for x in d.one_minus_r)} = {d.beta:.3f} +- "
-                     f"{d.beta_err:.3f} (bootstrap over {BLOCKS} particle blocks) +- "
-                     f"{d.beta_sys:.3f} (plateau window and fit range); |beta + 1/2| = "
-                     f"{abs(d.beta - RANDOM_PHASE_BETA):.3f} against U = {u_beta:.3f}.",
+            evidence=f"{where}: {F.family_text(beta)}; 1 - r in "
+                     f"{', '.join(f'{x:g}' for x in d.one_minus_r)}.",
             particles_per_curve=d.particles,
             statistical={"beta": d.beta_err}, systematic={"beta": d.beta_sys}, run=None,
-            rule="|beta + 1/2| <= 1.96 sigma + systematic, with U <= 1/4"),
-        Claim(
-            id="dissipation-velocity-strip", figure="dissipation",
+            rule="each member: |beta + 1/2| <= 1.96 sigma, with U <= 1/4; refuted if beyond; "
+                 "the claim is the agreement of its members"),
+        _claim(
+            strip, id="dissipation-velocity-strip", figure="dissipation",
             statement="inelastic impacts confine the chaotic orbits to a velocity strip of width"
                       " ~ 1/(1 - r); in our units its edge is V*(r) ~ 2 abs(eps)/(1 - r), "
                       "derived in reports/paper/dissipation.py",
             quote="bounded by a velocity strip v = +-Gamma/(1 - r)",
             observable="max |v_n| of the study's orbits against V*(r)",
             regime="every collision of 10,000 per orbit",
+            family="each 1 - r (a part each), the orbits in two independent halves",
             tolerance="none: V* is a rigorous bound of the exact dynamics",
             source="Barroso, Carneiro, Macau, Phys. Rev. E 79, 026206 (2009) (abstract; not the "
                    "paper)",
-            verdict=strip_verdict(d.one_minus_r, d.strip_max, d.eps),
             evidence=f"eps = {d.eps:g}, {d.strip_orbits} orbits of {int(d.n[-1]):,} "
-                     "collisions per r from the study's starts: max |v_n| / V*(r) = "
-                     + ", ".join(f"{m / velocity_strip(1.0 - x, d.eps):.3f} (1 - r = {x:g}, "
-                                 f"V* = {velocity_strip(1.0 - x, d.eps):.4g})"
-                                 for x, m in zip(d.one_minus_r, d.strip_max or [],
-                                                 strict=False))
-                     + f"; the strip is a bound (width ~ (1 - r)^-1), the plateau grows "
-                     f"only as (1 - r)^{d.beta:.2f}.",
+                     f"collisions per r from the study's starts: {F.family_text(strip)}; the "
+                     f"strip is a bound (width ~ (1 - r)^-1), the plateau grows only as "
+                     f"(1 - r)^{d.beta:.2f}.",
             particles_per_curve=d.strip_orbits, statistical={}, systematic={}, run=None,
             rule="every max |v_n| <= V*(r) (a rigorous bound of the exact dynamics: no "
-                 "tolerance); refuted if an orbit leaves the strip"),
+                 "tolerance); refuted if an orbit leaves the strip; one part per 1 - r"),
     ]

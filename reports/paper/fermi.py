@@ -11,16 +11,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from fastpath.kernels.moments import moments
+from reports.paper import family as F
 from reports.paper.check import Check, agree
 from reports.paper.register import make_claim
-from reports.paper.rules import (
-    SAME,
-    SAME_FAILS,
-    relative_band,
-    two_band_note,
-    two_band_verdict,
-)
+from reports.paper.rules import SAME, SAME_FAILS, relative_band
 from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit, verified_text, verify_sample
+from reports.paper.window_family import STEP
 
 # Fermi acceleration ensemble (eps = 0.6, the paper's escape start box)
 FERMI_EPS = 0.6
@@ -56,6 +52,8 @@ class Fermi:
     flagged: int
     verification: dict
     seconds: float
+    blocks_n: tuple = ()  # (sums of v, counts) per particle block at the n grid
+    blocks_t: tuple = ()  # the same at the t grid
 
 
 def _window_slope(x, y, lo, hi):
@@ -96,7 +94,8 @@ def fermi_ensemble(quick=False, particles=None):
     return Fermi(m, nf, mom.mean_v_n, t_grid, mom.mean_v_t, mom.particles_t, beta_n, err_n,
                  math.exp(amp_n) if math.isfinite(amp_n) else math.nan, beta_t, err_t,
                  math.exp(amp_t) if math.isfinite(amp_t) else math.nan, n_win, t_win,
-                 mom.collisions, mom.flagged, ver, time.perf_counter() - t0)
+                 mom.collisions, mom.flagged, ver, time.perf_counter() - t0,
+                 (mom.sum_v_n, mom.count_n), (mom.sum_v_t, mom.count_t))
 
 
 def fermi_checks(fermi):
@@ -113,49 +112,45 @@ def fermi_checks(fermi):
     ]
 
 
-WINDOW_SHIFT_DECADES = 0.25
-
-
-def _window_family(x, y, window):
-    """Slopes over the window with its start moved 10**(+-1/4) and its end pulled in by
-    10**(1/4) (as ``reports.stats.analysis.systematic``): their half-range."""
+def inside_windows(window):
+    """The diffusive window (lo, hi), its start a quarter decade later, its end a quarter decade
+    earlier, and both (``reports.paper.window_family.STEP``)."""
     lo, hi = window
-    f = 10 ** WINDOW_SHIFT_DECADES
-    slopes = [_window_slope(x, y, a, b)[0] for a in (lo / f, lo, lo * f) for b in (hi / f, hi)]
-    slopes = [s for s in slopes if math.isfinite(s)]
-    return 0.5 * (max(slopes) - min(slopes)) if slopes else math.nan
+    return [(lo, hi), (lo * STEP, hi), (lo, hi / STEP), (lo * STEP, hi / STEP)]
 
 
 def fermi_claims(fermi):
     """Claims ``fermi-n`` (<v_n> ~ n^(1/2)) and ``fermi-t`` (t ~ n^(3/2), i.e. <v(t)> ~
     t^(1/3)), register ``reports.paper.register``.
 
-    Rule: "the same" exponent (``reports.paper.rules``, two bounds): the slope's interval, 1.96
-    sigma (bootstrap over particle blocks) plus the window family's half-range on each side,
-    confirms if it lies within ``rules.SAME`` (10%) of the exponent, refutes if it lies wholly
-    beyond ``rules.SAME_FAILS`` (25%) of it, and is inconclusive otherwise.
+    Family: the windows inside the diffusive regime (``inside_windows``). Each member: "the
+    same" exponent (``reports.paper.rules``, two bounds) on the slope's interval, 1.96 sigma
+    (bootstrap over particle blocks): confirmed if it lies within ``rules.SAME`` (10%) of the
+    exponent, refuted if it lies wholly beyond ``rules.SAME_FAILS`` (25%) of it, inconclusive
+    otherwise.
     """
     out = []
-    for key, beta, err, expected, x, y, window, unit in (
-            ("n", fermi.beta_n, fermi.beta_n_err, 0.5, fermi.n, fermi.mean_v_n, fermi.n_window,
-             "n (collisions)"),
-            ("t", fermi.beta_t, fermi.beta_t_err, 1 / 3, fermi.t, fermi.mean_v_t,
-             fermi.t_window, "t")):
-        sys = _window_family(x, y, window)
-        u = 1.96 * err + sys
+    for key, expected, x, y, window, blocks, unit in (
+            ("n", 0.5, fermi.n, fermi.mean_v_n, fermi.n_window, fermi.blocks_n, "n"),
+            ("t", 1 / 3, fermi.t, fermi.mean_v_t, fermi.t_window, fermi.blocks_t, "t")):
         band = relative_band(expected, SAME)
         fails = relative_band(expected, SAME_FAILS)
-        verdict = two_band_verdict(beta - u, beta + u, band, fails)
-        note = two_band_note(beta - u, beta + u, band, fails)
+        members = []
+        for lo, hi in inside_windows(window):
+            beta = _window_slope(x, y, lo, hi)[0]
+            def slope(c, lo=lo, hi=hi, x=x):
+                return _window_slope(x, c, lo, hi)[0]
+            err = bootstrap_blocks(*blocks, slope) if blocks else math.nan
+            variant = f"{unit} in [{lo:.4g}, {hi:.4g}]"
+            if math.isfinite(beta) and math.isfinite(err):
+                members.append(F.band_member(variant, f"slope of log<v> on log {unit}", beta,
+                                             beta - 1.96 * err, beta + 1.96 * err, band, fails))
+            else:
+                members.append(F.too_few(variant, f"slope of log<v> on log {unit}", beta))
         out.append(make_claim(
-            f"fermi-{key}", verdict,
-            f"slope of log<v> against log {unit} over [{window[0]:g}, {window[1]:.3g}]"
-            f" = {beta:.4f} +- {err:.4f} (bootstrap over 64 particle blocks, "
-            f"{fermi.particles} particles) +- {sys:.3f} (window family): interval "
-            f"[{beta - u:.4f}, {beta + u:.4f}] against the band [{band[0]:.4f}, {band[1]:.4f}] "
-            f"(fails wholly outside [{fails[0]:.4f}, {fails[1]:.4f}]"
-            f"{'; ' + note if note else ''}); "
-            f"{verified_text(fermi.verification)}.",
-            particles_per_curve=fermi.particles,
-            statistical={"beta": beta, "sigma": err}, systematic={"beta": sys}))
+            f"fermi-{key}", f"{fermi.particles} particles, bootstrap over 64 particle blocks; "
+            f"the band [{band[0]:.4f}, {band[1]:.4f}], fails wholly outside [{fails[0]:.4f}, "
+            f"{fails[1]:.4f}]: {F.family_text(members)}; {verified_text(fermi.verification)}.",
+            analyses=members, particles_per_curve=fermi.particles,
+            statistical={"beta": fermi.beta_n if key == "n" else fermi.beta_t}))
     return out

@@ -37,6 +37,8 @@ from reports.paper.fig2_escape import escape_markdown, figure_escape
 from reports.paper.fig3_transport import figure_transport, transport_markdown
 from reports.paper.fig4_h1 import figure_h1, h1_markdown
 from reports.paper.geometry_claims import escape_hole_claims, transport_hole_claims
+from reports.paper.joint_sample import from_followed, run_joint
+from reports.paper.ordering_claims import snapshot_times
 from reports.paper.register import ISLAND_HOLES, SEA_HOLES, entries
 from reports.paper.runs import (
     DEFAULT_PARTICLES,
@@ -49,7 +51,8 @@ from reports.paper.runs import (
     say_nothing,
 )
 from reports.paper.start_claims import (
-    destruction_claim,
+    destroy_all_claim,
+    effective_destruction_claim,
     island_start_claim,
     other_box_claim,
     other_density_claim,
@@ -94,19 +97,22 @@ def decide(out_dir, runs, quick, echo):
         if hole not in esc:
             continue
         tail = esc[hole]["windows"].n_at.get("tail")
-        snapshot[hole] = int(tail) if tail is not None else None
+        snapshot[hole] = snapshot_times(tail) if tail is not None else ()
         echo(f"paper figures: sampled escape study, phi_c = {hole}")
-        follow[hole] = studies.escape_sample(
-            _hole_centre(hole), bool(quick), "uniform",
-            (snapshot[hole],) if snapshot[hole] else ())
+        follow[hole] = studies.escape_sample(_hole_centre(hole), bool(quick), "uniform",
+                                             snapshot[hole])
         smooth[f"phi_c={hole}"] = studies.escape_sample(_hole_centre(hole), bool(quick),
                                                         "smooth")
+    joint = joint_samples(runs["paper-escape"], follow)
     echo("paper figures: transport analysis and the sampled study of h = 1")
     tr = transport_analysis(runs["paper-transport"])
     samples = {entry: studies.transport_sample(1.0, entry, bool(quick)) for entry in (1, 2)}
+    replicas = {entry: studies.transport_sample(1.0, entry, bool(quick), replica=1)
+                for entry in (1, 2)}
     echo("paper figures: island geometry and the island-start studies")
     claims = escape_hole_claims(quick)
-    claims += escape_claims(esc, runs["paper-escape"], {"follow": follow, "snapshot": snapshot})
+    claims += escape_claims(esc, runs["paper-escape"], {"joint": joint, "follow": follow,
+                                                        "snapshot": snapshot})
     claims += fermi_claims(fermi)
     levels = {f"phi_c={h}": a["windows"].level_tail for h, a in esc.items()}
     claims.append(other_box_claim(runs["paper-escape"], runs["escape-second-box"], levels))
@@ -114,13 +120,25 @@ def decide(out_dir, runs, quick, echo):
     island = studies.island_box_sample(0.0, bool(quick))
     box_regular = (int(island[2].regular.sum()), len(island[0]))
     claims.append(island_start_claim(runs["escape-island-start"], box_regular))
-    claims.append(destruction_claim(island))
+    claims.append(destroy_all_claim(island))
+    if "0" in esc:
+        claims.append(effective_destruction_claim(esc, island))
     claims += transport_hole_claims(quick)
-    claims += transport_claims(tr, runs["paper-transport"], samples)
+    claims += transport_claims(tr, runs["paper-transport"], samples,
+                               joint=run_joint(runs["paper-transport"], width="1") or None,
+                               replicas=replicas)
     order = {e["id"]: i for i, e in enumerate(entries())}
     claims.sort(key=lambda c: order.get(c.id, len(order)))
     return claims, {"fermi": fermi, "escape": esc, "transport": tr, "follow": follow,
-                    "snapshot": snapshot, "t_d": t_d}
+                    "snapshot": {h: (s[0] if s else None) for h, s in snapshot.items()},
+                    "t_d": t_d}
+
+
+def joint_samples(run_dir, follow):
+    """{hole: JointSample}: the run's joint (n, t) record where it has one
+    (``reports.paper.joint_sample.run_joint``), else the sampled study's."""
+    recorded = run_joint(run_dir)
+    return {hole: recorded.get(hole) or from_followed(fol) for hole, fol in follow.items()}
 
 
 def paper_figures_section(out_dir, particles=None, quick=False, echo=None,

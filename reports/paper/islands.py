@@ -20,7 +20,10 @@ towards the islands, the same for every strip (the classified fraction of a star
 with the share of its starts that never escape through a hole in the chaotic sea to about 1%).
 
 The fraction of a phase strip [lo, hi] x [pi/2, 3 pi/2] (one velocity period, around the island
-(0, pi)) on islands is estimated from uniform random starts, with 95% Wilson intervals.
+(0, pi)) on islands is estimated from uniform random starts, with 95% Wilson intervals. The phase
+space is nearly periodic in v with period pi (the paper's Section 2): the strip of period m,
+[lo, hi] x [pi (m - 1/2), pi (m + 1/2)], holds the island around (0, pi m), whose orbits are
+locked to the resonance of mean flight time 2 pi m.
 """
 
 from __future__ import annotations
@@ -36,7 +39,6 @@ from reports.runs.survival import wilson
 CLASSIFY_COLLISIONS = 2000
 REGULAR_BAND = 5.0
 LOCK_TOLERANCE = 0.01
-V_PERIOD = (0.5 * math.pi, 1.5 * math.pi)  # one velocity period, around the island (0, pi)
 
 
 def centred(phi):
@@ -54,8 +56,14 @@ class Classified:
     phase_hi: np.ndarray
 
 
-def classify(phi, v, eps, collisions=CLASSIFY_COLLISIONS):
-    """``Classified`` starts (module docstring). Starts that do not leave the plate
+def velocity_period(m):
+    """The velocity band of period m >= 1: (pi (m - 1/2), pi (m + 1/2)), around (0, pi m)."""
+    return (math.pi * (m - 0.5), math.pi * (m + 0.5))
+
+
+def classify(phi, v, eps, collisions=CLASSIFY_COLLISIONS, m=1):
+    """``Classified`` starts (module docstring); "on the large island" is the island around
+    (0, pi m), locked to a mean flight time of 2 pi m. Starts that do not leave the plate
     (v + eps sin(phi) <= 0) are chaotic by definition here (they are not island orbits)."""
     phi = np.asarray(phi, dtype=np.float64)
     v = np.asarray(v, dtype=np.float64)
@@ -76,7 +84,7 @@ def classify(phi, v, eps, collisions=CLASSIFY_COLLISIONS):
     large = np.zeros(len(phi), bool)
     reg = v_hi - v_lo < REGULAR_BAND
     regular[ok] = reg
-    large[ok] = reg & (np.abs(t / collisions - 2 * math.pi) < LOCK_TOLERANCE * 2 * math.pi)
+    large[ok] = reg & (np.abs(t / collisions - 2 * math.pi * m) < LOCK_TOLERANCE * 2 * math.pi * m)
     lo, hi = np.full(len(phi), math.nan), np.full(len(phi), math.nan)
     lo[ok], hi[ok] = c_lo, c_hi
     return Classified(regular, large, lo, hi)
@@ -84,13 +92,15 @@ def classify(phi, v, eps, collisions=CLASSIFY_COLLISIONS):
 
 @dataclass
 class Strip:
-    """Fractions of a phase strip [lo, hi] x V_PERIOD on islands, with 95% Wilson intervals."""
+    """Fractions of a phase strip [lo, hi] x velocity_period(m) on islands (``large``: the
+    island around (0, pi m)), with 95% Wilson intervals."""
 
     lo: float
     hi: float
     samples: int
     regular: int
     large: int
+    m: int = 1
 
     @property
     def regular_fraction(self):
@@ -108,13 +118,14 @@ class Strip:
         return tuple(float(x) for x in wilson(count, self.samples))
 
 
-def strip_fractions(lo, hi, eps, samples=2000, seed=0):
-    """``Strip`` of the phases [lo, hi] (taken mod 2 pi) x V_PERIOD from uniform random starts."""
+def strip_fractions(lo, hi, eps, samples=2000, seed=0, m=1):
+    """``Strip`` of the phases [lo, hi] (taken mod 2 pi) x velocity_period(m) from uniform random
+    starts."""
     rng = np.random.default_rng(seed)
     phi = np.mod(rng.uniform(lo, hi, samples), 2 * math.pi)
-    v = rng.uniform(*V_PERIOD, samples)
-    cls = classify(phi, v, eps)
-    return Strip(float(lo), float(hi), samples, int(cls.regular.sum()), int(cls.large.sum()))
+    v = rng.uniform(*velocity_period(m), samples)
+    cls = classify(phi, v, eps, m=m)
+    return Strip(float(lo), float(hi), samples, int(cls.regular.sum()), int(cls.large.sum()), m)
 
 
 def box_starts(phi_box, v_box, samples, seed=0):

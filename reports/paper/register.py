@@ -2,11 +2,14 @@
 
 One entry per claim: id, figure, our one-line reading (``statement``), the paper's words
 verbatim (``quote``; whitespace may differ, "..." elides, LaTeX as in the text), the
-``observable``, the ``regime`` it speaks of, the ``rule`` that decides it and the ``tolerance`` of
-its qualitative words (constants of ``reports.paper.rules``), and its ``source``. Claims made for
+``observable``, the ``regime`` it speaks of, the ``family`` of analyses its words allow (windows
+inside the regime, metrics, levels, curves; ``reports.paper.family``), the ``rule`` that decides
+it and the ``tolerance`` of its qualitative words (constants of ``reports.paper.rules``), and its
+``source``. Claims made for
 several holes or widths have one entry each. The evaluators (``escape_claims``,
-``transport_claims``, ``start_claims``, ``geometry_claims``, ``fermi``) compute verdicts and
-evidence; ``make_claim`` joins them to the entry into a ``Claim``, by keyword.
+``transport_claims``, ``start_claims``, ``geometry_claims``, ``fermi``, ...) compute the members
+of each family and the evidence; ``make_claim`` joins them to the entry into a ``Claim`` whose
+verdict is their agreement.
 
 ``quote_found(quote, text)`` is how a quote is checked against the paper's text (the test
 ``tests/reports/paper/test_register.py`` runs it when ``BOUNCER_PAPER_TEXT`` names the file).
@@ -15,7 +18,10 @@ evidence; ``make_claim`` joins them to the entry into a ``Claim``, by keyword.
 from __future__ import annotations
 
 from reports.paper import rules as R
-from reports.paper.claims import PAPER, Claim
+from reports.paper.claims import PAPER, Claim, agreement
+from reports.paper.family import analyses_json
+from reports.paper.studies import ISLAND_COLLISIONS
+from reports.paper.window_family import LATE_MEMBERS
 
 ISLAND_HOLES = ("0", "0.5", "1", "1.5")  # the paper's Fig. 2 caption
 SEA_HOLES = ("2", "2.5")
@@ -39,9 +45,6 @@ Q_TAIL = ("and eventually a slow power law, as islands not covered by the hole b
           "significant.")
 Q_SEA_SLOWED = ("Where the hole is in the chaotic sea, decay is generally slowed by the available"
                 " large elliptic islands.")
-Q_DESTRUCTION = ("Note that a hole partially covering an island may in fact destroy all orbits "
-                 "surrounding that island; here we see effective destruction of islands using "
-                 "holes quite a lot smaller than the islands concerned.")
 Q_SAME_POWER_CAPTION = "The algebraic decay has the same power as for discrete time."
 Q_SAME_POWER_TEXT = ("The algebraic decays in continuous time are, however, the same as in "
                      "discrete time")
@@ -55,6 +58,10 @@ Q_N_SQRT_T = ("the largest contribution from $n\\approx(3c_1n_0t^2)^{1/4}$, corr
 Q_PLATEAU = ("So, if the initial conditions include an elliptic region not connected with the "
              "hole, the survival probability will tend to a constant as $t\\to\\infty$, giving the"
              " probability of choosing such an initial condition.")
+Q_DESTROY_ALL = ("Note that a hole partially covering an island may in fact destroy all orbits "
+                 "surrounding that island")
+Q_EFFECTIVE = ("here we see effective destruction of islands using holes quite a lot smaller than "
+               "the islands concerned.")
 Q_OTHER_SET = ("any other reasonably large set in the chaotic region ... would give the same "
                "results, at least at long times.")
 Q_OTHER_DENSITY = ("any other reasonably large set in the chaotic region and any other smooth "
@@ -108,7 +115,53 @@ TAIL = ("late tail: from where the discrete-time hazard has fallen to "
         f"{R.HAZARD_TENTH} of its plateau (the slow population holds 90% of the escapes) to the"
         " last escape before the horizon;"
         f" at least {R.MIN_ESCAPES_TAIL} escapes")
-FAMILY = "systematic: half-range over the window family (start x 10^(+-1/4), end x 10^(-1/4))"
+AGREE = ("the claim's verdict is the agreement of its family: confirmed (refuted) only if every "
+         "member is, inconclusive otherwise")
+FAM_INSIDE = ("windows inside the intermediate regime, each fitted on its own: the regime's "
+              "window, its start a quarter decade later, its end a quarter decade earlier, and "
+              f"both; those with at least {R.MIN_ESCAPES_INTERMEDIATE} escapes")
+FAM_TAIL = ("the tail's late windows: starts moving later from the tail's start by quarter "
+            "decades (never back into the intermediate regime), each to the end of the data, "
+            f"every one holding at least {R.MIN_ESCAPES_TAIL} escapes up to the latest, each "
+            "fitted on its own")
+FAM_LIMIT = ("'eventually', a limit: the tail's late windows (starts moving later from the "
+             "tail's start by quarter decades, each to the end of the data) read as a trend: "
+             f"the latest {LATE_MEMBERS} holding at least {R.MIN_ESCAPES_TAIL} escapes (the "
+             "latest window with enough escapes, and the starts a quarter and a half decade "
+             "before it), each fitted on its own")
+FAM_FERMI = ("windows inside the diffusive regime: the regime's window, its start a quarter "
+             "decade later, its end a quarter decade earlier, and both; each slope with its own "
+             "bootstrap interval")
+FAM_LONG_TIMES = ("every hole and clock; 'at long times', a limit: the late tail's windows "
+                  "(starts moving later by quarter decades from the reference's tail level, "
+                  "each to the last bin with 10 particles at risk in both) read as a trend: the "
+                  f"latest {LATE_MEMBERS} with enough escapes to decide (a log-rank interval "
+                  "narrow enough to fit inside the holds band; its width does not depend on the "
+                  "ratio measured); the hazard ratio of each")
+FAM_ISLAND_SURVIVAL = ("the share still inside at the study's horizon and at half of it (the "
+                       "plateau it tends to)")
+FAM_LONG_LIVED = ("long-lived times: the long-lived time and later times a quarter decade "
+                  f"apart, every one at which at least {R.fewest_to_reach(R.TRAP_SHARE)} "
+                  "entrants of hole 1 remain (with fewer, none leaving by hole 2 cannot show "
+                  f"a share at or below {R.pct(R.TRAP_SHARE)}: the bound is out of reach)")
+FAM_WELL = ("the long-lived regime's late windows: starts moving later by quarter decades "
+            f"from the long-lived time, every one with at least {R.MIN_ESCAPES_TAIL} escapes; "
+            "three members each: the model selection, the residual excess and Pearson's "
+            "chi-squared")
+WELL_RULE = ("'well approximated': each window three members: the three-way comparison "
+             "(confirmed if it picks the stretched law, refuted if it picks another, "
+             "inconclusive if it cannot choose), the residual excess (confirmed if the law "
+             f"stays within {R.RESIDUAL_LEVEL:g} in log S of the data beyond its 95% band where "
+             f"at least 100 particles remain, refuted if it strays by at least "
+             f"{R.RESIDUAL_FAILS:g}) and the absolute goodness of fit (confirmed if Pearson's "
+             f"chi-squared p >= {R.GOF_HOLDS:g}, refuted if p <= {R.GOF_FAILS:g}); {AGREE}")
+WELL_TOL = (f"'well approximated': the stretched law wins; excess in log S: "
+            f"{R.bounds_text(R.RESIDUAL_LEVEL, R.RESIDUAL_FAILS, '{:g}'.format)}; goodness of "
+            f"fit p: {R.bounds_text(R.GOF_HOLDS, R.GOF_FAILS, '{:g}'.format)}; the power in the "
+            "exponent is left open by the paper and only reported")
+FAM_GEOMETRY = ("the hole's strip in two velocity periods of the nearly periodic phase space: "
+                "pi/2 < v < 3 pi/2 (around the island (0, pi)) and 3 pi/2 < v < 5 pi/2 (around "
+                "(0, 2 pi)), 2000 random starts each")
 LONG_LIVED = (f"long-lived: after the entrants of hole 1 still inside fall to "
               f"{R.LONG_LIVED_LEVEL:g} (P_11 + P_12 <= {R.LONG_LIVED_LEVEL:g}), to the last "
               "escape")
@@ -122,10 +175,11 @@ SAME_TOL = (f"'the same': equal within {R.pct(R.SAME)} (relative), different bey
             f"{R.pct(R.SAME_FAILS)}")
 
 
-def _entry(id, figure, statement, quote, observable, regime, rule, tolerance, source=PAPER):
+def _entry(id, figure, statement, quote, observable, regime, rule, tolerance, source=PAPER, *,
+           family):
     return {"id": id, "figure": figure, "statement": statement, "quote": quote,
-            "observable": observable, "regime": regime, "rule": rule, "tolerance": tolerance,
-            "source": source}
+            "observable": observable, "regime": regime, "family": family, "rule": rule,
+            "tolerance": tolerance, "source": source}
 
 
 def _escape_entries():
@@ -140,20 +194,21 @@ def _escape_entries():
             Q_HOLES,
             ("share of the strip widened by one hole width (phi_c +- 0.45) on the large island "
              "around (0, pi)" if island else "share of the strip phi_c +- 0.15 on any island")
-            + ", pi/2 < v < 3 pi/2, from 2000 random starts classified by their orbits "
+            + ", from 2000 random starts per velocity period classified by their orbits "
               "(reports/paper/islands.py)",
             "phase space at eps = 0.6 (no holes)",
-            ("confirmed if the Wilson interval of the share lies at or above "
+            ("each member: confirmed if the Wilson interval of the share lies at or above "
              f"{R.pct(R.OVER_OR_NEAR)}, refuted if it lies at or below "
              f"{R.pct(R.OVER_OR_NEAR_FAILS)} (a trace: the hole far from the island), "
-             "inconclusive otherwise" if island else
-             f"confirmed if the Wilson interval lies at or below {R.pct(R.ALMOST_ENTIRELY)}, "
-             f"refuted if it lies at or above {R.pct(R.ALMOST_ENTIRELY_FAILS)} (mostly islands), "
-             "inconclusive otherwise"),
+             f"inconclusive otherwise; {AGREE}" if island else
+             f"each member: confirmed if the Wilson interval lies at or below "
+             f"{R.pct(R.ALMOST_ENTIRELY)}, refuted if it lies at or above "
+             f"{R.pct(R.ALMOST_ENTIRELY_FAILS)} (mostly islands), inconclusive otherwise; "
+             f"{AGREE}"),
             ("'over or near', share of the strip widened by one hole width on the island: "
              + _bounds(R.OVER_OR_NEAR, R.OVER_OR_NEAR_FAILS) if island else
              "'almost entirely in the sea', share on islands: "
-             + _bounds(R.ALMOST_ENTIRELY, R.ALMOST_ENTIRELY_FAILS))))
+             + _bounds(R.ALMOST_ENTIRELY, R.ALMOST_ENTIRELY_FAILS)), family=FAM_GEOMETRY))
     for h in ISLAND_HOLES:
         out.append(_entry(
             f"fig2-n-phi_c={h}", "2",
@@ -161,27 +216,31 @@ def _escape_entries():
             "intermediate regime", Q_INTERMEDIATE_N,
             "stretched exponent beta of the maximum-likelihood fit of P(n) (binned, censored "
             "counts) in the intermediate window", INTERMEDIATE,
-            f"form 'exponential': beta cell [3/4, 5/4]; {FAMILY}", BETA_TOL))
+            f"form 'exponential' on each member's beta: cell [3/4, 5/4]; {AGREE}", BETA_TOL,
+            family=FAM_INSIDE))
     for h in SEA_HOLES:
         out.append(_entry(
             f"fig2-n-phi_c={h}", "2",
             f"discrete-time escape through the hole at phi_c = {h} (chaotic sea) is algebraic",
             Q_DISCRETE,
             "stretched exponent beta of the fit of P(n) in the late tail window", TAIL,
-            f"form 'algebraic' (power law): beta cell [0, 1/4); {FAMILY}", BETA_TOL))
+            f"form 'algebraic' (power law) on each member's beta: cell [0, 1/4); {AGREE}",
+            BETA_TOL, family=FAM_TAIL))
     for h in ISLAND_HOLES:
         out.append(_entry(
             f"fig2-n-tail-phi_c={h}", "2",
             f"escape through the hole at phi_c = {h} eventually follows a slow power law in "
             "discrete time", Q_TAIL,
             "stretched exponent beta of the fit of P(n) in the late tail window", TAIL,
-            f"form 'power law': beta cell [0, 1/4); {FAMILY}", BETA_TOL))
+            f"form 'power law' on each member's beta: cell [0, 1/4); {AGREE}", BETA_TOL,
+            family=FAM_LIMIT))
         out.append(_entry(
             f"fig2-t-phi_c={h}", "2",
             f"continuous-time escape through the hole at phi_c = {h} is close to exp(-c sqrt(t))"
             " in its intermediate regime", Q_INTERMEDIATE_T,
             "stretched exponent beta of the fit of P(t) in the intermediate window",
-            INTERMEDIATE, f"'close to' sqrt(t): beta band [0.4, 0.6]; {FAMILY}", CLOSE_TOL))
+            INTERMEDIATE, f"'close to' sqrt(t) on each member's beta: band [0.4, 0.6]; {AGREE}",
+            CLOSE_TOL, family=FAM_INSIDE))
     for h in ISLAND_HOLES + SEA_HOLES:
         island = h in ISLAND_HOLES
         out.append(_entry(
@@ -189,109 +248,136 @@ def _escape_entries():
             f"the algebraic decay through the hole at phi_c = {h} has the same power law "
             "exponent in continuous as in discrete time",
             Q_SAME_POWER_TEXT if island else Q_SAME_POWER_CAPTION,
-            "power-law exponents alpha_n and alpha_t (maximum likelihood) of P(n) and P(t) over "
-            "the same survival levels",
-            "matched survival levels: from the late tail's start level down to "
-            f"{R.SURVIVORS_MIN}/N; at least {R.MIN_ESCAPES_TAIL} escapes in each clock",
-            f"'the same' rule on alpha_n and alpha_t with U = 95% interval half-width + {FAMILY}:"
-            f" confirmed if |alpha_n - alpha_t| + U <= {R.SAME} x their mean, refuted if "
-            f"|alpha_n - alpha_t| - U >= {R.SAME_FAILS} x their mean, inconclusive otherwise;"
-            " compared only where the continuous-time curve is the non-accelerating population: "
-            "the intermediate stretched law, extrapolated, explains at most "
-            f"{R.pct(R.CHAOTIC_GONE)} of the survivors at the window's start (else "
-            "inconclusive)",
-            SAME_TOL))
+            "the powers of P(n) and P(t) over the same survival levels: power-law exponents "
+            "alpha_n and alpha_t (maximum likelihood), and the slope of log t_q on log n_q at "
+            "matched levels q (equal powers: slope 1)",
+            "matched survival levels: from the first level at or below the late tail's start "
+            "level where the continuous-time curve is the non-accelerating population (the "
+            "intermediate stretched law, extrapolated, explains at most "
+            f"{R.pct(R.CHAOTIC_GONE)} of its survivors), down to {R.SURVIVORS_MIN}/N",
+            "'the same' rule on each member, a +- U_a against b +- U_b (U the 95% half-width): "
+            f"confirmed if |a - b| + U <= {R.SAME} x their mean, refuted if |a - b| - U >= "
+            f"{R.SAME_FAILS} x their mean, inconclusive otherwise; the slope against 1 with "
+            f"U = 0 for 1; {AGREE}",
+            SAME_TOL,
+            family=("level windows whose start level moves down (later) by quarter decades from "
+                    f"the regime's start, every one with at least {R.MIN_ESCAPES_TAIL} escapes "
+                    "in each clock; two metrics each: alpha_n against alpha_t, and the "
+                    "matched-quantile slope against 1")))
         out.append(_entry(
             f"fig2-bounded-velocity-phi_c={h}", "2",
             f"the orbits of the slow decay through the hole at phi_c = {h} do not accelerate: "
             "their velocity stays bounded", Q_BOUNDED,
-            "mean time per collision t/n (twice the mean velocity) of each escape after n_half, "
-            "from a sampled study recording n and t of each particle (reports/paper/follow.py):"
-            " slope of log median(t/n) against log n over quarter-decades of n (the variable "
-            "the escapes are selected on); bootstrap interval over particles",
+            "time per collision t/n (twice the mean velocity) of each escape after n_half, from "
+            "joint (n, t) data (the run's joint record where it has one, else a sampled study, "
+            "reports/paper/joint_sample.py): slope of log (statistic of t/n) against log n over "
+            "quarter decades of n (the variable the escapes are selected on); Poisson-bootstrap "
+            "interval",
             "the slow decay: escapes after n_half, where the slow population holds half the "
             f"escapes; at least {R.MIN_ESCAPES_TAIL} escapes",
-            f"confirmed if the slope's interval lies within [{R.BOUNDED[0]}, {R.BOUNDED[1]}] "
-            f"(bounded velocity), refuted if it lies wholly outside [{R.BOUNDED_FAILS[0]}, "
-            f"{R.BOUNDED_FAILS[1]}] (nearer velocity diffusion's 1/2 than 0), inconclusive "
-            "otherwise",
+            f"each member: confirmed if the slope's interval lies within [{R.BOUNDED[0]}, "
+            f"{R.BOUNDED[1]}] (bounded velocity), refuted if it lies wholly outside "
+            f"[{R.BOUNDED_FAILS[0]}, {R.BOUNDED_FAILS[1]}] (nearer velocity diffusion's 1/2 "
+            f"than 0), inconclusive otherwise; {AGREE}",
             f"'tightly bounded velocity': t/n ~ n^s, holds at |s| <= {R.BOUNDED[1]}, fails at "
-            f"|s| >= {R.BOUNDED_FAILS[1]}"))
+            f"|s| >= {R.BOUNDED_FAILS[1]}",
+            family=("the slow decay's late windows: starts moving later from n_half by quarter "
+                    f"decades, each to the last escape, every one with at least "
+                    f"{R.MIN_ESCAPES_TAIL} escapes and a slope; two statistics of t/n per "
+                    "quarter decade of n: the median and the mean")))
     for h in ISLAND_HOLES:
         out.append(_entry(
             f"fig2-stages-phi_c={h}", "2",
             f"escape through the hole at phi_c = {h} is slower at first and faster at "
             "intermediate times than through the holes in the chaotic sea", Q_STAGES,
-            "P(n) of this hole against P(n) of the holes at phi_c = 2 and 2.5 (95% Wilson bands)",
-            "early: at this hole's median escape (P = 1/2); intermediate: at the end of its "
-            "intermediate window",
-            "confirmed if P is above both sea-hole curves early and below both at the end of the"
-            " intermediate window, each with disjoint 95% bands; refuted if either order is "
-            "reversed with disjoint bands; inconclusive otherwise",
-            "none beyond the 95% bands (an ordering)"))
+            "this hole against the holes at phi_c = 2 and 2.5: the escape rate per collision (the"
+            " hazard over a quarter decade of n; their ratio with Poisson intervals) and the "
+            "survival P(n) where the stage ends (the ratio with the 95% Wilson bands)",
+            "early: where this hole's P falls to 3/4 and to 1/2; intermediate: the middle and "
+            "the end of its intermediate window",
+            "two parts, 'slower at first' (a lower rate, P above the sea hole's) and 'faster at "
+            "intermediate times' (a higher rate, P below it); each member: confirmed if the "
+            "ratio's interval lies at or beyond 1 in the stated direction, refuted if it lies "
+            "beyond 1 in the other, inconclusive otherwise; a part is the agreement of its "
+            "members; the claim is confirmed if both parts are, refuted if one is",
+            "none beyond the 95% intervals (an ordering)",
+            family=("each part against both sea holes: the escape rate at its two points "
+                    "(early: P = 3/4 and P = 1/2; intermediate: the window's middle and end) "
+                    "and the survival where the stage ends")))
     for h in SEA_HOLES:
         out.append(_entry(
             f"fig2-sea-slowed-phi_c={h}", "2",
             f"escape through the hole at phi_c = {h} is slowed by the large islands: its late "
             "survivors stick to the large island around (0, pi m) and it decays more slowly "
             "than through the island holes", Q_SEA_SLOWED,
-            "share of the survivors at n_tail (sampled study, "
+            "share of the survivors after n collisions (sampled study, "
             "reports/paper/follow.py) whose next 200 collisions are locked to a period-1 "
             "resonance of the large islands (mean flight time 2 pi m within 1%, velocity within "
             "a band of 5); P(n) against the island holes' P(n) there",
             "late tail: survivors at n_tail, where the slow population holds 90% of the "
-            "escapes",
-            f"confirmed if the Wilson interval of that share lies at or above "
-            f"{R.pct(1 - R.MOSTLY)} and P(n) lies above every island-hole curve there; refuted "
-            f"if the interval lies at or below {R.pct(1 - R.MOSTLY_FAILS)} or P(n) lies below "
-            "an island-hole curve; inconclusive otherwise",
+            "escapes, and half a decade later",
+            "two parts: 'late survivors on the large islands', each member confirmed if the "
+            f"Wilson interval of the locked share lies at or above {R.pct(1 - R.MOSTLY)}, "
+            f"refuted if at or below {R.pct(1 - R.MOSTLY_FAILS)}; 'slower than through the "
+            "island holes', each member confirmed if P(n) lies above the island hole's beyond "
+            "the 95% bands, refuted if below; a part is the agreement of its members; the claim "
+            "is confirmed if both parts are, refuted if one is",
             "'slowed by the large islands': most of the late survivors there, "
-            + _bounds(1 - R.MOSTLY, 1 - R.MOSTLY_FAILS)))
+            + _bounds(1 - R.MOSTLY, 1 - R.MOSTLY_FAILS),
+            family=("both parts at n_tail and half a decade later; the ordering against each "
+                    "island hole")))
     for h in ISLAND_HOLES:
         out.append(_entry(
             f"sec3-n-sqrt-t-phi_c={h}", "sec3",
             f"the orbits escaping through the hole at phi_c = {h} at time t in the intermediate "
             "regime made n ~ t^(1/2) collisions", Q_N_SQRT_T,
-            "slope of log(median n of the escapes at time t) against log t, from a sampled "
-            "study recording n and t of each particle (reports/paper/follow.py); bootstrap "
-            "interval over particles", INTERMEDIATE + " (continuous time)",
-            "band rule on the slope: confirmed if its interval widened by the window family's "
-            "half-range lies in [0.4, 0.6], refuted if wholly outside (the closed system's "
-            "typical orbit has n ~ t^(2/3))",
-            "'n ~ t^(1/2)': slope within 0.1 of 1/2"))
+            "slope of log (statistic of n of the escapes at time t) against log t over quarter "
+            "decades of t, from joint (n, t) data (the run's joint record where it has one, "
+            "else a sampled study, reports/paper/joint_sample.py); Poisson-bootstrap interval",
+            INTERMEDIATE + " (continuous time); the saddle-point argument is a large-t "
+            "statement",
+            "band rule on each member's slope: confirmed if its interval lies in [0.4, 0.6], "
+            "refuted if wholly outside (the closed system's typical orbit has n ~ t^(2/3)); "
+            + AGREE,
+            "'n ~ t^(1/2)': slope within 0.1 of 1/2",
+            family=("large t: windows whose start moves later by quarter decades from the "
+                    "intermediate window's start, each to its end, the latest "
+                    f"{LATE_MEMBERS} with at least {R.MIN_ESCAPES_TAIL} escapes and a slope; "
+                    "two statistics of n per quarter decade of t: the median and the mean")))
     out += [
         _entry("fermi-n", "fermi", "a chaotic orbit's typical velocity grows as n^(1/2)",
                Q_VELOCITY, "slope of log<v_n> against log n, eps = 0.6, starts in the paper's "
                "escape box, no holes; bootstrap over particle blocks",
                "diffusive: n from 1000 to the end of the ensemble",
-               "'the same' exponent: confirmed if the slope's interval (1.96 sigma + "
-               f"window-family half-range) lies within {R.pct(R.SAME)} of 1/2, [0.45, 0.55]; "
-               f"refuted if it lies wholly beyond {R.pct(R.SAME_FAILS)} of it, outside "
-               "[0.375, 0.625]; inconclusive otherwise",
+               "'the same' exponent, each member: confirmed if the slope's interval (1.96 "
+               f"sigma) lies within {R.pct(R.SAME)} of 1/2, [0.45, 0.55]; refuted if it lies "
+               f"wholly beyond {R.pct(R.SAME_FAILS)} of it, outside [0.375, 0.625]; "
+               f"inconclusive otherwise; {AGREE}",
                f"'proportional to sqrt(n)': exponent within {R.pct(R.SAME)} of 1/2; not beyond "
-               f"{R.pct(R.SAME_FAILS)}"),
+               f"{R.pct(R.SAME_FAILS)}", family=FAM_FERMI),
         _entry("fermi-t", "fermi", "time grows as n^(3/2), i.e. <v(t)> grows as t^(1/3)",
                Q_TIME, "slope of log<v(t)> against log t, as fermi-n",
                "diffusive: t from 10^4 to the last time all particles reach",
                f"as fermi-n: confirmed within {R.pct(R.SAME)} of 1/3, [0.30, 0.367]; refuted "
-               f"wholly beyond {R.pct(R.SAME_FAILS)} of it, outside [0.25, 0.417]",
+               f"wholly beyond {R.pct(R.SAME_FAILS)} of it, outside [0.25, 0.417]; {AGREE}",
                f"'t_0 ~ n sqrt(n)': exponent of <v(t)> within {R.pct(R.SAME)} of 1/3; not beyond"
-               f" {R.pct(R.SAME_FAILS)}"),
+               f" {R.pct(R.SAME_FAILS)}", family=FAM_FERMI),
         _entry("sec3-other-box", "sec3",
                "a second start box in the chaotic sea gives the same escape at long times",
                Q_OTHER_SET,
                "hazard ratio (log-rank, binned) of the run from the box 3.85 < phi < 4.15, "
                "4.5 < v < 6.5 (scene escape-second-box, 10^7 per hole) against the paper-scale "
-               "run, every hole and clock, over the earlier and the later half of the long-time "
-               "window",
+               "run, every hole and clock",
                "long times: the late tail, from where the paper-scale curve falls to its tail "
                "level P(n_tail) (the slow population holds 90% of the escapes), in both clocks,"
                " to the last bin with 10 particles at risk in both runs",
-               "confirmed if every hazard ratio's 95% interval lies within "
-               f"[1/{1 + R.SAME:g}, {1 + R.SAME:g}], refuted if one lies wholly outside "
-               f"[1/{1 + R.SAME_FAILS:g}, {1 + R.SAME_FAILS:g}], inconclusive otherwise",
+               "each member: confirmed if the hazard ratio's 95% interval lies within "
+               f"[1/{1 + R.SAME:g}, {1 + R.SAME:g}], refuted if it lies wholly outside "
+               f"[1/{1 + R.SAME_FAILS:g}, {1 + R.SAME_FAILS:g}], inconclusive otherwise; one part "
+               "per hole and clock, each the agreement of its members; the claim is confirmed if "
+               "every part is, refuted if one is",
                f"'the same results': hazards equal within {R.pct(R.SAME)}, different beyond "
-               f"{R.pct(R.SAME_FAILS)}"),
+               f"{R.pct(R.SAME_FAILS)}", family=FAM_LONG_TIMES),
         _entry("sec3-other-density", "sec3",
                "a second smooth density on the paper's start box gives the same escape at long "
                "times", Q_OTHER_DENSITY,
@@ -300,76 +386,108 @@ def _escape_entries():
                "reports/paper/follow.py)",
                "long times, as sec3-other-box", "as sec3-other-box",
                f"'the same results': hazards equal within {R.pct(R.SAME)}, different beyond "
-               f"{R.pct(R.SAME_FAILS)}"),
+               f"{R.pct(R.SAME_FAILS)}", family=FAM_LONG_TIMES),
         _entry("sec3-island-start", "sec3",
                "starts touching an island not connected with the hole give a survival that "
                "tends to a constant, the share of starts on the island", Q_PLATEAU,
                "survival P(t) of the scene escape-island-start (hole at pi) over the last two "
                "decades before the horizon t = 10^5; the share of the start box on regular "
                "orbits (reports/paper/islands.py, 4000 random starts)",
-               "t -> infinity: the trend of the last two decades before the horizon",
-               "confirmed if the fall decelerates (the last decade holds significantly fewer "
-               "than half of the two decades' escapes) and the limit, between P(10^5) and P(10^5)"
-               " minus the geometric continuation of the falls, equals the regular share under "
-               "'the same'; refuted if the fall accelerates or the limit differs beyond the "
-               "uncertainties; inconclusive otherwise",
+               "t -> infinity: the trend of the last two spans before the horizon",
+               "two parts: 'tends to a constant', each member confirmed if the fall decelerates "
+               "(the last span holds significantly fewer than half of the two spans' escapes), "
+               "refuted if it significantly accelerates; 'giving the probability', each member "
+               "confirmed if the limit, between P(T) and P(T) minus the geometric continuation of "
+               "the falls, equals the regular share under 'the same', refuted if it differs "
+               "beyond the uncertainties; a part is the agreement of its members; the claim is "
+               "confirmed if both parts are, refuted if one is",
                f"'tends to a constant': a decelerating fall; 'giving the probability': equal "
-               f"within {R.pct(R.SAME)}, different beyond {R.pct(R.SAME_FAILS)}"),
-        _entry("sec3-destruction", "sec3",
-               "a hole over part of the large island, much smaller than the island, destroys "
-               "the orbits surrounding it", Q_DESTRUCTION,
+               f"within {R.pct(R.SAME)}, different beyond {R.pct(R.SAME_FAILS)}",
+               family=("the last two decades before the horizon and the last two half decades "
+                       "(spans of the trend), each for both parts")),
+        _entry("sec3-destroy-all", "sec3",
+               "a hole over part of the large island destroys all the orbits surrounding it",
+               Q_DESTROY_ALL,
                "share of the starts of the escape-island-start box on the large island (orbits "
-               "locked around (0, pi)) that are still inside after 3000 collisions with the "
-               "hole of width 0.3 at phi_c = 0 (sampled study); the phase width of those orbits",
-               "t -> infinity (3000 collisions: 19,000 time units)",
-               f"confirmed if at most {R.pct(R.DESTROYED)} of them survive (Wilson upper bound)"
-               f" and the island's phase width is at least {R.MUCH_SMALLER:g} hole widths; "
-               f"refuted if at least {R.pct(R.DESTROYED_FAILS)} survive (Wilson lower bound) or"
-               f" the island is at most {R.MUCH_SMALLER_FAILS:g} hole widths wide; inconclusive "
-               "otherwise",
-               f"'destroy all', share left: {_bounds(R.DESTROYED, R.DESTROYED_FAILS)}; 'quite a "
-               f"lot smaller', island width in hole widths: "
-               f"{_bounds(R.MUCH_SMALLER, R.MUCH_SMALLER_FAILS, '{:g}'.format)}"),
+               "locked around (0, pi)) that are still inside after n collisions with the hole "
+               "of width 0.3 at phi_c = 0 (sampled study)", "t -> infinity (the study's "
+               f"horizon, {ISLAND_COLLISIONS} collisions, and the plateau before it)",
+               "'all' is an exact word, read at the measurement's floor (one threshold, as "
+               f"'eventually escapes'): each member confirmed if at most {R.pct(R.DESTROYED)} "
+               "of them remain (Wilson upper bound), refuted if the Wilson lower bound lies at "
+               f"or above it; {AGREE}",
+               f"'destroy all', share left: at most {R.pct(R.DESTROYED)} (the floor)",
+               family=FAM_ISLAND_SURVIVAL),
+        _entry("sec3-effective-destruction", "sec3",
+               "here the hole of width 0.3 at phi_c = 0, quite a lot smaller than the large "
+               "island, effectively destroys its orbits: they escape as if the island were "
+               "chaotic sea", Q_EFFECTIVE,
+               "two parts: the escape problem's survival through the hole over the island "
+               "(phi_c = 0) against the holes in the sea (phi_c = 2, 2.5), P_0(n)/P_sea(n) with "
+               "Wilson intervals (the islands' sticky orbits slow the sea holes' decay), and "
+               "the island's phase width in hole widths (the escape-island-start box classified)",
+               "the sea holes' late tail: n_tail and half a decade later",
+               "'effective destruction': each member confirmed if the survival through the hole "
+               f"over the island is at most {R.pct(R.DESTROYED)} of the survival through the "
+               f"sea hole, refuted if at least {R.pct(R.DESTROYED_FAILS)} of it; 'quite a lot "
+               f"smaller', each member confirmed if the island spans at least "
+               f"{R.MUCH_SMALLER:g} hole widths, refuted if at most {R.MUCH_SMALLER_FAILS:g}; "
+               "a part is the agreement of its members; the claim is confirmed if both parts "
+               "are, refuted if one is",
+               f"'effective destruction', survival ratio: "
+               f"{_bounds(R.DESTROYED, R.DESTROYED_FAILS)}; 'quite a lot smaller', island width "
+               f"in hole widths: {_bounds(R.MUCH_SMALLER, R.MUCH_SMALLER_FAILS, '{:g}'.format)}",
+               family=("the survival ratio against each sea hole at its n_tail and half a "
+                       "decade later; the island's phase width from the 5th-95th and from the "
+                       "1st-99th percentiles of its orbits' phases")),
         _entry("intro-universal", "sec3", "the late power-law exponents differ between holes",
                Q_UNIVERSAL,
-               "power-law exponent alpha_n of the late tail window of each escape hole",
+               "power-law exponent alpha_n of the late tail windows of each escape hole",
                TAIL,
-               "'the same' rule on every pair of holes: confirmed if some pair is refuted as the "
-               f"same (exponents at least {R.pct(R.SAME_FAILS)} apart beyond their "
-               f"uncertainties), refuted if every pair is confirmed the same (within "
-               f"{R.pct(R.SAME)}), inconclusive otherwise",
+               "'the same' rule on every pair of holes; each member (one rank of window): "
+               f"confirmed if some pair is at least {R.pct(R.SAME_FAILS)} apart beyond their "
+               f"uncertainties, refuted if every pair is the same within {R.pct(R.SAME)}, "
+               f"inconclusive otherwise; {AGREE}",
                f"'universal': all equal within {R.pct(R.SAME)}; differing: at least "
-               f"{R.pct(R.SAME_FAILS)} apart"),
+               f"{R.pct(R.SAME_FAILS)} apart",
+               family=("the tail's late windows of every hole (starts moving later from each "
+                       "tail's start by quarter decades), compared rank by rank: the windows "
+                       "from the tail's start together, those a quarter decade later together, "
+                       "... while every hole's window holds at least "
+                       f"{R.MIN_ESCAPES_TAIL} escapes")),
     ]
     return out
 
 
 def _transport_entries():
+    width_parts = "one part per width and assertion, each the agreement of its members"
     out = [
         _entry("sec4-holes", "3", "the hole at 0 covers both islands and chaotic sea, the hole at"
                " pi mostly chaotic sea (every width)", Q_HOLES_4,
-               "shares of the strips 0 +- h/2 and pi +- h/2 on islands (pi/2 < v < 3 pi/2; "
-               "reports/paper/islands.py)", "phase space at eps = 0.6",
-               f"confirmed if, for every width, the hole-1 strip holds at least {R.pct(R.BOTH)} "
-               f"islands and {R.pct(R.BOTH)} sea and the hole-2 strip at most "
-               f"{R.pct(R.MOSTLY)} islands (Wilson intervals); refuted if, for some width, "
-               f"islands or sea hold at most {R.pct(R.BOTH_FAILS)} of the hole-1 strip or "
-               f"islands at least {R.pct(R.MOSTLY_FAILS)} of the hole-2 strip; inconclusive "
-               "otherwise",
+               "shares of the strips 0 +- h/2 and pi +- h/2 on islands (reports/paper/islands.py)",
+               "phase space at eps = 0.6",
+               f"{width_parts} (hole 1 islands, hole 1 sea, hole 2 mostly sea): a member is "
+               f"confirmed if the Wilson interval shows at least {R.pct(R.BOTH)} islands (sea) "
+               f"in the hole-1 strip, or at most {R.pct(R.MOSTLY)} islands in the hole-2 strip;"
+               f" refuted if islands (sea) hold at most {R.pct(R.BOTH_FAILS)} of the hole-1 "
+               f"strip, or islands at least {R.pct(R.MOSTLY_FAILS)} of the hole-2 strip; the "
+               "claim is confirmed if every part is, refuted if one is",
                f"'both', share of each: {_bounds(R.BOTH, R.BOTH_FAILS)}; 'mostly sea', share "
-               f"on islands: {_bounds(R.MOSTLY, R.MOSTLY_FAILS)}"),
+               f"on islands: {_bounds(R.MOSTLY, R.MOSTLY_FAILS)}", family=FAM_GEOMETRY),
         _entry("sec4-hole-2", "3", "the hole at pi covers some smaller islands, none of the large"
                " ones, and is in the strongly chaotic region (every width)", Q_HOLE_2,
                "shares of the strip pi +- h/2 on small islands, on the large island, and on "
                "islands altogether", "phase space at eps = 0.6",
-               "confirmed if, for every width, some small-island starts are found (Wilson lower "
-               f"bound > 0), the large-island share is at most {R.pct(R.FAR)} and all "
-               f"islands hold at most {R.pct(R.ALMOST_ENTIRELY)}; refuted if, for some width, "
-               f"the large island holds at least {R.pct(R.FAR_FAILS)} or all islands at least "
-               f"{R.pct(R.ALMOST_ENTIRELY_FAILS)} (Wilson intervals); inconclusive otherwise",
+               f"{width_parts} (some small islands, far from the large island, strongly "
+               "chaotic): a member is confirmed if some small-island starts are found (Wilson "
+               f"lower bound > 0), the large-island share is at most {R.pct(R.FAR)}, all "
+               f"islands hold at most {R.pct(R.ALMOST_ENTIRELY)}; refuted if the large island "
+               f"holds at least {R.pct(R.FAR_FAILS)} or all islands at least "
+               f"{R.pct(R.ALMOST_ENTIRELY_FAILS)} (Wilson intervals); the claim is confirmed if "
+               "every part is, refuted if one is",
                f"'far from the large islands', share on them: {_bounds(R.FAR, R.FAR_FAILS)}; "
                "'strongly chaotic for practical purposes', share on islands: "
-               f"{_bounds(R.ALMOST_ENTIRELY, R.ALMOST_ENTIRELY_FAILS)}"),
+               f"{_bounds(R.ALMOST_ENTIRELY, R.ALMOST_ENTIRELY_FAILS)}", family=FAM_GEOMETRY),
     ]
     for h in WIDTHS:
         out.append(_entry(
@@ -377,115 +495,144 @@ def _transport_entries():
             f"for h = {h} every particle eventually escapes: sum_j P_ij(0) = 1", Q_EVENTUAL,
             "share of the entrants of each hole still inside at the horizon (n = 10^5 or "
             "t = 10^7)", "the horizon",
-            f"confirmed if for both entry holes the Wilson interval of that share lies at or "
-            f"below {R.ESCAPED_TO:g}, refuted if above", f"sum_j P_ij(0) = 1 to within "
-            f"{R.ESCAPED_TO:g}"))
+            f"one part per entry hole (both must hold), each member: confirmed if the Wilson "
+            f"interval of that share lies at or below {R.ESCAPED_TO:g}, refuted if above; a "
+            "part is the agreement of its members",
+            f"sum_j P_ij(0) = 1 to within {R.ESCAPED_TO:g}",
+            family="both entry holes (parts), each read in both clocks' records of the "
+                   "particles still inside at the horizon"))
     for h in TRAPPING_WIDTHS:
         out.append(_entry(
             f"fig3-h={h}", "3", f"for h = {h} P_11 is very strong: it outlives P_12, P_21 and "
             "P_22 by at least a decade", Q_STRONG,
-            "times t_ij at which P_ij(t) (continuous time) falls to q = max(10^-6, 100/N)",
-            f"late times (the level q, at most {R.LONG_LIVED_LEVEL:g}: N >= 10^6)",
-            f"confirmed if t_11 >= {R.DECADE:g} max(t_12, t_21, t_22) with a margin of one bin "
-            "(10^(1/20)) for the grid's resolution, refuted if t_11 <= "
-            f"{R.STRONG_FAILS:g} max(t_12, t_21, t_22) by that margin, inconclusive in between",
-            f"'very strong', t_11 / max(others): "
-            f"{_bounds(R.DECADE, R.STRONG_FAILS, '{:g}'.format)} (about as long-lived)"))
+            "at the same level: times t_ij at which P_ij(t) falls to a level q, t_11 against "
+            "the largest other; at the same time: P_11(t) against the largest other P_ij(t) at "
+            "the time the last other falls to q",
+            f"late times (levels q = max(10^-6, 100/N) and 10 q, at most "
+            f"{R.LONG_LIVED_LEVEL:g}: N >= 10^6)",
+            f"each member: confirmed if the ratio >= {R.DECADE:g} with a margin of one bin "
+            f"(10^(1/20)) for the grid's resolution, refuted if <= {R.STRONG_FAILS:g} by that "
+            f"margin, inconclusive in between; {AGREE}",
+            f"'very strong', P_11 against max(others) in time or in probability: "
+            f"{_bounds(R.DECADE, R.STRONG_FAILS, '{:g}'.format)} (about as long-lived)",
+            family="two metrics (the same level, the same time) at two levels (q and 10 q)"))
         out.append(_entry(
             f"fig3-trap-h={h}", "3", f"for h = {h} the hole at 0 traps the long-lived orbits: "
             "almost none of them leave through the hole at pi", Q_TRAP,
-            "share of the entrants of hole 1 still inside at the long-lived time that leave "
-            "through hole 2: P_12/(P_11 + P_12), with its 95% Wilson interval", LONG_LIVED,
-            f"confirmed if the interval lies at or below {R.pct(R.TRAP_SHARE)}, refuted if it "
-            f"lies at or above {R.pct(R.TRAP_SHARE_FAILS)}, inconclusive otherwise",
+            "share of the entrants of hole 1 still inside at a long-lived time t that leave "
+            "through hole 2: P_12(t)/(P_11(t) + P_12(t)), with its 95% Wilson interval",
+            LONG_LIVED,
+            f"each member: confirmed if the interval lies at or below {R.pct(R.TRAP_SHARE)}, "
+            f"refuted if it lies at or above {R.pct(R.TRAP_SHARE_FAILS)}, inconclusive "
+            f"otherwise; {AGREE}",
             "'effectively traps', share out through the other hole: "
-            + _bounds(R.TRAP_SHARE, R.TRAP_SHARE_FAILS)))
+            + _bounds(R.TRAP_SHARE, R.TRAP_SHARE_FAILS), family=FAM_LONG_LIVED))
     out += [
         _entry("fig3-h=0.1", "3", "for h = 0.1 the hole at 0 does not trap the long-lived orbits:"
                " a share of them still leaves through the hole at pi", Q_SMALL,
-               "as fig3-trap-h=0.4: P_12/(P_11 + P_12) at the long-lived time", LONG_LIVED,
-               f"confirmed if the interval lies at or above {R.pct(R.TRAP_SHARE_FAILS)}, refuted "
-               f"if it lies at or below {R.pct(R.TRAP_SHARE)}, inconclusive otherwise",
+               "as fig3-trap-h=0.4: P_12/(P_11 + P_12) at long-lived times", LONG_LIVED,
+               f"each member: confirmed if the interval lies at or above "
+               f"{R.pct(R.TRAP_SHARE_FAILS)}, refuted if it lies at or below "
+               f"{R.pct(R.TRAP_SHARE)}, inconclusive otherwise; {AGREE}",
                "'does not effectively trap', share out through the other hole: "
-               + _bounds(R.TRAP_SHARE_FAILS, R.TRAP_SHARE)),
+               + _bounds(R.TRAP_SHARE_FAILS, R.TRAP_SHARE), family=FAM_LONG_LIVED),
         _entry("fig3-h=2.2", "3", "for h = 2.2 every orbit escapes within a finite time", Q_LARGE,
                "escape times of all entrants (both exits, continuous time): particles left at "
                "the horizon; survivors beyond the last escape predicted by each of the three "
                "laws fitted to the last part of the decay",
-               "finite time: from where the survival falls to 10^-1 (the last 10% of the "
+               "finite time: from where the survival falls to a level (10^-1 or 10^-2 of the "
                "entrants), or 5 bins before the last escape if that is earlier, to the last "
                "escape",
-               "confirmed if nobody is left at the horizon and every law predicts at least 3 "
-               "survivors beyond the observed last escape (the decay ends more sharply than any "
-               "of them allows: P < e^-3 = 0.05 of seeing none); refuted if particles are left "
-               "at the horizon; inconclusive otherwise",
+               "each member: confirmed if nobody is left at the horizon and every law predicts "
+               "at least 3 survivors beyond the observed last escape (the decay ends more "
+               "sharply than any of them allows: P < e^-3 = 0.05 of seeing none); refuted if "
+               "particles are left at the horizon; inconclusive otherwise; one part per entry "
+               "hole, each the agreement of its members; the claim is confirmed if both are, "
+               "refuted if one is",
                "'within a finite time': a sharper end than any exponential, stretched or "
-               "power-law tail at the 5% level"),
+               "power-law tail at the 5% level",
+               family="both entry holes; the last part of the decay from 10^-1 and from 10^-2"),
         _entry("fig4-P11-time", "4", "for h = 1 the long-lived reflected orbits (P_11) are well "
                "approximated by a stretched exponential in continuous time", Q_FIG4_T,
                "P_11(t), maximum-likelihood fits of the three laws (the other exit's escapes "
-               "censor)", LONG_LIVED,
-               "'well approximated' rule: confirmed if the stretched law wins the three-way "
-               f"comparison and stays within {R.RESIDUAL_LEVEL:g} in log S of the data beyond "
-               "its 95% band (where at least 100 particles remain); refuted if another law wins"
-               f" or it strays by at least {R.RESIDUAL_FAILS:g}; inconclusive otherwise; "
-               f"at least {R.MIN_ESCAPES_TAIL} escapes",
-               f"'well approximated', excess in log S: "
-               f"{_bounds(R.RESIDUAL_LEVEL, R.RESIDUAL_FAILS, '{:g}'.format)}; the power in "
-               "the exponent is left open by the paper and only reported"),
+               "censor)", LONG_LIVED, WELL_RULE, WELL_TOL, family=FAM_WELL),
         _entry("fig4-P11-collisions", "4", "for h = 1 the long-lived reflected orbits (P_11) are "
                "well approximated by a stretched exponential in discrete time", Q_FIG4_N,
                "P_11(n), as fig4-P11-time", LONG_LIVED.replace("P_11 + P_12", "P_11 + P_12 (n)"),
-               "as fig4-P11-time", "'well approximated', excess in log S: "
-               + _bounds(R.RESIDUAL_LEVEL, R.RESIDUAL_FAILS, "{:g}".format)),
-        _entry("fig4-fewer-collisions", "4", "for h = 1 the transporting orbits escape after many"
-               " fewer collisions than the reflected ones that leave at the same time", Q_FEWER,
-               "median collision count n of the transporting (P_12, P_21) and of the reflected "
-               "(P_11, P_22) escapes per quarter-decade of escape time t, sampled study recording "
-               "n and t of each particle (reports/paper/follow.py); bootstrap intervals",
-               "every quarter-decade of t with at least 100 escapes of each kind",
-               f"confirmed if in every such bin the ratio of medians is at most {R.FEWER} "
-               f"(bootstrap upper bound), refuted if it is at least {R.FEWER_FAILS} (bootstrap "
-               "lower bound) in every bin, inconclusive otherwise",
-               f"'many fewer', ratio: {_bounds(R.FEWER, R.FEWER_FAILS, '{:g}'.format)} (about "
-               "as many)"),
-        _entry("fig4-large-velocities", "4", "for h = 1 transporting orbits can reach large "
-               "velocities", Q_LARGE_V,
-               "largest velocity of each transporting orbit before it escapes (sampled study)",
-               "all transporting escapes",
-               f"confirmed if some transporting orbit exceeds {R.LARGE_VELOCITY:g} times the "
-               "largest start velocity (Wilson lower bound of that share > 0), refuted if none "
-               f"exceeds {R.LARGE_VELOCITY_FAILS:g} times it (Wilson upper bound of that share "
-               f"below {R.NONE_SHARE:g}), inconclusive otherwise",
-               f"'large': above {R.LARGE_VELOCITY:g} times the start box's largest velocity "
-               f"(v = 4); not large: none above {R.LARGE_VELOCITY_FAILS:g} times it (they stay "
-               "at the start velocities)"),
+               WELL_RULE, WELL_TOL, family=FAM_WELL),
+    ]
+    for ij, reflected in (("P12", "P11"), ("P21", "P11")):
+        out.append(_entry(
+            f"fig4-fewer-collisions-{ij}", "4", f"for h = 1 the transporting orbits of {ij} "
+            f"decay with many fewer collisions than the reflected orbits of hole 1 ({reflected}) "
+            "for the same time", Q_FEWER,
+            f"collisions per unit time of {ij} against {reflected}: at the same survival level "
+            "q (relative to each curve's P(0)), (n_q/t_q) of the one over the other's, from the "
+            "run; at the same escape time, the ratio of their median collision counts, from "
+            "joint (n, t) data (reports/paper/joint_sample.py)",
+            "the top decades and the tail of the curves; the escape times holding most of "
+            f"{ij}'s escapes and its latest with at least 100 escapes of each",
+            f"each member: confirmed if the ratio's interval lies at or below {R.FEWER}, "
+            f"refuted if at or above {R.FEWER_FAILS}, inconclusive otherwise; {AGREE}",
+            f"'many fewer', ratio: {_bounds(R.FEWER, R.FEWER_FAILS, '{:g}'.format)} (about "
+            "as many)",
+            family=("the same level: the top decades (levels P(0)/10 to P(0)/10^3) and the "
+                    "tail (the last two decades above 100/N); the same time, in the decay: the "
+                    "latest two quarter decades of t with at least 100 escapes of each")))
+    for ij, entry_hole in (("P12", 1), ("P21", 2)):
+        out.append(_entry(
+            f"fig4-large-velocities-{ij}", "4", f"for h = 1 the transporting orbits of {ij} can "
+            "reach large velocities", Q_LARGE_V,
+            f"the largest velocity of each {ij} orbit before it escapes (sampled study of entry "
+            f"hole {entry_hole}, and an independent replica of it)",
+            f"all {ij} escapes",
+            f"each member: confirmed if some orbit exceeds {R.LARGE_VELOCITY:g} times the "
+            "largest start velocity (Wilson lower bound of that share > 0), refuted if none "
+            f"exceeds {R.LARGE_VELOCITY_FAILS:g} times it (Wilson upper bound of that share "
+            f"below {R.NONE_SHARE:g}), inconclusive otherwise; a bound the sample cannot reach "
+            "(its own tail, extrapolated, expects fewer than one orbit beyond it) is said so; "
+            + AGREE,
+            f"'large': above {R.LARGE_VELOCITY:g} times the start box's largest velocity "
+            f"(v = 4); not large: none above {R.LARGE_VELOCITY_FAILS:g} times it (they stay "
+            "at the start velocities)",
+            family="the sampled study and an independent replica of it (its own starts)"))
+    out += [
         _entry("conclusion-asymmetry", "3", "transport is asymmetric as in the stadium, with a "
                "stretched exponential for the slowly escaping dynamics", Q_CONCLUSION,
-               "the verdicts of fig3-h=W (asymmetry) and the functional form of P_11's "
-               "long-lived regime in continuous time (the law the model selection picks among "
-               "exponential, stretched exponential and the stadium's power law), for W = 0.4 "
-               "and 1",
-               LONG_LIVED, "confirmed if all four are (the form: the selection picks the "
-               "stretched exponential), refuted if one is refuted (the form: it picks the power"
-               " law or the exponential), inconclusive otherwise",
+               "the asymmetry of fig3-h=W and the functional form of P_11's long-lived regime in "
+               "continuous time (the law the model selection picks among exponential, "
+               "stretched exponential and the stadium's power law, and the stretched law's "
+               "absolute goodness of fit), for W = 0.4 and 1",
+               LONG_LIVED, "four parts (the asymmetry and the form, for W = 0.4 and 1), each "
+               "the agreement of its members: the asymmetry as fig3-h=W; the form, each window "
+               "confirmed if the selection picks the stretched exponential and Pearson's "
+               f"chi-squared does not reject it (p >= {R.GOF_HOLDS:g}), refuted if it picks the "
+               f"power law or the exponential or chi-squared rejects it beyond doubt (p <= "
+               f"{R.GOF_FAILS:g}); the claim is confirmed if every part is, refuted if one is",
                "as fig3-h=W; the form: the likelihood-ratio tests of the model selection at "
-               "their level"),
+               "their level, and the absolute goodness of fit beside them",
+               family=("as fig3-h=W for the asymmetry; the form on the long-lived regime's "
+                       "late windows (as fig4-P11-time), each by the selection and by "
+                       "chi-squared")),
     ]
     for h in ("0.1", "0.4", "2.2"):
         out.append(_entry(
             f"fig4-other-h={h}", "4", f"for h = {h} the discrete-time P_ij look more like the "
             "continuous-time ones than they do for h = 1",
             Q_OTHER_H,
-            "D(h) = spread (max - min) over the four P_ij of the median of log(t_q/n_q), t_q and"
-            " n_q the times and collision counts at which P_ij reaches the same levels q (4 per "
-            "decade, from P_ij(0)/10 down to max(P_ij(0) 10^-4, 100/N)): curves that differ "
-            "between the clocks only by a common time per collision have D = 0",
-            "matched survival levels of every P_ij",
-            "confirmed if D(h) + r < D(1), refuted if D(h) - r > D(1), inconclusive otherwise "
-            "(or when a P_ij spans less than two decades of levels above 100/N), r = "
-            "log(10)/20 the bins' resolution",
-            "'even more similar': a smaller spread than for h = 1 by more than one bin"))
+            "D = spread (max - min) over the four P_ij of log(t_q/n_q), t_q and n_q the times "
+            "and collision counts at which P_ij reaches the same level q: over the top decades"
+            " its median over levels from P_ij(0)/10 down to max(P_ij(0) 10^-4, 100/N); in "
+            "the tail at the levels 100/N and 1000/N; curves that differ between the clocks "
+            "only by a common time per collision have D = 0",
+            "matched survival levels of every P_ij: the top decades and the tail",
+            "each member: confirmed if D(h) + r < D(1), refuted if D(h) - r > D(1), "
+            "inconclusive otherwise (or when a P_ij does not reach the levels), r = "
+            f"log(10)/20 the bins' resolution; {AGREE}",
+            "'even more similar': a smaller spread than for h = 1 by more than one bin",
+            family=("the difference between the clocks wherever it is read: the top decades "
+                    "(the median over levels) and the tail (each of the levels 100/N and "
+                    "1000/N)")))
     return out
 
 
@@ -504,14 +651,19 @@ def entry(claim_id):
     return _BY_ID[claim_id]
 
 
-def make_claim(claim_id, verdict, evidence, particles_per_curve=None, statistical=None,
+def make_claim(claim_id, evidence, *, analyses=(), particles_per_curve=None, statistical=None,
                systematic=None, run=None):
-    """The ``Claim`` of register entry ``claim_id`` with its verdict and evidence."""
+    """The ``Claim`` of register entry ``claim_id``: its verdict (and the kind of an
+    inconclusive one) is the agreement of its ``analyses`` (``reports.paper.family.Analysis``
+    members; none: inconclusive for want of data)."""
     e = entry(claim_id)
+    members = analyses_json(analyses)
+    verdict, kind = agreement(members)
     return Claim(id=e["id"], figure=e["figure"], statement=e["statement"], quote=e["quote"],
-                 observable=e["observable"], regime=e["regime"], rule=e["rule"],
-                 tolerance=e["tolerance"], source=e["source"], verdict=verdict,
-                 evidence=evidence, particles_per_curve=particles_per_curve,
+                 observable=e["observable"], regime=e["regime"], family=e["family"],
+                 rule=e["rule"], tolerance=e["tolerance"], source=e["source"], verdict=verdict,
+                 inconclusive=kind, evidence=evidence, analyses=members,
+                 particles_per_curve=particles_per_curve,
                  statistical=dict(statistical or {}), systematic=dict(systematic or {}),
                  run=run)
 

@@ -60,7 +60,11 @@ each claim's ``rule`` and ``tolerance``. They were fixed from the words, before 
     locked share: at least 3/4; at most 1/2.
   - "well approximated" (``RESIDUAL_LEVEL``, ``RESIDUAL_FAILS``): the law wins the three-way
     comparison and its residual excess is at most 0.1 in log S; another law wins or the excess
-    is at least 0.25 (a 28% miss of the survival beyond its band).
+    is at least 0.25 (a 28% miss of the survival beyond its band). A comparison says which law
+    fits better, not that it fits: the word also needs the law's absolute goodness of fit
+    (Pearson's chi-squared on the window, ``reports.stats.goodness``; ``GOF_HOLDS``,
+    ``GOF_FAILS``): p >= 0.05, not rejected at the comparison's own level; p <= 0.001, rejected
+    beyond doubt.
   - "over or near the large islands" (``OVER_OR_NEAR``, ``OVER_OR_NEAR_FAILS``): at least 1% of
     the strip widened by one hole width on the large island; at most 0.1%, a trace (the hole is
     far from the island).
@@ -90,7 +94,7 @@ from __future__ import annotations
 
 import math
 
-from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
+from reports.paper.claims import BETWEEN, CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.stats.regime_fit import residual_excess
 
 BAND = 0.1
@@ -104,7 +108,8 @@ SAME = 0.1
 SAME_FAILS = 0.25
 MIN_ESCAPES_INTERMEDIATE = 1000
 MIN_ESCAPES_TAIL = 100
-BETWEEN = "between the word's bounds"
+GOF_HOLDS = 0.05    # "well approximated" by a law: Pearson's chi^2 does not reject it at 5%
+GOF_FAILS = 0.001   # ... rejected beyond doubt (p <= 0.001)
 
 # regimes of the escape curves (reports.paper.escape_regimes)
 ONSET_TOLERANCE = 0.1       # <v> within 10% of its diffusive exponent
@@ -315,6 +320,18 @@ def all_of(verdicts):
     if any(v == REFUTED for v in verdicts):
         return REFUTED
     return INCONCLUSIVE
+
+
+def fewest_to_reach(share):
+    """The fewest trials m at which none in m has its 95% Wilson upper bound at or below
+    ``share``: a sample smaller than that cannot show "at most ``share``" (a bound the data
+    cannot reach)."""
+    from reports.runs.survival import wilson
+
+    m = 1
+    while wilson(0, m)[1] > share:
+        m += 1
+    return m
 
 
 def pct(x):

@@ -11,13 +11,15 @@ density and for the island orbits' fate.
 from __future__ import annotations
 
 import dataclasses
+import math
 from pathlib import Path
 
 import numpy as np
 
+from reports.paper import family as F
 from reports.paper import rules as R
-from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.register import make_claim
+from reports.paper.window_family import LATE_MEMBERS, late_windows
 from reports.runs.survival import wilson
 from reports.stats.analysis import usable_range
 from reports.stats.hazard import all_cause_survival, first_below, hazard_ratio
@@ -59,46 +61,56 @@ def long_time_window(ref, other, level):
     return (a, b) if b - a >= 2 else None
 
 
-def compare_long_times(ref, other, level):
-    """Verdict of the 'same results at long times' rule for one curve pair, with its text."""
+def resolves(ci):
+    """True if an interval of this width could lie inside the holds band of "the same"
+    hazards: the log-rank interval's width follows from the escapes and the particles at risk
+    alone (its variance is taken under equal hazards), not from the ratio measured, so this
+    says whether a window holds enough escapes to decide, whatever it finds."""
+    lo, hi = ci
+    return lo > 0 and math.log(hi / lo) <= math.log(HR_BAND[1] / HR_BAND[0])
+
+
+def long_time_members(ref, other, level, part):
+    """The family of 'the same at long times' for one curve pair: the hazard ratio of ``other``
+    to ``ref`` on the long-time window's latest windows (``window_family.late_windows`` on the
+    escapes of both, the latest ``window_family.LATE_MEMBERS`` of those with enough escapes to
+    decide, ``resolves``), each under the two-band rule of "the same" hazards."""
     w = long_time_window(ref, other, level)
     if w is None:
-        return INCONCLUSIVE, "no long-time window", []
-    a, b = w
-    both = ref.escapes + other.escapes
-    cum = np.cumsum(both[a:b])
-    mid = a + int(np.searchsorted(cum, cum[-1] / 2)) + 1 if cum[-1] > 0 else b
-    mid = min(max(mid, a + 1), b - 1)
-    parts, verdicts = [], []
-    for lo, hi in ((a, mid), (mid, b)):
-        hr, ci, used = hazard_ratio(ref, other, lo, hi)
-        verdicts.append(R.two_band_verdict(*ci, HR_BAND, HR_FAILS_BAND))
-        note = R.two_band_note(*ci, HR_BAND, HR_FAILS_BAND)
-        parts.append(f"[{ref.x[lo]:.3g}, {ref.x[hi]:.3g}] HR {hr:.3f} [{ci[0]:.3f}, {ci[1]:.3f}]"
-                     f" ({used:,} escapes{', ' + note if note else ''})")
-    return R.all_of(verdicts), ", ".join(parts), verdicts
+        return [F.in_part(part, [F.too_few("no long-time window", "hazard ratio")])[0]]
+    both = dataclasses.replace(ref, escapes=ref.escapes + other.escapes)
+    measured = [(a, b, *hazard_ratio(ref, other, a, b))
+                for a, b in late_windows(both, *w, R.MIN_ESCAPES_TAIL)]
+    members = []
+    for a, b, hr, ci, used in [m for m in measured if resolves(m[3])][-LATE_MEMBERS:]:
+        members.append(F.band_member(f"[{ref.x[a]:.3g}, {ref.x[b]:.3g}] ({used:,} escapes)",
+                                     "hazard ratio", hr, *ci, HR_BAND, HR_FAILS_BAND))
+    if not members:
+        members.append(F.too_few(f"no window of [{ref.x[w[0]]:.3g}, {ref.x[w[1]]:.3g}] holds "
+                                 "enough escapes to decide", "hazard ratio"))
+    return F.in_part(part, members)
 
 
 def same_results_claim(claim_id, ref_curves, other_curves, levels, what, particles, run):
     """Compare every (hole, clock) of two escape ensembles at long times; ``levels``: the late
     tail's survival level of each hole of the reference run ({experiment: level or None})."""
-    verdicts, parts = [], []
+    members = []
     for key, ref in ref_curves.items():
         if key not in other_curves:
             continue
+        part = f"{key[0]} ({'n' if key[1] == 'collisions' else 't'})"
         if levels.get(key[0]) is None:
-            verdicts.append(INCONCLUSIVE)
-            parts.append(f"{key[0]}: the reference has no late tail")
+            members.append(F.in_part(part, [F.too_few("the reference has no late tail",
+                                                      "hazard ratio")])[0])
             continue
-        v, text, _ = compare_long_times(ref, other_curves[key], levels[key[0]])
-        verdicts.append(v)
-        parts.append(f"{key[0]} ({'n' if key[1] == 'collisions' else 't'}): {text}")
-    evidence = (f"{what} against the paper-scale run, hazard ratio (log-rank) over the earlier "
-                "and later half of the late tail (from the reference's tail level), the same "
-                f"inside [{HR_BAND[0]:.3f}, {HR_BAND[1]:.3f}], different wholly outside "
-                f"[{HR_FAILS_BAND[0]:.3f}, {HR_FAILS_BAND[1]:.3f}]: " + "; ".join(parts) + ".")
-    return make_claim(claim_id, R.all_of(verdicts) if verdicts else INCONCLUSIVE, evidence,
-                      particles_per_curve=particles, run=run)
+        members += long_time_members(ref, other_curves[key], levels[key[0]], part)
+    evidence = (f"{what} against the paper-scale run, hazard ratio (log-rank) over the late "
+                "tail's latest windows (from the reference's tail level), the same inside "
+                f"[{HR_BAND[0]:.3f}, {HR_BAND[1]:.3f}], different wholly outside "
+                f"[{HR_FAILS_BAND[0]:.3f}, {HR_FAILS_BAND[1]:.3f}]: "
+                + F.family_text(members) + ".")
+    return make_claim(claim_id, evidence, analyses=members, particles_per_curve=particles,
+                      run=run)
 
 
 def curves_by_key(run_dir):
@@ -122,13 +134,17 @@ def other_density_claim(ref_run, samples, levels):
                               f"Sampled study, smooth density ({n:,} per hole)", n, None)
 
 
+SPANS = ((10.0, "the last two decades"), (10 ** 0.5, "the last two half decades"))
+
+
 def island_start_claim(run_dir, box_classified):
     """The survival with the hole at pi of the run of scene escape-island-start tends to a
     constant equal to the regular share of the box (``box_classified``: (regular count,
-    samples)). Tending to a constant: the escapes of the last decade before the horizon T are
-    significantly fewer than those of the decade before (a decelerating fall; the share of the
-    two decades' escapes in the last one has its Wilson interval below 1/2); the limit then lies
-    between S(T) and S(T) - k2 r/(1 - r)/N (the falls continuing as a geometric series of ratio
+    samples)). Over two spans before the horizon T, each a factor f wide (``SPANS``: decades
+    and half decades): tending to a constant, the escapes of the last span are significantly
+    fewer than those of the span before (a decelerating fall: the share of the two spans'
+    escapes in the last one has its Wilson interval below 1/2); the limit then lies between
+    S(T) and S(T) - k2 r/(1 - r)/N (the falls continuing as a geometric series of ratio
     r = k2/k1), and is compared with the regular share by the 'the same' rule on that range."""
     curves = curves_by_key(run_dir)
     key = next(k for k in curves if k[1] == "time" and not k[0].endswith("=0"))
@@ -137,79 +153,115 @@ def island_start_claim(run_dir, box_classified):
     n = c.particles
     k_h = int(np.flatnonzero(c.censored)[0]) if c.censored.any() else usable_range(c)[1]
     t_h = float(c.x[k_h])
-    k_10 = int(np.searchsorted(c.x, t_h / 10))
-    k_100 = int(np.searchsorted(c.x, t_h / 100))
-    inside = [round(s[k] * n) for k in (k_100, k_10, k_h)]
-    k1, k2 = inside[0] - inside[1], inside[1] - inside[2]
-    share_ci = tuple(float(x) for x in wilson(k2, max(k1 + k2, 1)))
-    if k1 + k2 == 0:
-        converging = CONFIRMED
-    elif share_ci[1] < 0.5:
-        converging = CONFIRMED
-    elif share_ci[0] > 0.5:
-        converging = REFUTED
-    else:
-        converging = INCONCLUSIVE
-    r = k2 / k1 if k1 else 0.0
-    low = (inside[2] - (k2 * r / (1 - r) if r < 1 else inside[2])) / n
-    high = inside[2] / n
     reg, m = box_classified
     f_ci = tuple(float(x) for x in wilson(reg, m))
-    p_ci = tuple(float(x) for x in wilson(inside[2], n))
-    lo_, hi_ = min(low, p_ci[0]), p_ci[1]
-    same_args = (0.5 * (lo_ + hi_), 0.5 * (hi_ - lo_), reg / m, 0.5 * (f_ci[1] - f_ci[0]))
-    same = R.same_verdict(*same_args)
-    note = R.same_note(*same_args)
-    evidence = (f"Run {Path(run_dir).name} ({n:,} starts, hole at phi_c = pi): still inside "
-                f"{inside[0]:,}, {inside[1]:,} and {inside[2]:,} at t = {c.x[k_100]:.3g}, "
-                f"{c.x[k_10]:.3g} and the horizon {t_h:.3g}; escapes in the last two decades "
-                f"{k1} then {k2} (share of the last {k2 / max(k1 + k2, 1):.3f}, 95% "
-                f"[{share_ci[0]:.3f}, {share_ci[1]:.3f}] against 1/2: the fall "
-                f"{'decelerates' if converging == CONFIRMED else 'does not clearly decelerate'})"
-                f"; limit between {low:.4f} and {high:.4f}; regular share of the box "
-                f"{reg / m:.4f} (95% [{f_ci[0]:.4f}, {f_ci[1]:.4f}], {m} random starts "
-                f"classified by their orbits): {same} under 'the same' (within "
-                f"{R.pct(R.SAME)}, different beyond {R.pct(R.SAME_FAILS)}"
-                f"{'; ' + note if note else ''}).")
-    return make_claim("sec3-island-start", R.all_of([converging, same]), evidence,
-                      particles_per_curve=n,
-                      statistical={"survival_at_horizon": high, "limit_low": low,
+    members = []
+    for factor, name in SPANS:
+        k_1 = int(np.searchsorted(c.x, t_h / factor))
+        k_2 = int(np.searchsorted(c.x, t_h / factor ** 2))
+        inside = [round(s[k] * n) for k in (k_2, k_1, k_h)]
+        k1, k2 = inside[0] - inside[1], inside[1] - inside[2]
+        lo, hi = (float(x) for x in wilson(k2, max(k1 + k2, 1)))
+        members.append(F.in_part("tends to a constant", [F.threshold_member(
+            f"{name} (t = {c.x[k_2]:.3g}, {c.x[k_1]:.3g}, {t_h:.3g}): still inside "
+            f"{inside[0]:,}, {inside[1]:,}, {inside[2]:,}; escapes {k1} then {k2}",
+            "share of the escapes in the last span", k2 / max(k1 + k2, 1),
+            0.0 if k1 + k2 == 0 else lo, 0.0 if k1 + k2 == 0 else hi, 0.5, True)])[0])
+        r = k2 / k1 if k1 else 0.0
+        low = (inside[2] - (k2 * r / (1 - r) if r < 1 else inside[2])) / n
+        p_ci = tuple(float(x) for x in wilson(inside[2], n))
+        lo_, hi_ = min(low, p_ci[0]), p_ci[1]
+        members.append(F.in_part("giving the probability", [F.same_member(
+            f"{name}: limit between {low:.4f} and {inside[2] / n:.4f} against the regular "
+            f"share {reg / m:.4f} (95% [{f_ci[0]:.4f}, {f_ci[1]:.4f}], {m} starts)",
+            "relative difference", 0.5 * (lo_ + hi_), 0.5 * (hi_ - lo_), reg / m,
+            0.5 * (f_ci[1] - f_ci[0]))])[0])
+    evidence = (f"Run {Path(run_dir).name} ({n:,} starts, hole at phi_c = pi), horizon t = "
+                f"{t_h:.3g}: {F.family_text(members)}.")
+    return make_claim("sec3-island-start", evidence, analyses=members, particles_per_curve=n,
+                      statistical={"survival_at_horizon": float(s[k_h]),
                                    "regular_share": reg / m},
                       run=Path(run_dir).name)
 
 
-def destruction_claim(sample, hole_width=0.3):
-    """``sample``: (phi, v, Classified, Followed) of ``studies.island_box_sample(0.0)``."""
+def destroy_all_claim(sample):
+    """"may in fact destroy all orbits surrounding that island": ``sample`` (phi, v,
+    Classified, Followed) of ``studies.island_box_sample(0.0)``; the share of the starts on the
+    large island still inside at the study's horizon and at half of it. "All" is an exact word,
+    read at the measurement's floor ``rules.DESTROYED`` (one threshold, as "eventually
+    escapes"): confirmed if the share's Wilson interval lies at or below it, refuted if it lies
+    at or above it."""
     _, _, cls, fol = sample
     large = cls.large
     m = int(large.sum())
-    if m == 0:
-        return make_claim("sec3-destruction", INCONCLUSIVE, "No start of the box is on the "
-                          "large island.", particles_per_curve=len(large))
-    left = int((large & (fol.exit < 0)).sum())
-    ci = tuple(float(x) for x in wilson(left, m))
-    destroyed = R.word_verdict(*ci, R.DESTROYED, R.DESTROYED_FAILS)
-    note = R.word_note(*ci, R.DESTROYED, R.DESTROYED_FAILS)
-    # the phase extent of the island's orbits: 5th and 95th percentiles of their lowest and
-    # highest phases (a few orbits locked by chance while they wander are left out)
-    width = float(np.percentile(cls.phase_hi[large], 95) - np.percentile(cls.phase_lo[large], 5))
-    smaller = R.word_verdict(width / hole_width, width / hole_width, R.MUCH_SMALLER,
-                             R.MUCH_SMALLER_FAILS)
+    horizon = int(fol.n.max())
+    members = []
+    for k in (horizon // 2, horizon):
+        left = int((large & ((fol.exit < 0) | (fol.n > k))).sum())
+        lo, hi = (float(x) for x in wilson(left, m)) if m else (math.nan, math.nan)
+        members.append(F.threshold_member(f"after {k} collisions: {left} of {m:,} still inside",
+                                          "share left", left / m if m else math.nan, lo, hi,
+                                          R.DESTROYED, True) if m else
+                       F.too_few(f"after {k} collisions", "share left"))
     others = int((~large & cls.regular & (fol.exit < 0)).sum())
-    evidence = (f"Sampled study, {len(large):,} starts in the box 0.3 < phi < 0.9, 2.7 < v < 3.3:"
-                f" {m:,} on the large island around (0, pi) (locked orbits); with the hole of "
-                f"width {hole_width:g} at phi_c = 0, {left} of them are still inside after "
-                f"{int(fol.n.max())} collisions (share {left / m:.4f}, 95% [{ci[0]:.4f}, "
-                f"{ci[1]:.4f}]; 'destroy all' {R.bounds_text(R.DESTROYED, R.DESTROYED_FAILS)}"
-                f"{': ' + note if note else ''}); {others} starts on other islands survive too; "
-                f"the island's orbits span a phase width of {width:.2f} = "
-                f"{width / hole_width:.1f} hole widths ('quite a lot smaller' "
-                f"{R.bounds_text(R.MUCH_SMALLER, R.MUCH_SMALLER_FAILS, '{:g}'.format)}).")
-    return make_claim("sec3-destruction", R.all_of([destroyed, smaller]), evidence,
-                      particles_per_curve=len(large),
-                      statistical={"surviving_share": left / m, "surviving_ci95": list(ci),
-                                   "island_phase_width": width})
+    evidence = (f"Sampled study, {len(large):,} starts in the box of scene escape-island-start, "
+                f"{m:,} on the large island around (0, pi) (locked orbits), the hole of width "
+                f"0.3 at phi_c = 0: {F.family_text(members)}; {others} starts on other islands "
+                f"survive too ('destroy all': at most {R.pct(R.DESTROYED)} left, the "
+                "measurement's floor).")
+    return make_claim("sec3-destroy-all", evidence, analyses=members,
+                      particles_per_curve=len(large))
 
 
-__all__ = ["destruction_claim", "followed_curve", "island_start_claim", "other_box_claim",
-           "other_density_claim"]
+def island_width_members(cls, hole_width, part):
+    """The large island's phase width in hole widths, from the 5th-95th and the 1st-99th
+    percentiles of its orbits' lowest and highest phases (a few orbits locked by chance while
+    they wander are left out)."""
+    large = cls.large
+    out = []
+    for q in (5, 1):
+        width = float(np.percentile(cls.phase_hi[large], 100 - q)
+                      - np.percentile(cls.phase_lo[large], q))
+        ratio = width / hole_width
+        out.append(F.word_member(f"percentiles {q}-{100 - q}: width {width:.2f}",
+                                 "island width in hole widths", ratio, ratio, ratio,
+                                 R.MUCH_SMALLER, R.MUCH_SMALLER_FAILS))
+    return F.in_part(part, out)
+
+
+def effective_destruction_claim(escape, island_sample, hole_width=0.3):
+    """"effective destruction of islands using holes quite a lot smaller than the islands", in
+    the escape problem (starts in the sea): escape through the hole over the island (phi_c = 0)
+    is fast where the sea holes' is slowed by the islands' sticky orbits. Members:
+    P_0(n)/P_sea(n) of the escape run at the sea holes' tail start n_tail and half a decade
+    later, for both sea holes; and the island's width in hole widths (``island_sample``, the
+    escape-island-start box classified)."""
+    from reports.paper.ordering_claims import survival_at
+    from reports.paper.register import SEA_HOLES
+    from reports.paper.window_family import STEP
+
+    part = "effective destruction"
+    members = []
+    c0 = escape["0"]["curves"]["collisions"]
+    for sea in SEA_HOLES:
+        cs = escape[sea]["curves"]["collisions"]
+        n_tail = escape[sea]["windows"].n_at.get("tail")
+        if n_tail is None:
+            continue
+        for n_at in (n_tail, n_tail * STEP ** 2):
+            k = int(np.searchsorted(c0.x, n_at))
+            (p, (p_lo, p_hi)), (q, (q_lo, q_hi)) = survival_at(c0, k), survival_at(cs, k)
+            members.append(F.in_part(part, [F.word_member(
+                f"escape run, n = {c0.x[k]:.4g}: P = {p:.3g} (phi_c = 0) against {q:.3g} "
+                f"(phi_c = {sea})", "survival ratio", p / q if q > 0 else math.nan,
+                p_lo / q_hi if q_hi > 0 else math.nan, p_hi / q_lo if q_lo > 0 else math.nan,
+                R.DESTROYED, R.DESTROYED_FAILS)])[0])
+    cls = island_sample[2]
+    if cls.large.any():
+        members += island_width_members(cls, hole_width, "quite a lot smaller")
+    return make_claim("sec3-effective-destruction", F.family_text(members) + ".",
+                      analyses=members, particles_per_curve=c0.particles)
+
+
+__all__ = ["destroy_all_claim", "effective_destruction_claim", "followed_curve",
+           "island_start_claim", "other_box_claim", "other_density_claim"]

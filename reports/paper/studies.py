@@ -7,8 +7,9 @@ smoke test.
   2 < v < 4, one hole of width 0.3), uniform starts, or with ``density="smooth"`` the density
   proportional to sin(pi (phi - 3.85)/0.3) sin(pi (v - 2)/2) on the same box (drawn by inverting
   its marginal distribution functions, (1 - cos(pi u))/2 on each side).
-* ``transport_sample(width, entry)``: the paper's transport setup (holes of width h at 0 and pi,
-  starts uniform on hole ``entry`` in phase with 2 < v < 4).
+* ``transport_sample(width, entry, replica=0)``: the paper's transport setup (holes of width h
+  at 0 and pi, starts uniform on hole ``entry`` in phase with 2 < v < 4); replicas 1, 2, ... are
+  independent samples of the same size.
 * ``island_box_sample(centre)``: starts in the box of the scene escape-island-start with one
   hole, and their classification (``reports.paper.islands``).
 """
@@ -74,11 +75,12 @@ def escape_sample(centre, quick=False, density="uniform", snapshot_at=()):
 
 
 @functools.lru_cache(maxsize=8)
-def transport_sample(width, entry, quick=False):
+def transport_sample(width, entry, quick=False, replica=0):
     """``Followed`` of the transport setup for holes of ``width`` at 0 and pi, starting on hole
-    ``entry`` (1 or 2); exit 0 is hole 1, exit 1 hole 2."""
+    ``entry`` (1 or 2); exit 0 is hole 1, exit 1 hole 2. ``replica`` k > 0: an independent
+    sample of the same size (its own starts), for a claim whose family replicates the study."""
     m = SIZES[bool(quick)]["transport"]
-    rng = _rng("transport", f"{width:g}", entry)
+    rng = _rng("transport", f"{width:g}", entry, *((replica,) if replica else ()))
     centre = 0.0 if entry == 1 else math.pi
     phi = np.mod(centre + width * (rng.random(m) - 0.5), 2 * math.pi)
     v = rng.uniform(*TRANSPORT_V, m)

@@ -1,6 +1,8 @@
-"""The paper's transport claims (Section 4, Figs. 3-4) decided on a transport run and the sampled
-study of h = 1 (``reports.paper.studies.transport_sample``); rules in the register
-(``reports.paper.register``), tolerances in ``reports.paper.rules``.
+"""The paper's transport claims (Section 4, Figs. 3-4) decided on a transport run, as the
+agreement of each claim's family of analyses (``reports.paper.family``); rules in the register
+(``reports.paper.register``), tolerances in ``reports.paper.rules``. The "well approximated"
+claims are in ``well_approximated``, those on each orbit's n, t and velocity in
+``transport_joint_claims``.
 
 Curves: ``transport_analysis(run_dir)`` maps width -> entry hole (1, 2) -> clock -> {"P11": Curve,
 ...}; P_ij(x) is ``reports.stats.hazard.curve_probability`` (escapes through j after x, over the
@@ -15,9 +17,13 @@ from pathlib import Path
 
 import numpy as np
 
+from reports.paper import family as F
 from reports.paper import rules as R
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.register import TRAPPING_WIDTHS, make_claim
+from reports.paper.transport_joint_claims import fewer_collisions_claims, large_velocity_claims
+from reports.paper.well_approximated import form_members, well_approximated_claim
+from reports.paper.window_family import STEP
 from reports.runs.survival import wilson
 from reports.stats.analysis import fit_all, usable_range
 from reports.stats.hazard import all_cause_survival, curve_probability, first_below, quantile
@@ -27,9 +33,9 @@ from reports.stats.regime_fit import window_detail
 
 START_V_MAX = 4.0  # the paper's starts have 2 < v < 4
 BIN_MARGIN = 10 ** (1 / 20)  # one bin of the runs' grid (20 per decade)
-MIN_PER_BIN = 100
-FINITE_TIME_LEVEL = 0.1  # the last part of the decay: the last 10% of the entrants
+FINITE_TIME_LEVELS = (0.1, 0.01)  # the last part of the decay: the last 10% (1%) of entrants
 FINITE_TIME_BINS = 5     # and at least five bins
+STRONG_LEVEL_FACTORS = (1.0, 10.0)  # "very strong" read at the level q and at 10 q
 
 
 def transport_analysis(run_dir):
@@ -47,18 +53,24 @@ def _pct_ci(k, n):
     return float(lo), float(hi)
 
 
+def particles_of(tr):
+    return next(iter(tr[1]["time"].values())).particles
+
+
 def eventual_claim(h, tr, run):
-    parts, verdicts = [], []
+    """Every entrant eventually escapes: one part per entry hole (both must), read in each
+    clock's record of the particles still inside at the horizon."""
+    members = []
     for entry in (1, 2):
-        c = next(iter(tr[entry]["collisions"].values()))
-        left = int(c.censored.sum())
-        ci = _pct_ci(left, c.particles)
-        verdicts.append(R.fraction_at_most(left, c.particles, R.ESCAPED_TO, ci))
-        parts.append(f"entry hole {entry}: {left} of {c.particles:,} still inside at the horizon "
-                     f"(share {left / c.particles:.3g}, 95% [{ci[0]:.2g}, {ci[1]:.2g}])")
-    n = next(iter(tr[1]["collisions"].values())).particles
-    return make_claim(f"sec4-eventual-h={h}", R.all_of(verdicts), "; ".join(parts) + ".",
-                      particles_per_curve=n, run=run)
+        for clock in ("collisions", "time"):
+            c = next(iter(tr[entry][clock].values()))
+            left = int(c.censored.sum())
+            lo, hi = _pct_ci(left, c.particles)
+            members.append(F.in_part(f"entry hole {entry}", [F.threshold_member(
+                f"{clock}: {left} of {c.particles:,} still inside at the horizon",
+                "share still inside", left / c.particles, lo, hi, R.ESCAPED_TO, True)])[0])
+    return make_claim(f"sec4-eventual-h={h}", F.family_text(members) + ".", analyses=members,
+                      particles_per_curve=particles_of(tr), run=run)
 
 
 def level_times(tr, clock, level):
@@ -71,14 +83,42 @@ def level_times(tr, clock, level):
     return out
 
 
-def strong_measure(tr):
-    """(ratio t_11 / max of the other t_ij, the level q, the times)."""
-    n = next(iter(tr[1]["time"].values())).particles
-    q = max(1e-6, R.SURVIVORS_MIN / n)
+def strong_level(tr):
+    """The level q = max(10^-6, 100/N) of "very strong"."""
+    return max(1e-6, R.SURVIVORS_MIN / particles_of(tr))
+
+
+def strong_measure(tr, factor=1.0):
+    """(t_11 / max of the other t_ij at the level factor * q, the level, the times)."""
+    q = strong_level(tr) * factor
     times = level_times(tr, "time", q)
     others = max(v for k, v in times.items() if k != "P11")
     ratio = times["P11"] / others if others > 0 else math.inf
     return ratio, q, times
+
+
+def probability_at(c, t):
+    """P_ij(t) of a curve, interpolated in (log t, log P) between boundaries."""
+    p = curve_probability(c)
+    k = int(np.searchsorted(c.x, t))
+    if k <= 0 or k >= len(c.x) or not math.isfinite(c.x[k]):
+        return float(p[min(max(k, 0), len(p) - 1)])
+    x0, x1, p0, p1 = c.x[k - 1], c.x[k], p[k - 1], p[k]
+    if not (x0 > 0 and p0 > 0 and p1 > 0):
+        return float(p1)
+    f = math.log(t / x0) / math.log(x1 / x0)
+    return float(math.exp(math.log(p0) + f * (math.log(p1) - math.log(p0))))
+
+
+def same_time_ratio(tr, q):
+    """(P_11(t*) / max of the other P_ij(t*), t*, counts): t* the time the last of the other
+    curves falls to q."""
+    times = level_times(tr, "time", q)
+    t_star = max(v for k, v in times.items() if k != "P11")
+    curves = {ij: c for entry in (1, 2) for ij, c in tr[entry]["time"].items()}
+    probs = {ij: probability_at(c, t_star) for ij, c in curves.items()}
+    others = max(v for k, v in probs.items() if k != "P11")
+    return (probs["P11"] / others if others > 0 else math.inf), t_star, probs
 
 
 def strong_interval(ratio):
@@ -92,24 +132,48 @@ def strong_verdict(ratio):
     return R.word_verdict(*strong_interval(ratio), R.DECADE, R.STRONG_FAILS)
 
 
+def strong_members(tr, part=""):
+    """The family of "very strong P_11": the same level and the same time, at q and 10 q."""
+    n = particles_of(tr)
+    members = []
+    for factor in STRONG_LEVEL_FACTORS:
+        ratio, q, times = strong_measure(tr, factor)
+        members.append(F.word_member(
+            f"same level q = {q:.2g}: t_ij " + ", ".join(f"{k} {v:.4g}" for k, v in
+                                                       sorted(times.items())),
+            "t_11 / max(others)", ratio, *strong_interval(ratio), R.DECADE, R.STRONG_FAILS))
+        p_ratio, t_star, probs = same_time_ratio(tr, q)
+        lo, hi = _ratio_interval(probs, n)
+        members.append(F.word_member(
+            f"same time t = {t_star:.4g} (the others fall to {q:.2g}): P_ij "
+            + ", ".join(f"{k} {v:.3g}" for k, v in sorted(probs.items())),
+            "P_11 / max(others)", p_ratio, lo, hi, R.DECADE, R.STRONG_FAILS))
+    return F.in_part(part, members)
+
+
+def _ratio_interval(probs, n):
+    """The ratio P_11 / max(others) with the Wilson intervals of both counts and one bin of the
+    grid's interpolation either way."""
+    top = max((k for k in probs if k != "P11"), key=lambda k: probs[k])
+    a, b = round(probs["P11"] * n), round(probs[top] * n)
+    (a_lo, a_hi), (b_lo, b_hi) = _pct_ci(a, n), _pct_ci(b, n)
+    lo = a_lo / b_hi / BIN_MARGIN if b_hi > 0 else math.inf
+    hi = a_hi / b_lo * BIN_MARGIN if b_lo > 0 else math.inf
+    return lo, hi
+
+
 def strong_claim(h, tr, run):
-    ratio, q, times = strong_measure(tr)
-    if q > R.LONG_LIVED_LEVEL:
-        n = next(iter(tr[1]["time"].values())).particles
-        return make_claim(f"fig3-h={h}", INCONCLUSIVE, f"At {n:,} particles the level q = "
-                          f"100/N = {q:.2g} is above the long-lived level {R.LONG_LIVED_LEVEL:g}:"
-                          " the data do not reach the late times (needs N >= 10^6).",
-                          particles_per_curve=n, run=run)
-    lo, hi = strong_interval(ratio)
-    note = R.word_note(lo, hi, R.DECADE, R.STRONG_FAILS)
-    evidence = (f"Times at which P_ij(t) falls to q = {q:.2g}: "
-                + ", ".join(f"{k} {v:.4g}" for k, v in sorted(times.items()))
-                + f"; t_11 / max(others) = {ratio:.3g}, one bin either way [{lo:.3g}, {hi:.3g}];"
-                f" 'very strong' {R.bounds_text(R.DECADE, R.STRONG_FAILS, '{:g}'.format)}"
-                + (f" ({note})" if note else "") + ".")
-    n = next(iter(tr[1]["time"].values())).particles
-    return make_claim(f"fig3-h={h}", strong_verdict(ratio), evidence, particles_per_curve=n,
-                      statistical={"ratio": ratio, "times": times}, run=run)
+    n = particles_of(tr)
+    if strong_level(tr) > R.LONG_LIVED_LEVEL:
+        return make_claim(f"fig3-h={h}", f"At {n:,} particles the level q = 100/N = "
+                          f"{strong_level(tr):.2g} is above the long-lived level "
+                          f"{R.LONG_LIVED_LEVEL:g}: the data do not reach the late times (needs "
+                          "N >= 10^6).", particles_per_curve=n, run=run)
+    members = strong_members(tr)
+    evidence = (f"'very strong' {R.bounds_text(R.DECADE, R.STRONG_FAILS, '{:g}'.format)}: "
+                + F.family_text(members) + ".")
+    return make_claim(f"fig3-h={h}", evidence, analyses=members, particles_per_curve=n,
+                      statistical={"ratio": strong_measure(tr)[0]}, run=run)
 
 
 def long_lived_index(tr, clock):
@@ -120,8 +184,30 @@ def long_lived_index(tr, clock):
     return first_below(s, R.LONG_LIVED_LEVEL), curves
 
 
+def long_lived_points(tr, clock="time", remaining=None):
+    """Boundary indices from the long-lived time on, a quarter decade apart, while at least
+    ``remaining`` (default SURVIVORS_MIN) entrants of hole 1 remain."""
+    remaining = R.SURVIVORS_MIN if remaining is None else remaining
+    k, curves = long_lived_index(tr, clock)
+    if k is None:
+        return []
+    c = curves["P11"]
+    n = c.particles
+    left = (curve_probability(c) + curve_probability(curves["P12"])) * n
+    points, j = [], 0
+    while True:
+        i = int(np.searchsorted(c.x, c.x[k] * STEP ** j * (1 - 1e-12)))
+        if i >= len(left) or left[i] < remaining:
+            break
+        if not points or i > points[-1]:
+            points.append(i)
+        j += 1
+    return points
+
+
 def trap_measure(tr):
-    """(k11, k12, share through hole 2, its Wilson interval, time) at the long-lived time."""
+    """(k11, k12, share through hole 2, its Wilson interval, time) at the long-lived time (the
+    first member of the trapping family; the figure marks it)."""
     k, curves = long_lived_index(tr, "time")
     if k is None:
         return None
@@ -134,40 +220,45 @@ def trap_measure(tr):
     return k11, k12, k12 / m, _pct_ci(k12, m), float(curves["P11"].x[k])
 
 
+def long_lived_detail(tr, clock):
+    """window_detail of P_11 over its long-lived window in ``clock`` (None if not reached;
+    the figure draws its laws)."""
+    k, curves = long_lived_index(tr, clock)
+    if k is None:
+        return None
+    c = curves["P11"]
+    a0, b0 = usable_range(c)
+    a = max(k, a0)
+    if b0 - a < 2 or c.escapes[a:b0].sum() == 0:
+        return None
+    return window_detail(c, a, b0)
+
+
 def trap_claim(claim_id, tr, run, traps_expected):
-    n = next(iter(tr[1]["time"].values())).particles
-    got = trap_measure(tr)
-    if got is None or got[0] + got[1] < R.SURVIVORS_MIN:
-        return make_claim(claim_id, INCONCLUSIVE, f"Fewer than {R.SURVIVORS_MIN} entrants of "
-                          f"hole 1 are still inside at the level {R.LONG_LIVED_LEVEL:g} at "
-                          f"{n:,} particles.", particles_per_curve=n, run=run)
-    k11, k12, share, ci, t = got
-    trapped = R.word_verdict(*ci, R.TRAP_SHARE, R.TRAP_SHARE_FAILS)
-    note = R.word_note(*ci, R.TRAP_SHARE, R.TRAP_SHARE_FAILS)
-    verdict = trapped if traps_expected else {CONFIRMED: REFUTED, REFUTED: CONFIRMED}.get(
-        trapped, INCONCLUSIVE)
-    later = _later_ratios(tr[1]["time"], t)
-    evidence = (f"At t = {t:.4g}, where the entrants of hole 1 still inside fall to "
-                f"{R.LONG_LIVED_LEVEL:g}: {k11:,} will leave by hole 1 and {k12:,} by hole 2, "
-                f"share through hole 2 = {share:.4f} (95% [{ci[0]:.4f}, {ci[1]:.4f}]): traps at "
-                f"<= {R.pct(R.TRAP_SHARE)}, does not trap at >= {R.pct(R.TRAP_SHARE_FAILS)}"
-                f"{' (' + note + ')' if note else ''}; P_12/P_11 later: "
-                f"{', '.join(later) or 'n/a'}; last "
-                f"escape through hole 2 at t < {_last_escape(tr[1]['time']['P12']):.4g}, "
-                f"through hole 1 at t < {_last_escape(tr[1]['time']['P11']):.4g}; from hole 2,"
-                f" P_21 ends at t < {_last_escape(tr[2]['time']['P21']):.4g}, P_22 at t < "
-                f"{_last_escape(tr[2]['time']['P22']):.4g}.")
-    return make_claim(claim_id, verdict, evidence, particles_per_curve=n,
-                      statistical={"share_hole_2": share, "share_ci95": list(ci), "t": t},
-                      run=run)
-
-
-def _later_ratios(curves, t):
-    """'P_12/P_11 at t' at every fifth boundary from t on while P_11 holds 100 particles."""
+    n = particles_of(tr)
+    points = long_lived_points(tr, remaining=R.fewest_to_reach(R.TRAP_SHARE))
+    curves = tr[1]["time"]
     p11, p12 = curve_probability(curves["P11"]), curve_probability(curves["P12"])
-    x, n = curves["P11"].x, curves["P11"].particles
-    rows = [i for i in range(len(x) - 1) if x[i] >= t and p11[i] * n >= R.SURVIVORS_MIN]
-    return [f"{p12[i] / p11[i]:.3g} at t = {x[i]:.3g}" for i in rows[::5][:4]]
+    holds, fails = ((R.TRAP_SHARE, R.TRAP_SHARE_FAILS) if traps_expected
+                    else (R.TRAP_SHARE_FAILS, R.TRAP_SHARE))
+    members = []
+    for k in points:
+        k11, k12 = round(p11[k] * n), round(p12[k] * n)
+        lo, hi = _pct_ci(k12, k11 + k12)
+        members.append(F.word_member(
+            f"t = {curves['P11'].x[k]:.4g}: {k11:,} will leave by hole 1, {k12:,} by hole 2",
+            "share through hole 2", k12 / (k11 + k12), lo, hi, holds, fails))
+    evidence = (f"From where the entrants of hole 1 still inside fall to "
+                f"{R.LONG_LIVED_LEVEL:g}, while at least "
+                f"{R.fewest_to_reach(R.TRAP_SHARE)} remain (with fewer, "
+                f"none leaving by hole 2 cannot show a share at or below "
+                f"{R.pct(R.TRAP_SHARE)}): " + (F.family_text(members) or
+                                                 f"fewer remain at {n:,} particles") +
+                f"; last escape through hole 2 at t < {_last_escape(curves['P12']):.4g}, "
+                f"through hole 1 at t < {_last_escape(curves['P11']):.4g}.")
+    return make_claim(claim_id, evidence, analyses=members, particles_per_curve=n,
+                      statistical={"share_hole_2": members[0].value if members else None},
+                      run=run)
 
 
 def _last_escape(curve):
@@ -181,15 +272,15 @@ def all_exits(curve):
                                curve.competing, competing=np.zeros_like(curve.competing))
 
 
-def finite_time_verdict(c):
+def finite_time_verdict(c, level=FINITE_TIME_LEVELS[0]):
     """The finite-time rule on an all-cause escape curve: (verdict, evidence text). Refuted
     when particles are left at the horizon; confirmed when each of the three laws, fitted from
-    where the survival falls to FINITE_TIME_LEVEL to the last escape, predicts at least 3
-    survivors beyond the last escape (seeing none has probability below e^-3 = 0.05 under every
-    law); inconclusive otherwise. The fit starts at least FINITE_TIME_BINS bins before the end."""
+    where the survival falls to ``level`` to the last escape, predicts at least 3 survivors
+    beyond the last escape (seeing none has probability below e^-3 = 0.05 under every law);
+    inconclusive otherwise. The fit starts at least FINITE_TIME_BINS bins before the end."""
     left = int(c.censored.sum())
     s = all_cause_survival(c)
-    a = first_below(s, FINITE_TIME_LEVEL)
+    a = first_below(s, level)
     _, b = usable_range(c)
     predicted = {}
     if a is not None:
@@ -210,212 +301,47 @@ def finite_time_verdict(c):
             f"[{start}, {c.x[b]:.4g}], survivors predicted beyond it: "
             + (", ".join(f"{law.replace('_', ' ')} {v:.3g}" for law, v in predicted.items())
                or "no fit (fewer than two bins)"))
-    return verdict, text
+    return verdict, text, min(predicted.values(), default=math.nan)
 
 
 def finite_time_claim(tr, run):
-    parts, verdicts = [], []
+    members = []
     for entry in (1, 2):
-        verdict, text = finite_time_verdict(all_exits(tr[entry]["time"]["P11" if entry == 1
-                                                                        else "P22"]))
-        verdicts.append(verdict)
-        parts.append(f"entry hole {entry}: {text}")
-    n = next(iter(tr[1]["time"].values())).particles
-    return make_claim("fig3-h=2.2", R.all_of(verdicts), "; ".join(parts) + ".",
-                      particles_per_curve=n, run=run)
+        c = all_exits(tr[entry]["time"]["P11" if entry == 1 else "P22"])
+        for level in FINITE_TIME_LEVELS:
+            verdict, text, fewest = finite_time_verdict(c, level)
+            members.append(F.Analysis(
+                f"from P = {level:g}: {text}", verdict, "fewest survivors predicted", fewest,
+                fewest, fewest, (3.0, math.inf), (), "" if verdict != INCONCLUSIVE
+                else F.STRADDLES, part=f"entry hole {entry}"))
+    return make_claim("fig3-h=2.2", F.family_text(members) + ".", analyses=members,
+                      particles_per_curve=particles_of(tr), run=run)
 
 
-def long_lived_detail(tr, clock):
-    """window_detail of P_11 over its long-lived window in ``clock`` (None if not reached)."""
-    k, curves = long_lived_index(tr, clock)
-    if k is None:
-        return None
-    c = curves["P11"]
-    a0, b0 = usable_range(c)
-    a = max(k, a0)
-    if b0 - a < 2 or c.escapes[a:b0].sum() == 0:
-        return None
-    return window_detail(c, a, b0)
-
-
-def stretched_form(tr, clock):
-    """(verdict, text): is P_11's long-lived law in ``clock`` a stretched exponential rather
-    than the stadium's power law (or an exponential)? The model selection of
-    ``reports.stats.selection.choose`` decides: confirmed if it picks the stretched exponential,
-    refuted if it picks the power law or the exponential, inconclusive if it cannot choose or
-    the long-lived level is not reached."""
-    d = long_lived_detail(tr, clock)
-    if d is None:
-        return INCONCLUSIVE, "the long-lived level is not reached"
-    ll = d["fits"]
-    best = d["best"]
-    verdict = (CONFIRMED if best == "stretched_exponential"
-               else INCONCLUSIVE if best not in ll else REFUTED)
-    margin = ll["stretched_exponential"].loglik - ll["power_law"].loglik
-    return verdict, (f"t in [{d['from']:.4g}, {d['to']:.4g}] ({d['escapes']:,} escapes), best "
-                     f"of the three laws {best.replace('_', ' ')} (log-likelihood stretched - "
-                     f"power law = {margin:.4g})")
-
-
-def well_approximated_claim(claim_id, tr, clock, run):
-    c = tr[1][clock]["P11"]
-    d = long_lived_detail(tr, clock)
-    if d is None:
-        return make_claim(claim_id, INCONCLUSIVE, "The long-lived level is not reached at "
-                          f"{c.particles:,} particles.", particles_per_curve=c.particles,
-                          run=run), None
-    verdict, excess = R.well_approximated_verdict(c, d, "stretched_exponential",
-                                                R.MIN_ESCAPES_TAIL)
-    fit = d["fits"]["stretched_exponential"]
-    beta, ci = fit.params["beta"], fit.ci95.get("beta", (math.nan, math.nan))
-    sys = d["systematic"]["stretched_exponential"]["beta"]
-    ll = d["fits"]
-    unit = "n" if clock == "collisions" else "t"
-    note = (R.word_note(excess, excess, R.RESIDUAL_LEVEL, R.RESIDUAL_FAILS)
-            if verdict == INCONCLUSIVE and d["best"] == "stretched_exponential" else "")
-    evidence = (f"P_11, {unit} in [{d['from']:.4g}, {d['to']:.4g}] ({d['escapes']:,} escapes): "
-                f"best of the three laws {d['best'].replace('_', ' ')} (log-likelihood stretched"
-                f" - power law = {ll['stretched_exponential'].loglik - ll['power_law'].loglik:.4g}"
-                f", stretched - exponential = "
-                f"{ll['stretched_exponential'].loglik - ll['exponential'].loglik:.4g}); the "
-                f"stretched law departs from the data by at most {excess:.3f} in log S beyond "
-                f"the 95% band ('well approximated' "
-                f"{R.bounds_text(R.RESIDUAL_LEVEL, R.RESIDUAL_FAILS, '{:g}'.format)}"
-                f"{', ' + note if note else ''}); beta = {beta:.3f} [{ci[0]:.3f}, "
-                f"{ci[1]:.3f}] +- {sys if sys is None else f'{sys:.2g}'} (sys) (the paper leaves"
-                " open whether it is exactly 1/2).")
-    return make_claim(claim_id, verdict, evidence, particles_per_curve=c.particles,
-                      statistical={"beta": beta, "beta_ci95": list(ci), "residual": excess},
-                      systematic={"beta": sys}, run=run), verdict
-
-
-def _median_ratio_bins(n_tr, t_tr, n_re, t_re, t_lo=1.0):
-    """Per quarter-decade of t (>= t_lo) with MIN_PER_BIN escapes of each kind:
-    (t mid, median n transporting / median n reflected)."""
-    hi = max(t_tr.max(initial=t_lo), t_re.max(initial=t_lo)) * 1.0001
-    edges = np.geomspace(t_lo, hi, max(2, int(4 * math.log10(hi / t_lo))) + 1)
-    out = []
-    for a, b in zip(edges[:-1], edges[1:], strict=True):
-        x = n_tr[(t_tr >= a) & (t_tr < b)]
-        y = n_re[(t_re >= a) & (t_re < b)]
-        if len(x) >= MIN_PER_BIN and len(y) >= MIN_PER_BIN:
-            out.append((math.sqrt(a * b), float(np.median(x)) / float(np.median(y))))
-    return out
-
-
-def _kinds(samples):
-    """(n, t, v_max) of transporting and of reflected escapes over both entries."""
-    tr_n, tr_t, tr_v, re_n, re_t = [], [], [], [], []
-    for entry, fol in samples.items():
-        esc = fol.exit >= 0
-        same = fol.exit == entry - 1
-        tr = esc & ~same
-        re = esc & same
-        tr_n.append(fol.n[tr])
-        tr_t.append(fol.t[tr])
-        tr_v.append(fol.v_max[tr])
-        re_n.append(fol.n[re])
-        re_t.append(fol.t[re])
-    cat = np.concatenate
-    return cat(tr_n).astype(float), cat(tr_t), cat(tr_v), cat(re_n).astype(float), cat(re_t)
-
-
-def fewer_collisions_claim(samples, seed=20120907, reps=200):
-    n_tr, t_tr, _, n_re, t_re = _kinds(samples)
-    bins = _median_ratio_bins(n_tr, t_tr, n_re, t_re)
-    m = sum(f.particles for f in samples.values())
-    if not bins:
-        return make_claim("fig4-fewer-collisions", INCONCLUSIVE, "No quarter-decade of t holds "
-                          f"{MIN_PER_BIN} escapes of each kind.", particles_per_curve=m)
-    rng = np.random.default_rng(seed)
-    boots = []
-    for _ in range(reps):
-        i = rng.integers(0, len(n_tr), len(n_tr))
-        j = rng.integers(0, len(n_re), len(n_re))
-        got = dict(_median_ratio_bins(n_tr[i], t_tr[i], n_re[j], t_re[j]))
-        boots.append([got.get(t, math.nan) for t, _ in bins])
-    boots = np.array(boots)
-    upper = np.nanpercentile(boots, 97.5, axis=0)
-    lower = np.nanpercentile(boots, 2.5, axis=0)
-    per_bin = [R.word_verdict(lo, hi, R.FEWER, R.FEWER_FAILS)
-               for lo, hi in zip(lower, upper, strict=True)]
-    verdict = (CONFIRMED if all(v == CONFIRMED for v in per_bin) else
-               REFUTED if all(v == REFUTED for v in per_bin) else INCONCLUSIVE)
-    notes = [R.word_note(lo, hi, R.FEWER, R.FEWER_FAILS)
-             for lo, hi in zip(lower, upper, strict=True)]
-    tally = (f"{per_bin.count(CONFIRMED)} bins in the holds zone, {notes.count(R.BETWEEN)} "
-             f"{R.BETWEEN}, {per_bin.count(REFUTED)} in the fails zone, "
-             f"{notes.count('straddles a bound')} straddling a bound")
-    evidence = (f"Sampled study, {m:,} starts (h = 1, both entry holes): ratio of the median "
-                "collision counts, transporting / reflected, per quarter-decade of escape time: "
-                + ", ".join(f"t ~ {t:.3g}: {r:.3g} [{lo:.3g}, {hi:.3g}]"
-                            for (t, r), lo, hi in zip(bins, lower, upper, strict=True))
-                + f" ('many fewer' {R.bounds_text(R.FEWER, R.FEWER_FAILS, '{:g}'.format)}"
-                f": {tally}).")
-    return make_claim("fig4-fewer-collisions", verdict, evidence, particles_per_curve=m,
-                      statistical={"ratios": [r for _, r in bins]})
-
-
-def large_velocity_verdict(lo_large, hi_low):
-    """"large velocities" from the Wilson intervals of two shares of the transporting orbits:
-    confirmed if some exceed ``LARGE_VELOCITY`` times the largest start velocity (the lower
-    bound ``lo_large`` of that share above 0), refuted if none exceeds ``LARGE_VELOCITY_FAILS``
-    times it (the upper bound ``hi_low`` of that share below ``NONE_SHARE``), inconclusive
-    otherwise."""
-    if lo_large > 0:
-        return CONFIRMED
-    if hi_low < R.NONE_SHARE:
-        return REFUTED
-    return INCONCLUSIVE
-
-
-def large_velocity_claim(samples):
-    _, _, v_tr, _, _ = _kinds(samples)
-    m = sum(f.particles for f in samples.values())
-    limit = R.LARGE_VELOCITY * START_V_MAX
-    low_limit = R.LARGE_VELOCITY_FAILS * START_V_MAX
-    k, total = int((v_tr > limit).sum()), len(v_tr)
-    if total == 0:
-        return make_claim("fig4-large-velocities", INCONCLUSIVE, "No transporting escapes.",
-                          particles_per_curve=m)
-    lo, hi = _pct_ci(k, total)
-    k_low = int((v_tr > low_limit).sum())
-    lo_low, hi_low = _pct_ci(k_low, total)
-    verdict = large_velocity_verdict(lo, hi_low)
-    note = ("" if verdict != INCONCLUSIVE else
-            R.BETWEEN if lo_low >= R.NONE_SHARE else "straddles a bound")
-    evidence = (f"Sampled study, {m:,} starts (h = 1): {k:,} of {total:,} transporting orbits "
-                f"exceed v = {limit:g} ({R.LARGE_VELOCITY:g} times the largest start velocity) "
-                f"before they escape (share {k / total:.3g}, 95% [{lo:.2g}, {hi:.2g}]), "
-                f"{k_low:,} exceed v = {low_limit:g} ({R.LARGE_VELOCITY_FAILS:g} times; share "
-                f"{k_low / total:.3g}, 95% [{lo_low:.2g}, {hi_low:.2g}]); their largest "
-                f"velocity reaches {v_tr.max():.4g}, the 99.9th percentile "
-                f"{np.percentile(v_tr, 99.9):.4g}{' (' + note + ')' if note else ''}.")
-    return make_claim("fig4-large-velocities", verdict, evidence, particles_per_curve=m,
-                      statistical={"share": k / total, "share_ci95": [lo, hi],
-                                   "v_max": float(v_tr.max())})
+def log_ratio(cn, ct, q):
+    """log(t_q / n_q) of a P_ij at the level q (None if either curve does not reach it)."""
+    pn, pt = curve_probability(cn), curve_probability(ct)
+    nq, tq = quantile(cn.x, pn, q), quantile(ct.x, pt, q)
+    if nq and tq and nq > 0 and tq > 0:
+        return math.log(tq / nq)
+    return None
 
 
 def clock_spread(tr):
-    """D = max - min over the P_ij of the median log(t_q / n_q) at matched levels, and the
-    medians."""
+    """D over the top decades: max - min over the P_ij of the median log(t_q / n_q) at levels
+    from P_ij(0)/10 down to max(P_ij(0) 10^-4, 100/N), 4 per decade; and the medians."""
     medians = {}
     for entry in (1, 2):
         for ij, cn in tr[entry]["collisions"].items():
             ct = tr[entry]["time"][ij]
-            pn, pt = curve_probability(cn), curve_probability(ct)
-            top = pn[0]
+            top = curve_probability(cn)[0]
             if top <= 0:
                 continue
             low = max(top * 1e-4, R.SURVIVORS_MIN / cn.particles)
             if low > top * 1e-3:  # fewer than two decades of levels: too short to compare
                 continue
             levels = np.geomspace(top / 10, low, int(4 * math.log10(top / 10 / low)) + 1)
-            logs = []
-            for q in levels:
-                nq, tq = quantile(cn.x, pn, q), quantile(ct.x, pt, q)
-                if nq and tq and nq > 0 and tq > 0:
-                    logs.append(math.log(tq / nq))
+            logs = [v for v in (log_ratio(cn, ct, q) for q in levels) if v is not None]
             if logs:
                 medians[ij] = float(np.median(logs))
     if len(medians) < 4:
@@ -423,31 +349,50 @@ def clock_spread(tr):
     return max(medians.values()) - min(medians.values()), medians
 
 
+def tail_spread(tr, q):
+    """D at the absolute level q: max - min over the P_ij of log(t_q / n_q); and the values."""
+    values = {}
+    for entry in (1, 2):
+        for ij, cn in tr[entry]["collisions"].items():
+            v = log_ratio(cn, tr[entry]["time"][ij], q)
+            if v is not None:
+                values[ij] = v
+    if len(values) < 4:
+        return math.nan, values
+    return max(values.values()) - min(values.values()), values
+
+
 def other_h_claim(h, transport, run):
-    d_h, m_h = clock_spread(transport[h])
-    d_1, m_1 = clock_spread(transport["1"])
     r = math.log(10) / 20
-    if not (math.isfinite(d_h) and math.isfinite(d_1)):
-        verdict = INCONCLUSIVE
-    elif d_h + r < d_1:
-        verdict = CONFIRMED
-    elif d_h - r > d_1:
-        verdict = REFUTED
-    else:
-        verdict = INCONCLUSIVE
-    evidence = (f"D(h = {h}) = {d_h:.3f} (median log(t_q/n_q): "
-                + ", ".join(f"{k} {v:.2f}" for k, v in sorted(m_h.items()))
-                + f") against D(1) = {d_1:.3f} ("
-                + ", ".join(f"{k} {v:.2f}" for k, v in sorted(m_1.items()))
-                + f"); resolution {r:.3f}.")
-    n = next(iter(transport[h][1]["time"].values())).particles
-    return make_claim(f"fig4-other-h={h}", verdict, evidence, particles_per_curve=n,
-                      statistical={"D": d_h, "D_h1": d_1}, run=run)
+    n = particles_of(transport[h])
+    measures = [("top decades (median over levels)", clock_spread)]
+    for mult in (1, 10):
+        q = mult * R.SURVIVORS_MIN / n
+        measures.append((f"tail, level {q:.2g}", lambda tr, q=q: tail_spread(tr, q)))
+    members = []
+    for name, measure in measures:
+        d_h, m_h = measure(transport[h])
+        d_1, m_1 = measure(transport["1"])
+        variant = (f"{name}: D(h = {h}) = {d_h:.3f} ("
+                   + ", ".join(f"{k} {v:.2f}" for k, v in sorted(m_h.items()))
+                   + f") against D(1) = {d_1:.3f} ("
+                   + ", ".join(f"{k} {v:.2f}" for k, v in sorted(m_1.items())) + ")")
+        diff = d_1 - d_h
+        if not (math.isfinite(d_h) and math.isfinite(d_1)):
+            members.append(F.too_few(variant, "D(1) - D(h)"))
+        else:
+            members.append(F.word_member(variant, "D(1) - D(h)", diff, diff - r, diff + r,
+                                         0.0, 0.0))
+    return make_claim(f"fig4-other-h={h}", f"Resolution r = {r:.3f}; "
+                      + F.family_text(members) + ".", analyses=members, particles_per_curve=n,
+                      run=run)
 
 
-def transport_claims(transport, run_dir, samples=None):
-    """Every Section 4 / Figs. 3-4 claim from the run's curves (``transport_analysis``) and the
-    sampled study of h = 1 ({entry: Followed}, optional)."""
+def transport_claims(transport, run_dir, samples=None, joint=None, replicas=None):
+    """Every Section 4 / Figs. 3-4 claim from the run's curves (``transport_analysis``), the
+    sampled study of h = 1 ({entry: Followed}, optional), an independent replica of it
+    (optional) and joint (n, t) data of h = 1 ({entry: JointSample}, optional; default: the
+    study's)."""
     run = Path(run_dir).name
     claims = []
     for h in transport:
@@ -462,26 +407,21 @@ def transport_claims(transport, run_dir, samples=None):
         claims.append(finite_time_claim(transport["2.2"], run))
     if "1" in transport:
         for clock, cid in (("time", "fig4-P11-time"), ("collisions", "fig4-P11-collisions")):
-            claims.append(well_approximated_claim(cid, transport["1"], clock, run)[0])
+            claims.append(well_approximated_claim(cid, transport["1"], clock, run))
+        claims += fewer_collisions_claims(transport["1"], samples, joint, run)
     if samples:
-        claims.append(fewer_collisions_claim(samples))
-        claims.append(large_velocity_claim(samples))
+        claims += large_velocity_claims(samples, joint, replicas)
     if "1" in transport:
         for h in ("0.1", "0.4", "2.2"):
             if h in transport:
                 claims.append(other_h_claim(h, transport, run))
     if all(h in transport for h in TRAPPING_WIDTHS):
-        forms = {h: stretched_form(transport[h], "time") for h in TRAPPING_WIDTHS}
-        parts = [strong_claim(h, transport[h], run).verdict for h in TRAPPING_WIDTHS]
-        parts += [forms[h][0] for h in TRAPPING_WIDTHS]
-        evidence = ("Asymmetry (fig3-h=W rule): "
-                    + ", ".join(f"h = {h}: t_11/max(others) = "
-                                f"{strong_measure(transport[h])[0]:.3g}" for h in TRAPPING_WIDTHS)
-                    + "; the form of P_11's long-lived regime (continuous time), the stadium's "
-                    "power law against a stretched exponential: "
-                    + "; ".join(f"h = {h}: {forms[h][1]}: {forms[h][0]}"
-                                for h in TRAPPING_WIDTHS) + ".")
-        n = next(iter(transport["1"][1]["time"].values())).particles
-        claims.append(make_claim("conclusion-asymmetry", R.all_of(parts), evidence,
-                                 particles_per_curve=n, run=run))
+        members = []
+        for h in TRAPPING_WIDTHS:
+            members += strong_members(transport[h], f"asymmetric, h = {h}")
+            members += form_members(transport[h], "time", f"stretched exponential, h = {h}",
+                                    goodness=True, residual=False)
+        claims.append(make_claim("conclusion-asymmetry", F.family_text(members) + ".",
+                                 analyses=members,
+                                 particles_per_curve=particles_of(transport["1"]), run=run))
     return claims

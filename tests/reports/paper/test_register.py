@@ -5,6 +5,7 @@ from pathlib import Path
 
 import pytest
 
+from reports.paper import family as F
 from reports.paper.claims import FIELDS, PAPER, Claim
 from reports.paper.register import entries, make_claim, quote_found
 
@@ -18,16 +19,26 @@ def test_the_register_holds_at_least_40_claims_of_the_paper_each_complete():
     paper = [e for e in es if e["source"] == PAPER]
     assert len(paper) >= 40
     for e in paper:
-        for key in ("quote", "statement", "observable", "regime", "rule", "tolerance"):
+        for key in ("quote", "statement", "observable", "regime", "family", "rule",
+                    "tolerance"):
             assert e[key].strip(), (e["id"], key)
 
 
-def test_make_claim_takes_every_register_field_by_keyword():
-    c = make_claim("fig3-h=2.2", "confirmed", "all gone by t = 35", particles_per_curve=10)
+def test_make_claim_takes_every_register_field_and_its_verdict_from_the_family():
+    both = [F.Analysis(f"entry hole {i}", "confirmed", "survivors", 4.0, 4.0, 4.0, (3, 9), (),
+                       "") for i in (1, 2)]
+    c = make_claim("fig3-h=2.2", "all gone by t = 35", analyses=both, particles_per_curve=10)
     assert isinstance(c, Claim)
     assert list(c.__dataclass_fields__) == list(FIELDS)
     assert c.quote.startswith("one that is too large") and c.source == PAPER
-    assert c.verdict == "confirmed" and c.run is None
+    assert c.verdict == "confirmed" and c.inconclusive is None and c.run is None
+    assert c.family == entries()[[e["id"] for e in entries()].index("fig3-h=2.2")]["family"]
+    alone = make_claim("fig3-h=2.2", "one entry hole", analyses=both[:1])
+    assert (alone.verdict, alone.inconclusive) == ("inconclusive", "data")
+
+
+def test_every_claim_of_the_paper_declares_its_family():
+    assert all(e["family"].strip() for e in entries() if e["source"] == PAPER)
 
 
 def test_quote_found_normalises_whitespace_and_reads_elisions_in_order():

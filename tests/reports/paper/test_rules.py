@@ -136,7 +136,7 @@ def test_a_finite_time_curve_is_recognised_and_an_exponential_is_not():
                      bin_means(edges, "time"), 10**7)
 
     finite = curve_of(np.clip(1.0 - x[:-1] / 30.0, 0.0, 1.0))
-    verdict, text = finite_time_verdict(finite)
+    verdict, text, _ = finite_time_verdict(finite)
     assert verdict == CONFIRMED, text
     endless = curve_of(np.exp(-x[:-1] / 15.0))
     assert finite_time_verdict(endless)[0] == INCONCLUSIVE

@@ -4,12 +4,8 @@ import numpy as np
 import pytest
 
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
-from reports.paper.transport_claims import (
-    eventual_claim,
-    stretched_form,
-    strong_claim,
-    trap_claim,
-)
+from reports.paper.transport_claims import eventual_claim, strong_claim, trap_claim
+from reports.paper.well_approximated import form_members
 from reports.stats.histogram import Curve, bin_means, survival_boundaries
 
 EDGES = np.concatenate([[0.0], np.geomspace(0.1, 1e7, 161)])
@@ -72,6 +68,8 @@ def test_p11_is_very_strong_only_when_it_outlives_the_others_by_a_decade():
     assert between.verdict == INCONCLUSIVE
     assert 2.5 < between.statistical["ratio"] < 4 and "between the word's bounds" in \
         between.evidence
+    assert {a["figure"]["quantity"] for a in between.analyses} == {
+        "t_11 / max(others)", "P_11 / max(others)"}  # the same level and the same time
 
 
 def test_eventual_escape_counts_who_is_left_at_the_horizon():
@@ -88,7 +86,8 @@ def test_the_long_lived_form_is_the_law_the_model_selection_picks():
     """The conclusion's 'a different functional form, specifically a stretched exponential':
     confirmed for a sqrt(t) tail, refuted for the stadium's power law."""
     rng = np.random.default_rng(4)
-    assert stretched_form(transport(0.0, rng), "time")[0] == CONFIRMED
+    first = form_members(transport(0.0, rng), "time", goodness=False, residual=False)[0]
+    assert first.verdict == CONFIRMED, first.variant
     power = transport(0.0, rng)
     m = N // 10
     tail = (rng.pareto(1.5, m // 100) + 1.0) * 300.0  # P(t > s) ~ s**-1.5
@@ -96,6 +95,6 @@ def test_the_long_lived_form_is_the_law_the_model_selection_picks():
                                                          tail]),
                                    "P12": rng.exponential(20, m)}, rng)
                 for clock in ("time", "collisions")}
-    verdict, text = stretched_form(power, "time")
-    assert verdict == REFUTED, text
-    assert "power law" in text
+    first = form_members(power, "time", goodness=False, residual=False)[0]
+    assert first.verdict == REFUTED, first.variant
+    assert "picks power law" in first.variant
