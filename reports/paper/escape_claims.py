@@ -82,6 +82,28 @@ def form_claim(claim_id, a, clock, regime, form, min_escapes, run, close=False, 
                       statistical={"beta": {m.variant: m.value for m in members}}, run=run)
 
 
+def finite_times_claim(analysis, run):
+    """"clear stretched exponential decay is observed, at least for finite times and in some
+    situations": the continuous-time intermediate regime of each hole over the islands (a part
+    each), every window inside it a member: confirmed if the model selection picks the
+    stretched exponential and beta lies in the sqrt cell (neither exponential nor power law)."""
+    from reports.paper.well_approximated import selection_member
+
+    members = []
+    for h in ISLAND_HOLES:
+        a = analysis.get(h)
+        window = a["windows"].t.get("intermediate") if a else None
+        if window is None:
+            continue
+        c = a["curves"]["time"]
+        for w in inside_windows(c, *window, R.MIN_ESCAPES_INTERMEDIATE):
+            members.append(selection_member(c, w, "t", f"phi_c = {h}"))
+            members.append(F.in_part(f"phi_c = {h}", [beta_member(c, w, "sqrt", "t")])[0])
+    n = next(iter(analysis.values()))["curves"]["time"].particles
+    return make_claim("intro-finite-times", f"{F.family_text(members) or 'no window'}.",
+                      analyses=members, particles_per_curve=n, run=run)
+
+
 def universal_claim(analysis, run):
     """"We do not observe a universal law": the late-tail exponents alpha_n of the holes
     differ. One member per rank r of the tail's late windows (each hole's window starting r
@@ -151,6 +173,12 @@ def escape_claims(analysis, run_dir, studies=None):
                                      "tail", "power_law", R.MIN_ESCAPES_TAIL, run, limit=True))
             claims.append(form_claim(f"fig2-t-phi_c={h}", analysis[h], "time", "intermediate",
                                      "sqrt", R.MIN_ESCAPES_INTERMEDIATE, run, close=True))
+    for h in SEA_HOLES:
+        if h in analysis:
+            claims.append(form_claim(f"fig2-t-phi_c={h}", analysis[h], "time", "intermediate",
+                                     "sqrt", R.MIN_ESCAPES_INTERMEDIATE, run))
+    if any(h in analysis for h in ISLAND_HOLES):
+        claims.append(finite_times_claim(analysis, run))
     for h in ISLAND_HOLES + SEA_HOLES:
         if h in analysis:
             claims.append(same_power_claim(h, analysis[h], run))

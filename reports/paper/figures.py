@@ -38,8 +38,17 @@ from reports.paper.fig3_transport import figure_transport, transport_markdown
 from reports.paper.fig4_h1 import figure_h1, h1_markdown
 from reports.paper.geometry_claims import escape_hole_claims, transport_hole_claims
 from reports.paper.joint_sample import from_followed, run_joint
+from reports.paper.lifetime_claims import (
+    SWEEP_PARTICLES,
+    many_not_shown_claim,
+    reducing_lifetime_claim,
+    sweep_scene,
+)
+from reports.paper.method_claims import method_claims
 from reports.paper.ordering_claims import snapshot_times
-from reports.paper.register import ISLAND_HOLES, SEA_HOLES, entries
+from reports.paper.periodicity_claims import periodicity_claims
+from reports.paper.phase_space_claims import coexist_claim, large_eps_claim
+from reports.paper.register import ISLAND_HOLES, SEA_HOLES, TRAPPING_WIDTHS, entries
 from reports.paper.runs import (
     DEFAULT_PARTICLES,
     PHASE_SPACE_QUICK,
@@ -50,6 +59,7 @@ from reports.paper.runs import (
     run_summary,
     say_nothing,
 )
+from reports.paper.saddle_claims import c2_claim, gaussian_tail_claim
 from reports.paper.start_claims import (
     destroy_all_claim,
     effective_destruction_claim,
@@ -78,6 +88,9 @@ def _runs(out_dir, runs_dir, particles, quick, include_runs, echo):
     for scene, q in EXTRA_QUICK.items():
         size = q if quick else load_scene(scene).particles
         runs[scene] = ensure_run(scene, runs_dir, size, echo)
+    runs["transport-width-sweep"] = ensure_run(
+        "transport-width-sweep", runs_dir, QUICK_PARTICLES if quick else SWEEP_PARTICLES, echo,
+        scene_text=sweep_scene())
     return runs
 
 
@@ -127,6 +140,14 @@ def decide(out_dir, runs, quick, echo):
     claims += transport_claims(tr, runs["paper-transport"], samples,
                                joint=run_joint(runs["paper-transport"], width="1") or None,
                                replicas=replicas)
+    echo("paper figures: the method, the near periodicity, the phase space, the saddle point")
+    claims += method_claims(quick) + periodicity_claims(quick)
+    claims += [large_eps_claim(quick), coexist_claim(fermi, quick), gaussian_tail_claim(quick)]
+    claims += [c2_claim(h, esc[h], quick) for h in ISLAND_HOLES if h in esc]
+    echo("paper figures: island lifetimes and the sweep of hole sizes")
+    claims += [reducing_lifetime_claim(h, tr[h], quick) for h in TRAPPING_WIDTHS if h in tr]
+    claims.append(many_not_shown_claim(transport_analysis(runs["transport-width-sweep"]),
+                                       Path(runs["transport-width-sweep"]).name))
     order = {e["id"]: i for i, e in enumerate(entries())}
     claims.sort(key=lambda c: order.get(c.id, len(order)))
     return claims, {"fermi": fermi, "escape": esc, "transport": tr, "follow": follow,

@@ -18,8 +18,10 @@ verdict is their agreement.
 from __future__ import annotations
 
 from reports.paper import rules as R
-from reports.paper.claims import PAPER, Claim, agreement
+from reports.paper.claims import Claim, agreement
 from reports.paper.family import analyses_json
+from reports.paper.register_entry import AGREE, entry_of
+from reports.paper.register_section2 import section2_entries
 from reports.paper.studies import ISLAND_COLLISIONS
 from reports.paper.window_family import LATE_MEMBERS
 
@@ -95,6 +97,18 @@ Q_FEWER = ("Here we see a difference in the transporting orbits, which decay wit
 Q_LARGE_V = "these can reach large velocities."
 Q_OTHER_H = ("The discrete time plots for the other values of $h$ are even more similar to those "
              "of continuous time given in Fig.~\\ref{f:hs}, and are not shown.")
+Q_GAUSSIAN = ("The tail of the distribution of time as a function of $n$ follows a typical "
+              "diffusion process, decaying as $e^{-c_1(t/t_0)^2}$")
+Q_C2 = ("corresponding to a probability $e^{-c_2\\sqrt{t}}$ with $c_2$ determined from the other "
+        "constants.")
+Q_FINITE = ("What we can say about the system considered here is that clear stretched exponential "
+            "decay is observed, at least for finite times and in some situations")
+Q_CAPTION_T = ("Those on the right are for continuous time, showing stretched exponential decay; "
+               "note the $t^{1/2}$ on the axis.")
+Q_REDUCING = ("the hole in the elliptic region effectively traps the long-lived orbits near the "
+              "smaller islands while reducing the lifetime of orbits near the large island.")
+Q_MANY = ("For these parameter values (and many not shown), the hole in the elliptic region "
+          "effectively traps the long-lived orbits near the smaller islands")
 Q_CONCLUSION = ("Here we note that generic mixed phase space allows the asymmetric transport "
                 "similar to that observed in the stadium, but with a different functional form, "
                 "specifically a stretched exponential for the slowly escaping dynamics.")
@@ -115,8 +129,6 @@ TAIL = ("late tail: from where the discrete-time hazard has fallen to "
         f"{R.HAZARD_TENTH} of its plateau (the slow population holds 90% of the escapes) to the"
         " last escape before the horizon;"
         f" at least {R.MIN_ESCAPES_TAIL} escapes")
-AGREE = ("the claim's verdict is the agreement of its family: confirmed (refuted) only if every "
-         "member is, inconclusive otherwise")
 FAM_INSIDE = ("windows inside the intermediate regime, each fitted on its own: the regime's "
               "window, its start a quarter decade later, its end a quarter decade earlier, and "
               f"both; those with at least {R.MIN_ESCAPES_INTERMEDIATE} escapes")
@@ -175,11 +187,7 @@ SAME_TOL = (f"'the same': equal within {R.pct(R.SAME)} (relative), different bey
             f"{R.pct(R.SAME_FAILS)}")
 
 
-def _entry(id, figure, statement, quote, observable, regime, rule, tolerance, source=PAPER, *,
-           family):
-    return {"id": id, "figure": figure, "statement": statement, "quote": quote,
-            "observable": observable, "regime": regime, "family": family, "rule": rule,
-            "tolerance": tolerance, "source": source}
+_entry = entry_of
 
 
 def _escape_entries():
@@ -456,6 +464,51 @@ def _escape_entries():
                        "... while every hole's window holds at least "
                        f"{R.MIN_ESCAPES_TAIL} escapes")),
     ]
+    for h in SEA_HOLES:
+        out.append(_entry(
+            f"fig2-t-phi_c={h}", "2",
+            f"continuous-time escape through the hole at phi_c = {h} (chaotic sea) is a "
+            "stretched exponential in its intermediate regime", Q_CAPTION_T,
+            "stretched exponent beta of the fit of P(t) in the intermediate window",
+            INTERMEDIATE, "form 'stretched exponential' on each member's beta: the cell of the "
+            f"sqrt law [1/4, 3/4), nearer it than the exponential or the power law; {AGREE}",
+            BETA_TOL, family=FAM_INSIDE))
+    out.append(_entry(
+        "intro-finite-times", "intro", "clear stretched exponential decay is seen over finite "
+        "times: the continuous-time escape through the holes over the islands in their "
+        "intermediate regime", Q_FINITE,
+        "the continuous-time intermediate windows of the holes over the islands: the law the "
+        "model selection picks and the stretched exponent beta", INTERMEDIATE,
+        "one part per hole, two members per window: the model selection (confirmed if it "
+        "picks the stretched exponential, refuted if another law) and beta (confirmed in the "
+        "sqrt cell [1/4, 3/4), neither exponential nor power law, refuted wholly outside); a "
+        "part is the agreement of its members; the claim is confirmed if every part is, "
+        "refuted if one is", BETA_TOL, family=FAM_INSIDE))
+    out.append(_entry(
+        "sec3-gaussian-tail", "sec3", "in the closed system, the time t_n of an orbit of n "
+        "collisions has a Gaussian upper tail in t/t_0, t_0 its average", Q_GAUSSIAN,
+        "the exponent kappa of log S(x) = a - c x^kappa, x = t_n/<t_n>, fitted on the upper "
+        "tail of the closed system's orbits (eps = 0.6, the paper's start box, no hole; "
+        "reports/paper/saddle_claims.py); intervals by resampling orbits",
+        "n = 50, 100, 200 collisions: the n the intermediate regime's orbits make",
+        f"'the same' exponent as 2 for each member: confirmed within {R.pct(R.SAME)}, refuted "
+        f"beyond {R.pct(R.SAME_FAILS)}; {AGREE}", SAME_TOL,
+        family="each n of 50, 100, 200; the tail levels S from 10^-1 to 10^-2 and from "
+               "10^-2 to 10^-3"))
+    for h in ISLAND_HOLES:
+        out.append(_entry(
+            f"sec3-c2-phi_c={h}", "sec3", f"for the hole at phi_c = {h}, c_2 predicted from "
+            "c_1 (the closed system's Gaussian tail), t_0 and n_0 (the discrete escape rate) "
+            "equals the c_2 fitted to P(t)", Q_C2,
+            "c_2 = (4/3)(3 c_1/a_0^2)^(1/4) n_0^(-3/4) (the saddle point; t_0 = a_0 n^(3/2) "
+            "the average time of n collisions, n_0 = 1/gamma of the exponential fitted on the "
+            "discrete intermediate window) against c of exp(-c t^(1/2)) fitted with beta = 1/2 "
+            "fixed on the continuous intermediate window",
+            INTERMEDIATE, f"'the same' rule on each member: confirmed within {R.pct(R.SAME)}, "
+            f"refuted beyond {R.pct(R.SAME_FAILS)}, the intervals of c_1 (resampled orbits), "
+            f"n_0 and the fit included; {AGREE}", SAME_TOL,
+            family="c_1 and a_0 from n = 50, 100, 200 collisions, each against the fit on "
+                   "every window inside the continuous intermediate regime (as fig2-t)"))
     return out
 
 
@@ -633,12 +686,39 @@ def _transport_entries():
             family=("the difference between the clocks wherever it is read: the top decades "
                     "(the median over levels) and the tail (each of the levels 100/N and "
                     "1000/N)")))
+    for h in TRAPPING_WIDTHS:
+        out.append(_entry(
+            f"fig3-reducing-lifetime-h={h}", "3", f"for h = {h} the hole in the elliptic region "
+            "cuts short the lives of the orbits on the large island", Q_REDUCING,
+            "share of starts on the large island (orbits locked to its resonance) still inside "
+            "at the long-lived time of the transport run (the entrants of hole 1 fall to "
+            f"{R.LONG_LIVED_LEVEL:g}), with holes of width h at 0 and pi (sampled study, "
+            "reports/paper/lifetime_claims.py); without a hole they never leave",
+            "the long-lived time of the transport run",
+            f"each member: confirmed if the Wilson interval lies at or below "
+            f"{R.pct(R.DESTROYED)}, refuted if at or above {R.pct(R.DESTROYED_FAILS)}; {AGREE}",
+            "'reducing the lifetime', share left: " + _bounds(R.DESTROYED, R.DESTROYED_FAILS),
+            family="the island of (0, pi) (the box of scene escape-island-start) and of "
+                   "(0, 2 pi) (the same box a period pi higher)"))
+    out.append(_entry(
+        "fig3-many-not-shown", "3", "for many hole sizes besides 0.4 and 1 the hole at 0 also "
+        "traps the long-lived orbits (and P_11 is very strong)", Q_MANY,
+        "the share of the widths of a sweep (transport runs of widths not shown in Fig. 3) "
+        "for which the trapping claim (as fig3-trap-h) is confirmed; the same for 'very "
+        "strong P_11' (as fig3-h)",
+        "widths 0.2, 0.3, 0.6, 0.8, 1.4, 1.8 between the paper's 0.1 and 2.2; the long-lived "
+        "regime of each",
+        "each member: confirmed if at least half of the widths give the effect, refuted if at "
+        f"most one in six does; {AGREE}",
+        "'many': at least half of the widths not shown; not many: at most one in six",
+        family="two readings of 'the effect': effective trapping (as fig3-trap-h) and a very "
+               "strong P_11 (as fig3-h), each over the sweep"))
     return out
 
 
 def entries():
     """Every register entry, in report order (dicts with the register's fields)."""
-    return _escape_entries() + _transport_entries()
+    return section2_entries() + _escape_entries() + _transport_entries()
 
 
 _BY_ID = None

@@ -120,6 +120,11 @@ HAZARD_TENTH = 0.1          # tail starts: hazard at a tenth of its plateau
 CHAOTIC_GONE = 0.1          # continuous tail: the intermediate law explains < 10% of survivors
 SURVIVORS_MIN = 100         # matched survival levels go down to 100/N
 
+# dynamics (reports.paper.dynamics_claims)
+NEAR = 0.05           # "near eps = 0.24": within 5% of K_c/4
+LOWEST_MARGIN = 0.20  # "all but the lowest velocities": band 0 keeps curves 20% beyond K_c/4
+SIGMAS = 5.0          # a sign (lambda > 0, alpha < 0) is decided at 5 standard errors
+
 # transport (reports.paper.transport_claims); each word: the bound where it holds, then fails
 LONG_LIVED_LEVEL = 1e-4     # "long-lived": the last 10^-4 of the entrants still inside
 TRAP_SHARE = 0.01           # "effectively traps": <= 1% of them leave by the other hole

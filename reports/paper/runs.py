@@ -11,7 +11,7 @@ from reports.runs import rundir
 from reports.runs.driver import run
 from reports.runs.recheck import recheck
 from reports.runs.rundir import RunFailed
-from reports.runs.scenes import load_scene
+from reports.runs.scenes import load_scene, parse_scene
 
 DEFAULT_PARTICLES = 1_000_000  # per escape curve and per transport entry hole
 
@@ -26,12 +26,13 @@ def say_nothing(_msg):
     return None
 
 
-def ensure_run(name, runs_dir, particles, echo=say_nothing):
-    """Run directory of the built-in scene ``name`` with ``particles`` (per curve): reused when
-    complete with the same scene, particles and seed and ``bouncer verify`` (``recheck``) passes
-    on it (this code re-derives its sampled collisions bit for bit: a run made by other
-    solver code is run again), resumed when partial, else run."""
-    scene = load_scene(name)
+def ensure_run(name, runs_dir, particles, echo=say_nothing, scene_text=None):
+    """Run directory of the built-in scene ``name`` (or of the scene ``scene_text``, named
+    ``name``) with ``particles`` (per curve): reused when complete with the same scene,
+    particles and seed and ``bouncer verify`` (``recheck``) passes on it (this code re-derives
+    its sampled collisions bit for bit: a run made by other solver code is run again), resumed
+    when partial, else run."""
+    scene = load_scene(name) if scene_text is None else parse_scene(scene_text, origin=name)
     out = Path(runs_dir) / f"{name}-{particles}"
     resume = force = False
     man_path = out / rundir.MANIFEST

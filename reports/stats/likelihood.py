@@ -318,12 +318,13 @@ def _no_information(w):
                       f"and no survivors: no decay law can be fitted")
 
 
-def _scale_interval(law, w, s_hat, l_hat):
-    """Profile interval of the scale of a one-parameter law (l is concave in s)."""
+def _scale_interval(law, w, s_hat, l_hat, beta=None):
+    """Profile interval of the scale of a one-parameter law (l is concave in s); ``beta``: the
+    stretched law's fixed exponent."""
     target = l_hat - Q95
 
     def f(log_s):
-        return _loglik(law, w, math.exp(log_s), None) - target
+        return _loglik(law, w, math.exp(log_s), beta) - target
 
     ends = []
     for step in (-1.0, 1.0):
@@ -356,6 +357,22 @@ def fit_law(law, w, intervals=True, golden=_GOLDEN):
     c = s / (beta * w.start ** beta) if beta > 0 else math.inf
     ci = _stretched_intervals(w, log_x, log_z, beta, c, lk) if intervals else {}
     return LawFit(law, {"c": c, "beta": beta}, ci, lk, s, w)
+
+
+def fit_stretched_fixed(w, beta):
+    """Maximum-likelihood ``LawFit`` of the stretched law exp(-c x**beta) with ``beta`` fixed
+    (> 0), c with its 95% profile interval: the paper's exp(-c_2 sqrt(t)) is beta = 1/2."""
+    if not beta > 0:
+        raise ValueError(f"a fixed stretched exponent must be > 0, got {beta!r}")
+    law = "stretched_exponential"
+    h = shape(law, w.x, w.start, beta)
+    s, lk = _scale_mle(h, w.escapes, _k(law, w, beta))
+    if not math.isfinite(s):
+        raise _no_information(w)
+    to_c = 1.0 / (beta * w.start ** beta)
+    lo, hi = _scale_interval(law, w, s, lk, beta)
+    return LawFit(law, {"c": s * to_c, "beta": float(beta)}, {"c": (lo * to_c, hi * to_c)},
+                  lk, s, w)
 
 
 def _stretched_intervals(w, log_x, log_z, beta, c, l_hat):

@@ -8,12 +8,10 @@ import json
 
 import pytest
 
-from reports.paper import dynamics
+from reports.paper import dynamics, dynamics_claims
+from reports.paper import register_section2 as register
+from reports.paper.claims import FIELDS, claims_json
 from reports.paper.dynamics_study import QUICK, run
-
-KEYS = {"id", "figure", "statement", "quote", "observable", "regime", "rule", "tolerance",
-        "source", "verdict", "evidence", "particles_per_curve", "statistical", "systematic",
-        "run"}
 
 
 @pytest.fixture(scope="module")
@@ -32,22 +30,23 @@ def section(tmp_path_factory):
 @pytest.mark.slow  # the section's figures and re-checks: ~12 s
 def test_claims_have_exactly_the_register_keys_and_a_verdict(section):
     _, _, claims = section
-    assert len({c["id"] for c in claims}) == len(claims) >= 8
-    for c in claims:
-        assert set(c) == KEYS
+    stored = claims_json(claims)  # the register's Claims: their family's agreement checked
+    assert len({c["id"] for c in stored}) == len(stored) >= 9
+    for c in stored:
+        assert list(c) == list(FIELDS)
         assert c["verdict"] in ("confirmed", "refuted", "inconclusive")
         assert c["source"] == "paper"
         assert c["figure"] in ("sec2", "intro")
-        assert c["quote"] and c["rule"] and c["evidence"]
-    json.dumps(claims)  # JSON-ready
+        assert c["quote"] and c["rule"] and c["evidence"] and c["family"]
+    json.dumps(stored)  # JSON-ready
 
 
 def test_quotes_are_the_papers_words():
     # spot checks of the verbatim LaTeX (the paper's text is not in the repository)
-    assert dynamics.QUOTES["fixed-hyperbolic"] == \
+    assert register.Q_FIXED_HYPERBOLIC == \
         r"For $\epsilon<0$ or $\epsilon>1$ the orbit is hyperbolic."
-    assert r"$K=0.971\ldots$" in dynamics.QUOTES["transition"]
-    assert "``accelerator modes''" in dynamics.QUOTES["accelerator"]
+    assert r"$K=0.971\ldots$" in register.Q_TRANSITION
+    assert "``accelerator modes''" in register.Q_ACCELERATOR
 
 
 @pytest.mark.slow  # the section's figures and re-checks: ~12 s
@@ -63,7 +62,7 @@ def test_figures_are_written_as_png_and_pdf(section):
 @pytest.mark.slow  # the section's figures and re-checks: ~12 s
 def test_certified_facts_decide_the_stability_claims(section):
     _, _, claims = section
-    verdicts = {c["id"]: c["verdict"] for c in claims}
+    verdicts = {c.id: c.verdict for c in claims}
     assert verdicts["sec2-fixed-elliptic"] == "confirmed"
     assert verdicts["sec2-fixed-hyperbolic"] == "confirmed"
     assert verdicts["sec2-period-two"] == "confirmed"
@@ -73,44 +72,56 @@ def test_a_fixed_point_proved_of_the_other_kind_refutes(study):
     broken = copy.deepcopy(study)
     row = next(r for r in broken["fixed_points"]["rows"] if 0 < r["eps"] < 1)
     row["stability"] = "hyperbolic"
-    claims = {c["id"]: c for c in dynamics.fixed_point_claims(broken, None)}
-    assert claims["sec2-fixed-elliptic"]["verdict"] == "refuted"
+    claims = {c.id: c for c in dynamics_claims.fixed_point_claims(broken, None)}
+    # one fixed point proved hyperbolic against the others proved elliptic: the family
+    # disagrees; every one of them hyperbolic refutes
+    assert (claims["sec2-fixed-elliptic"].verdict,
+            claims["sec2-fixed-elliptic"].inconclusive) == ("inconclusive", "analysis")
+    for r in broken["fixed_points"]["rows"]:
+        if 0 < r["eps"] < 1:
+            r["stability"] = "hyperbolic"
+    claims = {c.id: c for c in dynamics_claims.fixed_point_claims(broken, None)}
+    assert claims["sec2-fixed-elliptic"].verdict == "refuted"
 
 
 def test_a_crossing_below_eps_c_refutes_the_transition(study):
     broken = copy.deepcopy(study)
-    below = next(s for s in broken["crossing_simulation"] if s["factor"] < 1)
-    below["crossed"] = 1
-    transition = dynamics.transition_claims(broken, None)[0]
-    assert transition["verdict"] == "refuted"
+    for s in broken["crossing_simulation"]:
+        s["crossed"] = 1 if s["factor"] < 1 else 0  # crossings below eps_c, none above
+    transition = dynamics_claims.transition_claims(broken, None)[0]
+    assert transition.verdict == "refuted"
 
 
 def test_ballistic_diffusion_at_the_papers_eps_refutes_normal_diffusion(study):
     broken = copy.deepcopy(study)
     d = next(d for d in broken["accelerator"]["diffusion"] if d["eps"] == 0.6)
-    d["mu"], d["mu_se"], d["mu_systematic"] = 2.0, 0.01, 0.01
-    assert dynamics.accelerator_claims(broken, None)[1]["verdict"] == "refuted"
+    d["fits"] = {"wide": [2.0, 0.01], "late": [1.9, 0.02]}
+    assert dynamics_claims.accelerator_claims(broken, None)[1].verdict == "refuted"
 
 
 def test_negative_exponent_refutes_the_lyapunov_remark(study):
     broken = copy.deepcopy(study)
     broken["lyapunov"]["mean_per_collision"][-1] = -0.5
     broken["lyapunov"]["se_per_collision"][-1] = 0.01
-    assert dynamics.lyapunov_claim(broken, None)["verdict"] == "refuted"
+    one = dynamics_claims.lyapunov_claim(broken, None)
+    assert (one.verdict, one.inconclusive) == ("inconclusive", "analysis")
+    broken["lyapunov"]["mean_per_collision"] = [-0.5] * len(broken["lyapunov"]["checkpoints"])
+    assert dynamics_claims.lyapunov_claim(broken, None).verdict == "refuted"
 
 
 def test_a_failed_recheck_makes_its_claims_inconclusive(study):
     checks = {"fixed_points": (False, "stored enclosure does not match")}
-    claims = {c["id"]: c for c in dynamics.claims_of(study, None, checks)}
-    assert claims["sec2-fixed-elliptic"]["verdict"] == "inconclusive"
-    assert "re-check" in claims["sec2-fixed-elliptic"]["evidence"]
+    claims = {c.id: c for c in dynamics.claims_of(study, None, checks)}
+    assert claims["sec2-fixed-elliptic"].verdict == "inconclusive"
+    assert "re-check" in claims["sec2-fixed-elliptic"].evidence
+    assert claims["sec2-period-two"].verdict == "confirmed"  # rests on another part
 
 
 @pytest.mark.slow  # the section's figures and re-checks: ~12 s
 def test_committed_study_supports_the_papers_statements(section):
     _, markdown, claims = section
-    verdicts = {c["id"]: c["verdict"] for c in claims}
-    assert set(verdicts.values()) == {"confirmed"}
+    verdicts = {c.id: c.verdict for c in claims}
+    assert "refuted" not in verdicts.values()
     assert "FAILED" not in markdown  # every re-check of the committed data passed
 
 
@@ -119,5 +130,5 @@ def test_section_computes_the_study_when_none_is_committed(tmp_path, monkeypatch
     fresh = run(QUICK, echo=lambda s: None)
     monkeypatch.setattr(dynamics, "load_study", lambda quick, echo: (fresh, None))
     markdown, claims = dynamics.dynamics_section(tmp_path, quick=True, echo=lambda s: None)
-    assert {c["id"] for c in claims} >= {"sec2-fixed-elliptic", "intro-lyapunov"}
+    assert {c.id for c in claims} >= {"sec2-fixed-elliptic", "intro-lyapunov"}
     assert "computed for this report" in markdown

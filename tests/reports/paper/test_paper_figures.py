@@ -8,9 +8,10 @@ from reports.paper import figures
 from reports.paper.claims import FIELDS, claims_json
 from reports.paper.figures import paper_figures_section
 from reports.paper.register import entries
+from reports.paper.register_section2 import dynamics_entries
 
 QUICK_RUNS = ["paper-phase-space-200", "paper-escape-2000", "paper-transport-2000",
-              "escape-second-box-2000", "escape-island-start-500"]
+              "escape-second-box-2000", "escape-island-start-500", "transport-width-sweep-2000"]
 
 
 class RunsInHand(Exception):
@@ -24,10 +25,10 @@ def stop_after_the_runs(monkeypatch):
     monkeypatch.setattr(figures, "decide", stop)
 
 
-def test_quick_section_asks_for_the_five_runs_at_their_quick_sizes(tmp_path, monkeypatch):
+def test_quick_section_asks_for_the_six_runs_at_their_quick_sizes(tmp_path, monkeypatch):
     asked = []
 
-    def ensure_run(scene, runs_dir, particles, echo):
+    def ensure_run(scene, runs_dir, particles, echo, scene_text=None):
         asked.append(f"{scene}-{particles}")
         return runs_dir / asked[-1]
 
@@ -64,7 +65,8 @@ def test_every_claim_of_the_register_has_a_verdict(section):
     out, md, claims, said = section
     ids = [c.id for c in claims]
     assert len(ids) == len(set(ids))
-    assert {e["id"] for e in entries()} <= set(ids)
+    dynamics = {e["id"] for e in dynamics_entries()}  # the dynamics section decides these
+    assert {e["id"] for e in entries()} - dynamics <= set(ids)
     assert {"dissipation-saturates", "dissipation-exponent"} <= set(ids)
     for c in claims_json(claims):
         assert list(c) == list(FIELDS)
@@ -77,12 +79,12 @@ def test_every_claim_of_the_register_has_a_verdict(section):
 
 @pytest.mark.slow
 def test_complete_runs_are_reused(section, monkeypatch):
-    """A second section in the same folder reuses the five complete runs and runs none (it is
+    """A second section in the same folder reuses the six complete runs and runs none (it is
     stopped once its runs are in hand: its claims and figures would be the first one's)."""
     out, md, _, _ = section
     said = []
     stop_after_the_runs(monkeypatch)
     with pytest.raises(RunsInHand):
         paper_figures_section(out, quick=True, echo=said.append)
-    assert sum(msg.startswith("reusing") for msg in said) == 5
+    assert sum(msg.startswith("reusing") for msg in said) == 6
     assert not any(msg.startswith("running") for msg in said)

@@ -167,3 +167,17 @@ def test_powerlaw_package_agrees_on_a_continuous_sample():
     last = int(np.flatnonzero(escapes)[-1]) + 1
     fit = fit_law("power_law", window_of(curve, 0, last))
     assert abs(fit.params["alpha"] + 1 - exponent) < 0.1 * sd
+
+
+def test_a_stretched_fit_with_its_exponent_fixed_recovers_c_within_its_interval():
+    """exp(-c t^(1/2)) with beta = 1/2 held: the paper's c_2 is such a fit."""
+    from reports.stats.analysis import usable_range
+    from reports.stats.calibration import draw
+    from reports.stats.likelihood import fit_stretched_fixed, window_of
+
+    c = draw("stretched_exponential", 10**6, np.random.default_rng(0), {"c": 0.5, "beta": 0.5})
+    fit = fit_stretched_fixed(window_of(c, *usable_range(c)), 0.5)
+    lo, hi = fit.ci95["c"]
+    assert fit.params["beta"] == 0.5 and lo < 0.5 < hi and hi - lo < 0.01
+    with pytest.raises(ValueError, match="must be > 0"):
+        fit_stretched_fixed(window_of(c, *usable_range(c)), 0.0)
