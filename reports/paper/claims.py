@@ -164,13 +164,15 @@ def _json_safe(value):
 
 def claims_json(claims) -> list[dict]:
     """JSON-ready dicts of ``Claim``s or of claim dicts (another section's), keys in FIELDS
-    order; a dict with other keys is refused."""
+    order; a dict with other keys, or whose verdict is not the agreement of its analyses, is
+    refused."""
     out = []
     for c in claims:
         d = asdict(c) if isinstance(c, Claim) else dict(c)
         if set(d) != set(FIELDS):
             raise ValueError(f"claim {d.get('id')!r}: keys must be exactly {', '.join(FIELDS)};"
                              f" got {', '.join(sorted(d))}")
+        check_family(d["id"], d["verdict"], d["inconclusive"], d["analyses"])
         out.append(_json_safe({k: d[k] for k in FIELDS}))
     return out
 

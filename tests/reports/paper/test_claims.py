@@ -76,6 +76,8 @@ def test_claims_from_another_section_come_as_dicts_with_the_same_keys():
     assert claims_json([claim(), other])[1]["id"] == "sec2-fixed-points"
     with pytest.raises(ValueError, match="keys must be exactly"):
         claims_json([{**other, "seed_says": "x"}])
+    with pytest.raises(ValueError, match="not the agreement"):
+        claims_json([{**other, "analyses": members("confirmed")[:1]}])
 
 
 def test_claims_not_of_the_paper_are_counted_apart():
