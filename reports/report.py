@@ -272,8 +272,11 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
         old = path.read_text(encoding="utf-8")
         note = (f"{REBUILD_NOTE} {_now_utc()} from the runs in {out_dir}; the speed and "
                 "work-precision sections are from the build named above.")
-        new = splice(old, {CLAIMS_HEADING: claims_heading_text(stored, families),
-                           FIGURES_HEADING: "\n".join(claim_md), PHYSICS_HEADING: physics})
+        sections = {CLAIMS_HEADING: claims_heading_text(stored, families),
+                    PHYSICS_HEADING: physics}
+        for md in claim_md:  # each section under its own heading (its first line)
+            sections[md.splitlines()[0].strip()] = md
+        new = splice(old, sections)
         rundir.write_atomic(path, with_rebuild_note(new, note))
         echo(f"paper sections of {path} rebuilt in {time.perf_counter() - start:.0f} s")
         return path
