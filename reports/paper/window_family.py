@@ -1,8 +1,9 @@
 """The windows a claim's words allow inside its regime (the members of its window family).
 
 A regime [x_a, x_b] is placed by the physics (``reports.paper.escape_regimes``); which window
-inside it a second analyst would fit is a choice the words do not make. The family holds the
-defensible choices, and the claim is decided only where they agree (``reports.paper.family``).
+inside it another careful reader would fit is a choice the words do not make. The family holds
+the defensible choices, and the claim is decided only where they agree
+(``reports.paper.family``).
 Steps are ``STEP`` = a quarter decade, the resolution of the hazards and of the paper's plots.
 
 * ``inside_windows`` (a bounded regime, e.g. the intermediate one): the regime itself, its start
