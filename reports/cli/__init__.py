@@ -22,6 +22,7 @@ moment; a run says how to resume). docs/runs.md has the table for every subcomma
                    [--certify] [--dps D] [--json]
 """
 
+import signal
 import sys
 
 SUBCOMMANDS = ("demo", "scenes", "run", "sweep", "plot", "fit", "verify", "report", "check",
@@ -61,11 +62,30 @@ def main(argv=None):
     """The ``bouncer`` command; returns the exit status. Everything, the imports of numba,
     scipy and the rest included, runs under the handlers below: a Ctrl-C at any moment is one
     line and exit status 130."""
+    argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
     try:
-        return _main(argv)
+        mask = _block_for_check(argv)
+        try:
+            return _main(argv)
+        finally:
+            if mask is not None:
+                signal.pthread_sigmask(signal.SIG_SETMASK, mask)
     except KeyboardInterrupt:
         print("bouncer: interrupted", file=sys.stderr)
         return 130
+
+
+CHECK_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+
+
+def _block_for_check(argv):
+    """``bouncer check`` takes SIGINT, SIGTERM and SIGHUP in one thread that learns who sent
+    them (``verify.check.signals``): they are blocked from the start, before the imports,
+    so that every thread the imports start (numba's, a BLAS's) inherits the block and none
+    takes a signal in its place. Returns the mask to restore, or None."""
+    if argv[:1] != ["check"] or not hasattr(signal, "sigtimedwait"):
+        return None
+    return signal.pthread_sigmask(signal.SIG_BLOCK, CHECK_SIGNALS)
 
 
 def _main(argv):
