@@ -156,14 +156,15 @@ def _resume_tally(plan, out, old):
     or its invariants."""
     ckpt = out / CHECKPOINT
     advice = "; it cannot be resumed: start the run again with --force"
-    if not ckpt.is_file():
+    if not ckpt.exists():
         if old.get("chunks_done"):
             raise CheckpointError(f"checkpoint {ckpt} is missing but the manifest records"
                                   f" {old['chunks_done']} finished chunks{advice}")
         return Tally.empty(plan)
     try:
+        rundir.check_input(ckpt)
         tally = Tally.load(ckpt)
-    except CheckpointError as err:
+    except (CheckpointError, rundir.InputError) as err:
         raise CheckpointError(f"{err}{advice}") from None
     problems = tally_problems(plan, tally)
     if problems:
@@ -179,10 +180,7 @@ def _run_locked(plan, out, resume, force, progress, execute, ctx):
     ckpt = out / CHECKPOINT
     if resuming:
         old = manifest.load_manifest(out / rundir.MANIFEST)
-        try:
-            text = (out / "scene.toml").read_bytes().decode("utf-8")
-        except UnicodeDecodeError:
-            raise ValueError(f"{out / 'scene.toml'}: not UTF-8 text") from None
+        text = rundir.read_input_text(out / "scene.toml", rundir.MAX_SCENE_BYTES)
         stored = parse_scene(text, str(out / "scene.toml"))
         if stored != scene or old["particles"] != plan.particles or old["seed"] != plan.seed:
             raise ValueError(f"--resume: {out} holds a run of scene {old['scene']['name']!r} with "

@@ -42,13 +42,16 @@ from jsonschema import Draft202012Validator, validators
 from jsonschema.exceptions import best_match
 
 from reports.runs.chunk import OVERSTEP_TOLERANCE, VERIFY_DPS
+from reports.runs.echo import clip, integer
 from reports.runs.plan import COLLISION_DECADES, TIME_DECADES, TIME_FIRST
 from reports.runs.rundir import (
     CARRIED_COLUMNS,
     CHECKPOINT,
     MANIFEST,
+    MAX_JSON_BYTES,
     PROVENANCE,
     SAMPLE_COLUMNS,
+    read_input_text,
     sample_columns,
 )
 from reports.runs.scenes import DRAG_LAWS, KINDS
@@ -166,32 +169,32 @@ _Validator = validators.extend(
     type_checker=Draft202012Validator.TYPE_CHECKER.redefine_many(
         {"integer": _is_integer, "number": _is_number}))
 
-MAX_MESSAGE = 200  # characters of the offending value shown in an error
+MAX_MESSAGE = 200  # characters of the schema's message (which shows the offending value)
 
 
 def check(obj, schema, where):
     """ValueError (one line: ``where: field a.b: what is wrong``) unless ``obj`` fits
-    ``schema``."""
+    ``schema``; the field's path and the message are clipped."""
     error = best_match(_Validator(schema).iter_errors(obj))
     if error is None:
         return
-    field = ".".join(map(str, error.absolute_path))
-    message = error.message if len(error.message) <= MAX_MESSAGE else \
-        error.message[:MAX_MESSAGE] + " ..."
+    field = clip(".".join(map(str, error.absolute_path)))
+    message = clip(error.message, MAX_MESSAGE)
     raise ValueError(f"{where}: {'field ' + field + ': ' if field else ''}{message}"
                      .replace("\n", " "))
 
 
 def _json_of(path):
-    """The JSON value in ``path``; ValueError naming the file if it is not UTF-8 JSON."""
+    """The JSON value in ``path``; ValueError naming the file if it is not a regular file of
+    at most ``MAX_JSON_BYTES`` holding UTF-8 JSON (an integer of more digits than Python
+    converts, JSON nested too deeply for the parser included)."""
     path = Path(path)
     try:
-        text = path.read_bytes().decode("utf-8")
-        return json.loads(text)
+        text = read_input_text(path, MAX_JSON_BYTES)
     except FileNotFoundError:
         raise ValueError(f"{path}: no such file") from None
-    except UnicodeDecodeError:
-        raise ValueError(f"{path}: not UTF-8 text") from None
+    try:
+        return json.loads(text, parse_int=integer)
     except json.JSONDecodeError as err:
         raise ValueError(f"{path}: not valid JSON ({err})") from None
     except RecursionError:

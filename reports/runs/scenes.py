@@ -36,6 +36,9 @@ from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
+from reports.runs.echo import clip
+from reports.runs.rundir import MAX_SCENE_BYTES, InputError, read_input
+
 TWO_PI = 2.0 * math.pi
 KINDS = ("escape", "transport", "phase-space", "velocity")
 CLOCKS = ("collisions", "time")
@@ -145,7 +148,7 @@ class Scene:
             else:
                 for i, c in enumerate(self.hole_centres, start=1):
                     curves = tuple(
-                        (f"{tag}/" if many else "") + f"P{i}{j}"
+                        (f"{tag}/" if many else "") + _pair(i, j, len(self.hole_centres))
                         for j in range(1, len(self.hole_centres) + 1)
                     )
                     name = (f"{tag}/" if many else "") + f"from hole {i}"
@@ -154,9 +157,18 @@ class Scene:
         return out
 
 
+NAME_DIGITS = 4  # significant digits of a number in a curve name
+
+
 def _num(x):
     """Short text of a number for curve names: 1 not 1.0, pi to 4 digits."""
-    return f"{x:.4g}"
+    return f"{x:.{NAME_DIGITS}g}"
+
+
+def _pair(i, j, holes):
+    """The transport curve from hole i to hole j: P12; with 10 holes or more P1-12 (P112 would
+    also be hole 11 to hole 2)."""
+    return f"P{i}{j}" if holes < 10 else f"P{i}-{j}"
 
 
 def _hole_lo(centre, width):
@@ -180,26 +192,45 @@ def load_scene(name_or_path) -> Scene:
     if key in builtin:
         return parse_scene(builtin[key], origin=f"built-in scene {key!r}")
     path = Path(key)
-    if not path.is_file():
+    if not path.exists():
         names = ", ".join(builtin)
-        raise ValueError(f"no scene {key!r}: not a built-in ({names}) and not a file")
+        raise ValueError(f"no scene {clip(repr(key))}: not a built-in ({names}) and not a file")
+    return parse_scene(_scene_text(path), origin=str(path))
+
+
+def _scene_text(path):
+    """The text of a scene file: a regular file (a FIFO or a device could hang the reader) of
+    at most ``rundir.MAX_SCENE_BYTES``, UTF-8 (a leading byte-order mark is dropped)."""
     try:
-        text = path.read_text(encoding="utf-8")
+        data = read_input(path, MAX_SCENE_BYTES)
+    except InputError as err:
+        raise ValueError(f"scene file {err} (a scene is a small TOML file)") from None
+    try:
+        return data.decode("utf-8-sig")
     except UnicodeDecodeError:
         raise ValueError(f"scene file {path} is not UTF-8 text (is it a TOML file?)") from None
-    return parse_scene(text, origin=str(path))
 
 
 def parse_scene(text: str, origin: str = "scene") -> Scene:
-    """Parse and validate TOML text; ValueError with ``origin: what is wrong``."""
+    """Parse and validate TOML text; ValueError with ``origin: what is wrong`` (one line, the
+    values it shows clipped)."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
-        raise ValueError(f"{origin}: not valid TOML: {err}") from None
+        raise ValueError(f"{origin}: not valid TOML: {clip(str(err))}") from None
+    except RecursionError:
+        raise ValueError(f"{origin}: not valid TOML: nested too deeply") from None
+    except ValueError as err:  # an integer of more digits than Python converts
+        raise ValueError(f"{origin}: not valid TOML: {clip(str(err))}") from None
     try:
         return _validate(data, text)
     except ValueError as err:
-        raise ValueError(f"{origin}: {err}") from None
+        raise ValueError(f"{origin}: {clip(str(err), MESSAGE_CHARACTERS)}") from None
+    except RecursionError:  # a scene's values are never nested deeply
+        raise ValueError(f"{origin}: a value is nested too deeply") from None
+
+
+MESSAGE_CHARACTERS = 400  # of a validation message, the values it shows included
 
 
 def _validate(data, text):
@@ -281,6 +312,7 @@ def _validate(data, text):
         verify_samples=samples, chunk_size=chunk, description=description, source=text,
         **physics, **portrait,
     )
+    _check_distinct(scene)
     for exp in scene.experiments():
         _check_departures(exp, eps)
         if kind == "escape":
@@ -441,3 +473,50 @@ def _check_outside(exp):
                 f"the start box phi in {list(exp.phi)} overlaps the hole of {exp.name!r};"
                 " use a transport scene for starts on a hole"
             )
+
+
+# ------------------------------------------------------------------ distinct experiments
+
+
+def _check_distinct(scene):
+    """Every experiment and every curve of the scene has a name of its own.
+
+    The experiments are the product holes.centres x holes.widths (each centre with each
+    width; transport: each width with all the centres), or one per restitution of a velocity
+    scene, and a curve is named by the values that made it. A value listed twice (0.2 and
+    0.20000000000000001 are one float; 0 and -0.0, and a centre and the same centre plus 2*pi,
+    are one hole) would run one experiment twice, and values that differ only beyond the
+    NAME_DIGITS significant digits a name shows would give two experiments one name: their
+    counts would merge in counts.csv and survival.csv. Both are refused, naming the values;
+    then, whatever made them, two experiments or two curves of one name."""
+    lists = {"holes.centres": [(c, c % TWO_PI) for c in scene.hole_centres],
+             "holes.widths": [(w, w) for w in scene.hole_widths],
+             "physics.restitution": [(r, r) for r in scene.restitutions]}
+    for key, values in lists.items():
+        hint = _PRODUCT if key.startswith("holes") else "one curve per restitution"
+        seen, shown = {}, {}
+        for value, same in values:
+            if same in seen:
+                first = seen[same]
+                if repr(first) == repr(value):
+                    raise ValueError(f"{key} lists {value!r} twice ({hint})")
+                raise ValueError(f"{key} {first!r} and {value!r} are the same"
+                                 f" {'hole (mod 2*pi)' if key == 'holes.centres' else 'value'}"
+                                 f" ({hint})")
+            seen[same] = value
+            text = _num(value)
+            if text in shown:
+                raise ValueError(f"{key} {shown[text]!r} and {value!r} both show as {text} in"
+                                 f" curve names ({NAME_DIGITS} significant digits): make them"
+                                 f" differ within {NAME_DIGITS} digits")
+            shown[text] = value
+    experiments = scene.experiments()
+    for what, names in (("experiments", [x.name for x in experiments]),
+                        ("curves", [c for x in experiments for c in x.curves])):
+        twice = sorted({n for n in names if names.count(n) > 1})
+        if twice:
+            raise ValueError(f"two {what} are named {twice[0]!r}: each needs a name of its own")
+
+
+_PRODUCT = ("the experiments are holes.centres x holes.widths, each centre with each width:"
+            " list each value once")
