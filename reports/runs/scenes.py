@@ -313,6 +313,7 @@ def _validate(data, text):
         **physics, **portrait,
     )
     _check_distinct(scene)
+    _check_drag(scene)
     for exp in scene.experiments():
         _check_departures(exp, eps)
         if kind == "escape":
@@ -489,27 +490,24 @@ def _check_distinct(scene):
     NAME_DIGITS significant digits a name shows would give two experiments one name: their
     counts would merge in counts.csv and survival.csv. Both are refused, naming the values;
     then, whatever made them, two experiments or two curves of one name."""
-    lists = {"holes.centres": [(c, c % TWO_PI) for c in scene.hole_centres],
-             "holes.widths": [(w, w) for w in scene.hole_widths],
-             "physics.restitution": [(r, r) for r in scene.restitutions]}
+    lists = {"holes.centres": scene.hole_centres, "holes.widths": scene.hole_widths,
+             "physics.restitution": scene.restitutions}
     for key, values in lists.items():
         hint = _PRODUCT if key.startswith("holes") else "one curve per restitution"
-        seen, shown = {}, {}
-        for value, same in values:
-            if same in seen:
-                first = seen[same]
+        for i, value in enumerate(values):
+            for first in values[:i]:
                 if repr(first) == repr(value):
                     raise ValueError(f"{key} lists {value!r} twice ({hint})")
-                raise ValueError(f"{key} {first!r} and {value!r} are the same"
-                                 f" {'hole (mod 2*pi)' if key == 'holes.centres' else 'value'}"
-                                 f" ({hint})")
-            seen[same] = value
-            text = _num(value)
-            if text in shown:
-                raise ValueError(f"{key} {shown[text]!r} and {value!r} both show as {text} in"
-                                 f" curve names ({NAME_DIGITS} significant digits): make them"
-                                 f" differ within {NAME_DIGITS} digits")
-            shown[text] = value
+                if key == "holes.centres" and _same_phase(first, value):
+                    raise ValueError(f"{key} {first!r} and {value!r} are the same hole (mod"
+                                     f" 2*pi) ({hint})")
+                if first == value:
+                    raise ValueError(f"{key} {first!r} and {value!r} are the same value"
+                                     f" ({hint})")
+                if _num(first) == _num(value):
+                    raise ValueError(f"{key} {first!r} and {value!r} both show as"
+                                     f" {_num(value)} in curve names ({NAME_DIGITS} significant"
+                                     f" digits): make them differ within {NAME_DIGITS} digits")
     experiments = scene.experiments()
     for what, names in (("experiments", [x.name for x in experiments]),
                         ("curves", [c for x in experiments for c in x.curves])):
@@ -520,3 +518,41 @@ def _check_distinct(scene):
 
 _PRODUCT = ("the experiments are holes.centres x holes.widths, each centre with each width:"
             " list each value once")
+
+
+def _same_phase(a, b):
+    """Whether phases a and b are one point mod 2*pi, up to the rounding of reducing them: a
+    few ulps of the larger of |a|, |b| and 2*pi."""
+    gap = (a - b) % TWO_PI
+    return min(gap, TWO_PI - gap) <= 4 * math.ulp(max(abs(a), abs(b), TWO_PI))
+
+
+# ------------------------------------------------------------------ what the model can run
+
+PHASE_ERROR = 4 * math.ulp(TWO_PI)  # a step's bound on the error of its phase (3.6e-15)
+
+
+def _check_drag(scene):
+    """The drag must not stop a particle faster than one step can resolve a flight.
+
+    Drag k slows a particle of speed V at the rate k (linear, V' = -k*V) or k*V (quadratic,
+    V' = -k*V**2): it stops it within 1/rate. Once the rate is large the particle rides the
+    plate in hops of about that duration (flights of order 1/k). A step's phase is good to
+    PHASE_ERROR = 4 ulps of 2*pi (docs/fastpath.md), so a flight shorter than that is below the
+    resolution of the collision map, and the flight solvers' error bounds no longer separate
+    its root from zero (their rounding bound is relative to a phase of order 1): float64 cannot
+    run such a scene. So 1/rate >= PHASE_ERROR at the scene's largest speed V, the fastest
+    start (|v| at either end of start.v) plus the 2*|eps| an impact can add; for the
+    quadratic law that bounds k*V."""
+    if scene.drag == 0.0:
+        return
+    speed = max(abs(scene.start_v[0]), abs(scene.start_v[1])) + 2.0 * abs(scene.eps)
+    largest = 1.0 / PHASE_ERROR if scene.drag_law == "linear" else 1.0 / (PHASE_ERROR * speed)
+    if scene.drag <= largest:
+        return
+    rate = scene.drag if scene.drag_law == "linear" else scene.drag * speed
+    raise ValueError(
+        f"physics.drag = {scene.drag:.6g} ({scene.drag_law}) stops a particle of speed"
+        f" {speed:.3g} (the fastest start plus 2*|eps|) within {1.0 / rate:.3g} time units,"
+        f" shorter than the {PHASE_ERROR:.2g} a step resolves: float64 cannot run these"
+        f" flights; drag must be <= {largest:.3g} here")
