@@ -48,8 +48,8 @@ class RunInterrupted(Exception):
 def os_error_text(err):
     """One line for an OSError, naming its path(s): "PATH: Permission denied"."""
     paths = [str(p) for p in (err.filename, err.filename2) if p is not None]
-    what = err.strerror or type(err).__name__
-    return f"{' -> '.join(paths)}: {what}" if paths else f"{what}: {err}"
+    what = err.strerror or str(err) or type(err).__name__
+    return f"{' -> '.join(paths)}: {what}" if paths else what
 
 
 SAMPLE_COLUMNS = ("experiment", "chunk", "particle", "n", "phi", "v", "phi1", "v1", "tau",
