@@ -156,11 +156,6 @@ def write_figures(paths, pngs):
         raise
 
 
-def _interval_end(value, side):
-    """An interval end for the table: the word "unbounded" where the data do not bound it."""
-    return "unbounded" if value is None else f"{value:g}" if side else f"{value:g}"
-
-
 def table(results):
     """Readable lines: per curve the best law with its parameters, window and regimes."""
     lines = []
