@@ -205,7 +205,7 @@ def load_manifest(path):
     """The manifest at ``path`` (a manifest.json or the run directory holding it), validated
     against ``SCHEMA``; ValueError with one line otherwise."""
     path = Path(path)
-    if path.is_dir():
+    if path.is_dir() and path.name != MANIFEST:
         path = path / MANIFEST
     manifest = _json_of(path)
     check(manifest, SCHEMA, path)

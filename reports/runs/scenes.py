@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 import numbers
 import re
+import sys
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
@@ -220,8 +221,8 @@ def parse_scene(text: str, origin: str = "scene") -> Scene:
         raise ValueError(f"{origin}: not valid TOML: {clip(str(err))}") from None
     except RecursionError:
         raise ValueError(f"{origin}: not valid TOML: nested too deeply") from None
-    except ValueError as err:  # an integer of more digits than Python converts
-        raise ValueError(f"{origin}: not valid TOML: {clip(str(err))}") from None
+    except ValueError:  # an integer of more digits than Python converts
+        raise ValueError(f"{origin}: {_long_integer(text)}") from None
     try:
         return _validate(data, text)
     except ValueError as err:
@@ -231,6 +232,19 @@ def parse_scene(text: str, origin: str = "scene") -> Scene:
 
 
 MESSAGE_CHARACTERS = 400  # of a validation message, the values it shows included
+
+
+def _long_integer(text):
+    """Where a TOML text holds an integer of more digits than Python converts: its line and
+    key, for the message (tomllib names neither)."""
+    limit = sys.get_int_max_str_digits() or 4300
+    found = re.search(rf"\d[\d_]{{{limit},}}", text)
+    if found is None:
+        return "not valid TOML: a number it cannot convert"
+    line = text.count("\n", 0, found.start()) + 1
+    key = text[text.rfind("\n", 0, found.start()) + 1:found.start()].split("=")[0].strip()
+    return (f"line {line} ({clip(key, 40)}): an integer of {len(found.group())} digits, beyond"
+            " any value of a scene")
 
 
 def _validate(data, text):
