@@ -76,6 +76,7 @@ def main(argv=None):
 
 
 CHECK_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+MAX_LINE = 600  # characters of an error line (the values in it are clipped where they arise)
 
 
 def _block_for_check(argv):
@@ -89,20 +90,24 @@ def _block_for_check(argv):
 
 
 def _main(argv):
+    from reports.runs.echo import clip, plain_text
     from reports.runs.rundir import RunFailed, RunInterrupted, os_error_text
+
+    def say(line):  # one line, plain numbers, of bounded length
+        print(clip(plain_text(str(line).replace("\n", " ")), MAX_LINE), file=sys.stderr)
 
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
         return args.func(args)
     except ValueError as err:
-        print(f"bouncer: error: {err}", file=sys.stderr)
+        say(f"bouncer: error: {err}")
         return 2
     except RunFailed as err:
-        print(f"bouncer: run failed: {err}", file=sys.stderr)
+        say(f"bouncer: run failed: {err}")
         return 1
     except OSError as err:
-        print(f"bouncer: error: {os_error_text(err)}", file=sys.stderr)
+        say(f"bouncer: error: {os_error_text(err)}")
         return 2
     except RunInterrupted as err:
         resume = getattr(args, "resume_command", None)

@@ -70,7 +70,10 @@ def add_parser(subparsers):
 
 
 def _error(message: str) -> int:
-    print(f"bouncer: error: {message}", file=sys.stderr)
+    from reports.runs.echo import clip, plain_text
+
+    print(clip(plain_text(f"bouncer: error: {message}".replace("\n", " ")), 600),
+          file=sys.stderr)
     return 2
 
 

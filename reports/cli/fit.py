@@ -30,7 +30,7 @@ from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 
-from reports.runs.echo import clip, plain
+from reports.runs.echo import clip, plain, plain_text
 from reports.runs.rundir import missing_folders, os_error_text, write_atomic
 from reports.stats.analysis import analyse, best_law_text
 from reports.stats.histogram import CLOCKS, read_csv_histogram, read_run
@@ -187,6 +187,16 @@ def _analyse_all(curves, plot, jobs):
     return done
 
 
+MAX_LINE = 600  # characters of an error line
+
+
+def _error(text):
+    """One line on stderr (plain numbers, bounded length); exit status 2."""
+    line = clip(plain_text(f"bouncer fit: error: {text}".replace("\n", " ")), MAX_LINE)
+    print(line, file=sys.stderr)
+    return 2
+
+
 def main(args):
     """Run ``bouncer fit``; returns the exit status."""
     try:
@@ -201,15 +211,11 @@ def main(args):
             for r, path in zip(results, paths, strict=True):
                 r["png"] = str(path)
     except ValueError as err:
-        print(f"bouncer fit: error: {err}", file=sys.stderr)
-        return 2
+        return _error(str(err))
     except OSError as err:
-        print(f"bouncer fit: error: {os_error_text(err)}", file=sys.stderr)
-        return 2
+        return _error(os_error_text(err))
     except BrokenProcessPool:
-        print("bouncer fit: error: a worker process died (out of memory?); try --jobs 1",
-              file=sys.stderr)
-        return 2
+        return _error("a worker process died (out of memory?); try --jobs 1")
     if args.json:
         print(json.dumps(results, indent=1, allow_nan=False))
     else:

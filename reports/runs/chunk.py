@@ -134,6 +134,7 @@ def kernel(plan, exp, state, slot, target, samples, out):
 def settle(phi, v, eps, physics=None):
     """The collision float64 could not decide, by ``verify.step`` (with the scene's ``physics``
     keywords, none for the elastic model): floats (phi1, v1, tau)."""
+    phi, v = float(phi), float(v)  # plain numbers in verify's messages, not np.float64(...)
     try:
         phi1, v1, tau = verify.step(phi, v, eps, dps=VERIFY_DPS, **(physics or {}))
     except (verify.UndecidableCollision, ValueError) as err:

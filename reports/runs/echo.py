@@ -8,6 +8,8 @@ numbers they hold, so that a message says 3.96, never ``np.float64(3.96)``.
 
 from __future__ import annotations
 
+import re
+
 SHOWN_CHARACTERS = 80  # of a value echoed in a message
 MAX_DIGITS = 20  # an integer with more digits is no count of a run (counts are < 2**63)
 
@@ -55,3 +57,12 @@ def integer(digits: str):
     if len(digits.lstrip("-")) > MAX_DIGITS:
         return LongInteger(digits)
     return int(digits)
+
+
+_NUMPY_SCALAR = re.compile(r"np\.(?:float|int|uint|bool_?)\d*\(([^()]*)\)")
+
+
+def plain_text(message: str) -> str:
+    """A message with numpy scalar reprs, ``np.float64(3.96)``, written as the numbers they
+    hold: the last guard of the rule that messages show plain numbers."""
+    return _NUMPY_SCALAR.sub(r"\1", message)
