@@ -75,7 +75,8 @@ def main(argv=None):
         return 130
 
 
-CHECK_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+CHECK_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP")
+                      if hasattr(signal, name))
 MAX_LINE = 600  # characters of an error line (the values in it are clipped where they arise)
 
 

@@ -28,7 +28,8 @@ from contextlib import contextmanager
 
 from . import worker as workers
 
-WATCHED = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+WATCHED = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP")
+                if hasattr(signal, name))
 WAIT_S = 0.1  # the watching thread looks whether the check has ended this often
 
 

@@ -55,7 +55,8 @@ START_TIMEOUT = 60.0  # seconds for the warm-up calls after the import
 WARM_UP = (0.0, math.pi, 0.5)  # the fixed point (0, pi) at eps = 0.5: tau = 2*pi
 POLL_S = 0.05  # a wait for an answer also looks this often whether the worker still lives
 OUTPUT_TAIL = 4096  # bytes of the worker's stdout and stderr kept
-SIGNALS_TO_FREE = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)  # unblocked in the worker
+SIGNALS_TO_FREE = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP")
+                        if hasattr(signal, name))  # unblocked in the worker
 _CHILD = ("import sys; from verify.check.worker import serve_fd;"
           " serve_fd(int(sys.argv[1]), int(sys.argv[2]))")
 _ROOT = str(Path(__file__).resolve().parents[2])  # the folder holding the verify package
@@ -301,6 +302,12 @@ def _keep_tail(pipe, tail) -> None:
 def kill_group(pid: int) -> None:
     """SIGKILL to the process group ``pid`` leads and, on Linux, to every process still in its
     session (one that left the group with setpgid); the leader itself in any case."""
+    if not hasattr(os, "killpg"):  # not POSIX: the worker alone
+        try:
+            os.kill(pid, signal.SIGTERM)
+        except OSError:
+            pass
+        return
     for kill in (lambda: os.killpg(pid, signal.SIGKILL), lambda: os.kill(pid, signal.SIGKILL)):
         try:
             kill()
@@ -397,7 +404,7 @@ def _die_with_parent(parent: int) -> None:
         import ctypes
 
         prctl = ctypes.CDLL(None, use_errno=True).prctl
-    except (OSError, AttributeError):
+    except (OSError, AttributeError, TypeError):  # not Linux
         return
 
     def arm():
