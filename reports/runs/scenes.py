@@ -290,6 +290,7 @@ def _validate(data, text):
         for w in widths:
             if not 0 < w < TWO_PI:
                 raise ValueError(f"hole width must be in (0, 2*pi), got {w!r}")
+        _check_size(kind, centres, widths)
         if kind == "transport":
             _check_disjoint(centres, widths)
 
@@ -508,20 +509,17 @@ def _check_distinct(scene):
              "physics.restitution": scene.restitutions}
     for key, values in lists.items():
         hint = _PRODUCT if key.startswith("holes") else "one curve per restitution"
-        for i, value in enumerate(values):
-            for first in values[:i]:
-                if repr(first) == repr(value):
-                    raise ValueError(f"{key} lists {value!r} twice ({hint})")
-                if key == "holes.centres" and _same_phase(first, value):
-                    raise ValueError(f"{key} {first!r} and {value!r} are the same hole (mod"
-                                     f" 2*pi) ({hint})")
-                if first == value:
-                    raise ValueError(f"{key} {first!r} and {value!r} are the same value"
-                                     f" ({hint})")
-                if _num(first) == _num(value):
-                    raise ValueError(f"{key} {first!r} and {value!r} both show as"
-                                     f" {_num(value)} in curve names ({NAME_DIGITS} significant"
-                                     f" digits): make them differ within {NAME_DIGITS} digits")
+        for first, value in _pairs_alike(values, key == "holes.centres"):
+            if repr(first) == repr(value):
+                raise ValueError(f"{key} lists {value!r} twice ({hint})")
+            if key == "holes.centres" and _same_phase(first, value):
+                raise ValueError(f"{key} {first!r} and {value!r} are the same hole (mod"
+                                 f" 2*pi) ({hint})")
+            if first == value:
+                raise ValueError(f"{key} {first!r} and {value!r} are the same value ({hint})")
+            raise ValueError(f"{key} {first!r} and {value!r} both show as {_num(value)} in"
+                             f" curve names ({NAME_DIGITS} significant digits): make them"
+                             f" differ within {NAME_DIGITS} digits")
     experiments = scene.experiments()
     for what, names in (("experiments", [x.name for x in experiments]),
                         ("curves", [c for x in experiments for c in x.curves])):
@@ -532,6 +530,40 @@ def _check_distinct(scene):
 
 _PRODUCT = ("the experiments are holes.centres x holes.widths, each centre with each width:"
             " list each value once")
+
+
+def _pairs_alike(values, phases):
+    """The first pair of values (earlier, later) that are equal, print alike in a name, or
+    (``phases``) are one point mod 2*pi; none if there is no such pair. Sorted, so the values
+    of a long list are compared with their neighbours only."""
+    def alike(a, b):
+        return a == b or _num(a) == _num(b) or (phases and _same_phase(a, b))
+
+    order = {}
+    for i, value in enumerate(values):
+        order.setdefault(_num(value), []).append(i)
+    found = [(ii[0], ii[1]) for ii in order.values() if len(ii) > 1]
+    if phases and len(values) > 1:
+        ranked = sorted(range(len(values)), key=lambda i: values[i] % TWO_PI)
+        found += [(min(a, b), max(a, b)) for a, b in zip(ranked, ranked[1:] + ranked[:1],
+                                                          strict=True)
+                  if a != b and alike(values[a], values[b])]
+    if not found:
+        return []
+    i, j = min(found, key=lambda ij: (ij[1], ij[0]))
+    return [(values[i], values[j])]
+
+
+MAX_CURVES = 10_000  # curves of a scene: counts.csv, survival.csv and the manifest hold each
+
+
+def _check_size(kind, centres, widths):
+    """At most MAX_CURVES curves: centres x widths (escape), widths x centres**2 (transport:
+    every hole to every hole), before anything is built from them."""
+    curves = len(centres) * len(widths) * (len(centres) if kind == "transport" else 1)
+    if curves > MAX_CURVES:
+        raise ValueError(f"{len(centres)} holes.centres and {len(widths)} holes.widths make"
+                         f" {curves} curves, more than the {MAX_CURVES} a run holds")
 
 
 def _same_phase(a, b):

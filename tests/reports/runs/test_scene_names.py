@@ -174,3 +174,22 @@ def test_an_accepted_scene_has_distinct_experiments_and_curve_names(text):
     if scene.kind == "escape":  # no hole run twice (0 and 2*pi, 0 and -0.0 are one hole)
         assert len(set(holes)) == len(holes)
     assert all(math.isfinite(lo) for lo, _ in holes)
+
+
+def test_a_scene_of_more_curves_than_a_run_holds_is_refused_before_they_are_built():
+    centres = [round(0.0003 * i, 4) for i in range(20_000)]
+    line = refusal(ESCAPE.format(centres=centres, widths="[0.0001]"))
+    assert line.endswith("20000 holes.centres and 1 holes.widths make 20000 curves, more than"
+                         " the 10000 a run holds")
+    line = refusal(TRANSPORT.format(centres=[0.1 * i for i in range(60)], widths="[0.01, 0.02,"
+                                    " 0.03]"))
+    assert "make 10800 curves" in line  # every hole to every hole, per width
+
+
+def test_long_lists_are_compared_by_neighbours_not_by_every_pair():
+    """9000 distinct centres are checked at once; a repeat among them is found and named."""
+    centres = [1.0 + 0.001 * i for i in range(9000)]
+    values = [float(f"{c:.4g}") for c in centres]
+    assert len(set(values)) == 9000
+    assert "holes.centres lists 1.5 twice" in refusal(
+        ESCAPE.format(centres=values + [1.5], widths="[0.0001]"))
