@@ -12,6 +12,11 @@ caller's ``__main__``), talking pickled messages over a socket pair:
     parent -> child   (name, (phi, v, eps))
     child -> parent   ("ok", output) | ("raised", text) | ("unpicklable", repr of output)
 
+An output goes back as itself only if it is made of numbers, text and short tuples or lists of
+the standard library's, numpy's or mpmath's types: unpickling anything else would import the
+checked code's own module into the checking process (pickle names a class by its module). Any
+other output goes back as its repr, which fails the property that called.
+
 The import has its own timeout (``import_timeout``): a module that hangs or waits while it
 is imported is refused (:class:`Unavailable`, a ``ValueError`` for the caller) naming the
 import. After loading, the worker calls each callable once at the fixed point ``(0, pi, 0.5)``
@@ -35,6 +40,7 @@ from __future__ import annotations
 
 import collections
 import math
+import numbers
 import os
 import pickle
 import signal
@@ -271,9 +277,10 @@ class _Remote:
 
 
 class _Unpicklable:
-    """An output that could not be sent back; vetting it fails with its repr."""
+    """An output that was not sent back (not made of numbers; or pickle cannot carry it);
+    vetting it fails with its repr."""
 
-    description = "an object that cannot be sent back from the worker process"
+    description = "an object of a type the check does not take back: numbers only"
 
     def __init__(self, text: str) -> None:
         self.text = text
@@ -391,9 +398,55 @@ def serve(conn: Connection) -> None:
             continue
         only_the_worker()
         try:
+            out = _portable(out)
+        except (TypeError, ValueError, OverflowError):
+            conn.send(("unpicklable", _repr(out)))
+            continue
+        try:
             conn.send(("ok", out))
         except Exception:  # noqa: BLE001 - an output pickle cannot carry
-            conn.send(("unpicklable", repr(out)))
+            conn.send(("unpicklable", _repr(out)))
+
+
+PLAIN_MODULES = ("builtins", "numpy", "mpmath", "fractions", "decimal")
+PLAIN_ITEMS = 16  # items of a tuple or list sent back (a step returns three)
+
+
+def _plain(value, depth: int = 0) -> bool:
+    """Whether ``value`` can go back to the checker without importing anything of the checked
+    code there: an object of the standard library's, numpy's or mpmath's types (numpy arrays of
+    numbers only), or a short tuple or list of them."""
+    kind = type(value)
+    if kind.__module__.partition(".")[0] not in PLAIN_MODULES:
+        return False
+    if kind in (tuple, list):
+        return (depth < 2 and len(value) <= PLAIN_ITEMS
+                and all(_plain(x, depth + 1) for x in value))
+    if isinstance(value, dict | set | frozenset):
+        return False
+    dtype = getattr(value, "dtype", None)
+    return dtype is None or getattr(dtype, "kind", "O") in "biufc"
+
+
+def _portable(value, depth: int = 0):
+    """``value`` as it goes back to the checker: itself if ``_plain``; a real number of the
+    checked code's own type as the float it converts to (a float subclass is a number); a
+    short tuple or list element by element. TypeError for anything else."""
+    if _plain(value, depth):
+        return value
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return float(value)
+    if isinstance(value, tuple | list) and depth < 2 and len(value) <= PLAIN_ITEMS:
+        return tuple(_portable(x, depth + 1) for x in value)
+    raise TypeError(type(value).__name__)
+
+
+def _repr(value, limit: int = 200) -> str:
+    try:
+        text = repr(value)
+    except Exception as err:  # noqa: BLE001 - the checked code's repr
+        text = f"<{type(value).__name__} whose repr raised {one_line(err)}>"
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def _die_with_parent(parent: int) -> None:

@@ -94,6 +94,23 @@ def flight_time(phi, v, eps):
     print("Traceback (most recent call last): chatter on stderr", file=sys.stderr)
     return 2.0 * v
 """,
+    "own_number_type": RECORD + """
+record()  # at import: only the worker may import this module
+
+class Tau(float):
+    pass
+
+def flight_time(phi, v, eps):
+    return Tau(2.0 * v)
+""",
+    "own_object": """
+class Box:
+    def __init__(self, x):
+        self.x = x
+
+def flight_time(phi, v, eps):
+    return Box(2.0 * v)
+""",
     "slow_and_forks": RECORD + """
 def flight_time(phi, v, eps):
     record()
@@ -226,3 +243,15 @@ def test_a_checker_stopped_from_outside_leaves_nothing_running(folder, sig, stat
     assert proc.returncode == status
     assert err == line
     assert left_running(folder) == []
+
+
+def test_the_checked_module_is_imported_by_the_worker_only(folder):
+    """An answer of the module's own type would make pickle import the module into the
+    checker: a number of its own type goes back as the float it is, anything else as text."""
+    proc = check(folder, "own_number_type", *QUICK)
+    assert proc.returncode == 0 and "PASS  fixed_points" in proc.stdout
+    (worker,) = (folder / "pids.txt").read_text().split()  # one import, in one process
+    proc = check(folder, "own_object", *QUICK)
+    assert proc.returncode == 1
+    assert "obtained <own_object.Box object at" in proc.stdout
+    assert "not a real number (an object of a type the check does not take back" in proc.stdout
