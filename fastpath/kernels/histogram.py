@@ -3,13 +3,19 @@
 Only counts are kept: bin k holds values x with edges[k] <= x < edges[k+1], the last bin is
 open above, values below edges[0] go to bin 0. A hole is the arc [lo, lo + width) mod 2*pi with
 lo in [0, 2*pi), so holes centred at 0 wrap: phi is inside iff ((phi - lo) mod 2*pi) < width.
+
+``escape``, ``censor`` and ``stuck`` also append the particle's joint (n, t) bin to the joint
+record (``record_joint``) when the kernel is given ``arrays.JointCounts``; with
+``arrays.EscapeCounts`` that call compiles to nothing.
 """
 
 import numpy as np
+from numba.extending import overload
 
 from fastpath.arithmetic.jit import inline_jit, jit
 from fastpath.arithmetic.phase import TWO_PI
 from fastpath.arithmetic.rounding import select, two_sum
+from fastpath.kernels.arrays import JointCounts
 
 
 @jit
@@ -67,18 +73,57 @@ def record(bins, row_n, row_t, n, t):
 
 
 @jit
+def joint_code(bins, outcome, n, t):
+    """The code of the joint bin (outcome, k_n, k_t) of a particle's end (``JointCounts``)."""
+    k_n, k_t = bin_index(bins.n_edges, n), bin_index(bins.t_edges, t)
+    return (outcome * len(bins.n_edges) + k_n) * len(bins.t_edges) + k_t
+
+
+@jit
+def append_joint(counts, bins, b, outcome, n, t):
+    """Append the joint bin of a particle of block b that ended with ``outcome`` (hole j,
+    censored = holes, stuck = holes + 1) at index n and time t to row b of the joint record
+    (``arrays.JointCounts``). A row holds as many entries as its block has particles: a
+    further one is not stored but counted (``ended``), so that the caller sees it
+    (``arrays.joint_histogram`` refuses it)."""
+    k = counts.ended[b]
+    if k < counts.ends.shape[1]:
+        counts.ends[b, k] = joint_code(bins, outcome, n, t)
+    counts.ended[b] = k + 1
+
+
+def record_joint(counts, bins, b, outcome, n, t):
+    """``append_joint`` if ``counts`` is ``arrays.JointCounts`` (a scene that records the joint
+    histogram), nothing for ``arrays.EscapeCounts``."""
+    if isinstance(counts, JointCounts):
+        append_joint(counts, bins, b, outcome, n, t)
+
+
+@overload(record_joint)
+def _record_joint_compiled(counts, bins, b, outcome, n, t):
+    """The compiled ``record_joint``, chosen by the class of ``counts`` when the kernel is
+    compiled: a kernel given ``EscapeCounts`` carries no trace of the joint record."""
+    if counts.instance_class is not JointCounts:
+        return lambda counts, bins, b, outcome, n, t: None
+    return lambda counts, bins, b, outcome, n, t: append_joint(counts, bins, b, outcome, n, t)
+
+
+@jit
 def censor(counts, bins, b, n, t):
     """A particle censored with index bound n and time bound t, into block b's row."""
     record(bins, counts.cens_n[b], counts.cens_t[b], n, t)
+    record_joint(counts, bins, b, counts.esc_n.shape[1], n, t)
 
 
 @jit
 def escape(counts, bins, b, j, n, t):
     """A particle escaped through hole j at collision n, time t, into block b's row."""
     record(bins, counts.esc_n[b, j], counts.esc_t[b, j], n, t)
+    record_joint(counts, bins, b, j, n, t)
 
 
 @jit
 def stuck(counts, bins, b, n, t):
     """A particle stuck on the plate for good after collision n, from time t."""
     record(bins, counts.stuck_n[b], counts.stuck_t[b], n, t)
+    record_joint(counts, bins, b, counts.esc_n.shape[1] + 1, n, t)
