@@ -52,6 +52,7 @@ from reports.runs.chunk import OVERSTEP_TOLERANCE, check_result, run_chunk
 from reports.runs.counts import CheckpointError, Tally
 from reports.runs.executor import Executor
 from reports.runs.integrity import tally_problems
+from reports.runs.joint_file import JOINT_FILE, joint_text
 from reports.runs.lock import RunLock
 from reports.runs.plan import check_size, make_plan
 from reports.runs.provenance import git, now, versions
@@ -338,8 +339,8 @@ def survival_rows(plan, tally):
 
 
 def result_files(plan, tally):
-    """{name: text or bytes} of survival.csv, counts.csv (or portrait.npy, or velocity.csv)
-    and sample.csv."""
+    """{name: text or bytes} of survival.csv, counts.csv (or portrait.npy, or velocity.csv),
+    joint.csv (scenes that record it) and sample.csv."""
     sc = plan.scene
     files = {}
     if sc.kind == "phase-space":
@@ -352,6 +353,8 @@ def result_files(plan, tally):
         files["survival.csv"] = rundir.csv_text(["curve", "clock", "x", "p", "p_lo", "p_hi"],
                                                 survival_rows(plan, tally))
         files["counts.csv"] = rundir.csv_text(COUNTS_COLUMNS, counts_rows(plan, tally))
+    if sc.joint:
+        files[JOINT_FILE] = joint_text(plan, tally.joint)
     samples = sorted(tally.samples, key=lambda r: (r[0], r[1], r[2]))
     files["sample.csv"] = rundir.csv_text(
         rundir.sample_columns(sc),
