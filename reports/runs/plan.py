@@ -155,13 +155,31 @@ def check_size(plan):
             f" is {MAX_RUN_S * PARTICLES_PER_S:.2g} particles in all (one year): use fewer")
 
 
+def draw_starts(rng, phi_box, v_box, m, density):
+    """m starts (phi, v) on the box phi_box x v_box from ``rng``, phi drawn first, with the
+    scene's ``density`` (``scenes.DENSITIES``):
+
+        uniform   phi = phi_lo + (phi_hi - phi_lo) * U                        (U uniform)
+        sine      density ~ sin(pi x) sin(pi y), x, y the box's scaled coordinates:
+                  x = arccos(1 - 2U) / pi, the inverse of its distribution (1 - cos(pi x)) / 2
+
+    (the uniform draws are ``Generator.uniform``, as they always were)."""
+    if density == "uniform":
+        return rng.uniform(phi_box[0], phi_box[1], m), rng.uniform(v_box[0], v_box[1], m)
+    if density == "sine":
+        x = np.arccos(1.0 - 2.0 * rng.random(m)) / math.pi
+        y = np.arccos(1.0 - 2.0 * rng.random(m)) / math.pi
+        return (phi_box[0] + (phi_box[1] - phi_box[0]) * x,
+                v_box[0] + (v_box[1] - v_box[0]) * y)
+    raise ValueError(f"unknown start density {density!r}")
+
+
 def chunk_starts(plan, e, k):
     """Starts (phi, v) and verification picks (slot, target) of chunk k of experiment e."""
     exp = plan.experiments[e]
     m = plan.chunk_particles(k)
     rng = np.random.default_rng(np.random.SeedSequence(plan.seed, spawn_key=(e, k)))
-    phi = rng.uniform(exp.phi[0], exp.phi[1], m)
-    v = rng.uniform(exp.v[0], exp.v[1], m)
+    phi, v = draw_starts(rng, exp.phi, exp.v, m, plan.scene.density)
     s = min(plan.samples_per_chunk, m) if plan.sampled(e, k) else 0
     picks = rng.choice(m, size=s, replace=False)
     depth = min(plan.scene.max_collisions or SAMPLE_DEPTH, SAMPLE_DEPTH)
