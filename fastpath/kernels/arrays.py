@@ -85,10 +85,10 @@ class JointCounts(NamedTuple):
 
     to row b of ``ends`` (``ended[b]`` entries so far; a row holds the block's particles),
     outcome j < holes for an escape through hole j, holes for censored, holes + 1 for stuck,
-    k_n and k_t its bins of the two clocks (``histogram.record_joint``). The caller counts the
+    k_n and k_t its bins of the two clocks (``histogram.record_end``). The caller counts the
     codes (``joint_histogram``): a histogram does not depend on the order within a row, so the
     result is the same for any threads. A separate class, so that a kernel called with
-    ``EscapeCounts`` compiles without the record (``histogram.record_joint`` is then empty)."""
+    ``EscapeCounts`` compiles without the record (``histogram.record_end`` is then ``record``)."""
 
     esc_n: np.ndarray
     esc_t: np.ndarray
@@ -110,7 +110,7 @@ class JointCounts(NamedTuple):
 def joint_histogram(counts, n_bins, t_bins):
     """The joint record of ``counts`` (``JointCounts``) as counts[outcome, k_n, k_t], outcomes
     0 .. holes + 1 (``JointCounts``). ValueError if a block recorded more ends than it holds
-    particles (``histogram.record_joint`` drops those: a particle ended twice)."""
+    particles (``histogram.append_joint`` drops those: a particle ended twice)."""
     holes = counts.esc_n.shape[1]
     capacity = counts.ends.shape[1]
     if np.any(counts.ended > capacity):
@@ -118,7 +118,8 @@ def joint_histogram(counts, n_bins, t_bins):
                          f" {int(counts.ended.max())} ends")
     codes = np.concatenate([row[:k] for row, k in zip(counts.ends, counts.ended, strict=True)])
     size = (holes + 2) * n_bins * t_bins
-    return np.bincount(codes, minlength=size).astype(np.int64).reshape(holes + 2, n_bins, t_bins)
+    counts = np.bincount(codes, minlength=size).astype(np.int64, copy=False)
+    return counts.reshape(holes + 2, n_bins, t_bins)
 
 
 class Sample(NamedTuple):

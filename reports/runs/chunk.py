@@ -152,9 +152,12 @@ def add_joint(out, counts, plan):
         joint = joint_histogram(counts, len(plan.n_edges), len(plan.t_edges))
     except ValueError as err:
         raise RunFailed(f"the joint record is inconsistent: {err}") from None
-    holes = len(joint) - 2
-    out.joint[:holes] += joint[:holes]
-    out.joint[-2:] += joint[-2:]
+    if joint.shape == out.joint.shape:
+        out.joint += joint
+    else:  # fewer holes than the run's widest curve set
+        holes = len(joint) - 2
+        out.joint[:holes] += joint[:holes]
+        out.joint[-2:] += joint[-2:]
 
 
 def add_joint_end(out, plan, outcome, n, t):
