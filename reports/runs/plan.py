@@ -55,6 +55,11 @@ MAX_RUN_S = 365.25 * 86400  # refuse runs estimated above one year of that machi
 SAMPLE_ROW_BYTES = 500  # one verified sample row: ~250 B in sample.csv, as much in the checkpoint
 
 
+# joint.csv and the checkpoint's joint record, per curve: 35-47 KB at 10^5-10^6 particles per
+# curve (paper-escape, paper-transport), growing ~25% per decade of particles
+JOINT_CURVE_BYTES = 100_000
+
+
 @dataclass
 class Plan:
     """What a run computes: the scene with its particle count and seed, chunks and bins."""
@@ -138,10 +143,13 @@ def make_plan(scene, particles=None, seed=None):
 def estimate(plan):
     """(seconds, bytes) a run needs: seconds = particles / PARTICLES_PER_S (2 cores, a
     paper-escape-like scene), bytes = the verification sample twice (sample.csv, checkpoint)
-    plus 1 MB of histograms and manifest."""
+    plus 1 MB of histograms and manifest, plus ``JOINT_CURVE_BYTES`` per curve of a joint
+    record."""
     seconds = plan.particles_total / PARTICLES_PER_S
     rows = min(plan.sampled_chunks * plan.samples_per_chunk, plan.particles_total)
-    return seconds, rows * SAMPLE_ROW_BYTES + 10**6
+    joint = JOINT_CURVE_BYTES * sum(len(x.curves) for x in plan.experiments) if \
+        plan.scene.joint else 0
+    return seconds, rows * SAMPLE_ROW_BYTES + 10**6 + joint
 
 
 def check_size(plan):

@@ -300,3 +300,11 @@ def test_a_checkpoint_joint_record_off_its_marginals_fails_the_invariants(joint_
     assert found and all(x.startswith("checkpoint joint record: from hole 1, P1") for x in found)
     tally.joint = None
     assert tally_problems(plan, tally) == ["no joint record, but the scene asks for one"]
+
+
+def test_the_disk_estimate_counts_the_joint_record():
+    from reports.runs.plan import JOINT_CURVE_BYTES, estimate
+
+    joint, plain = make_plan(parse_scene(JOINT)), make_plan(parse_scene(TINY))
+    assert estimate(joint)[1] - estimate(plain)[1] == 4 * JOINT_CURVE_BYTES  # P11 .. P22
+    assert estimate(joint)[0] == estimate(plain)[0]
