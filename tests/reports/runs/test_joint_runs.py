@@ -308,3 +308,33 @@ def test_the_disk_estimate_counts_the_joint_record():
     joint, plain = make_plan(parse_scene(JOINT)), make_plan(parse_scene(TINY))
     assert estimate(joint)[1] - estimate(plain)[1] == 4 * JOINT_CURVE_BYTES  # P11 .. P22
     assert estimate(joint)[0] == estimate(plain)[0]
+
+
+def test_particles_settled_by_verify_are_in_the_joint_record(monkeypatch):
+    """Every first flight flagged as undecided: collision 1 is settled by verify here, outside
+    the kernel; the particles that escape or are censored there are recorded here too."""
+    from reports.runs import chunk
+
+    scene = parse_scene(ESCAPE_JOINT.replace("time = 150.0", "time = 6.0"))
+    plan = make_plan(scene)
+    real = chunk.escape_chunk
+    calls = []
+
+    def undecided_first(physics, starts, *args):
+        calls.append(len(starts.phi))
+        if len(calls) > 1:
+            return real(physics, starts, *args)
+        flags = args[-1]
+        flags.status[:] = 1  # FlightStatus.UNCERTAIN
+        flags.state[:] = np.column_stack(starts)
+        return None
+
+    monkeypatch.setattr(chunk, "escape_chunk", undecided_first)
+    out, _ = chunk.simulate_chunk(plan, 0, 0)
+    assert out.settled == 128 and len(calls) == 2
+    first = out.esc_n[0, 0] + out.cens_t[np.searchsorted(plan.t_edges, 6.0, side="right") - 1:]
+    assert first.sum() > 0  # some end at the settled collision itself
+    for o, (by_n, by_t) in enumerate([(out.esc_n[0], out.esc_t[0]), (out.cens_n, out.cens_t)]):
+        np.testing.assert_array_equal(out.joint[o].sum(axis=1), by_n)
+        np.testing.assert_array_equal(out.joint[o].sum(axis=0), by_t)
+    assert out.joint.sum() == 128
