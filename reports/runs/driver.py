@@ -52,9 +52,10 @@ from reports.runs.chunk import OVERSTEP_TOLERANCE, check_result, run_chunk
 from reports.runs.counts import CheckpointError, Tally
 from reports.runs.executor import Executor
 from reports.runs.integrity import tally_problems
+from reports.runs.joint_file import JOINT_FILE, joint_text
 from reports.runs.lock import RunLock
 from reports.runs.plan import check_size, make_plan
-from reports.runs.provenance import git, now, versions
+from reports.runs.provenance import dirty_text, git, now, versions
 from reports.runs.rundir import CHECKPOINT, PROVENANCE, RunFailed, RunInterrupted
 from reports.runs.scenes import parse_scene
 from reports.runs.signals import deferred_interrupt
@@ -65,7 +66,7 @@ summary = manifest.verification_summary  # the manifest's verification summary o
 
 
 def run(scene, out, particles=None, seed=None, resume=False, force=False, progress=True,
-        threads=None, scheduler=None):
+        threads=None, scheduler=None, require_clean=False):
     """Run (or resume) ``scene`` into the directory ``out``; returns the final manifest.
 
     ``scheduler``: None runs the chunks here, one after another (numba threads inside each);
@@ -78,6 +79,11 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
     nothing behind: a new run that fails (or is interrupted) before its first chunk is
     checkpointed removes what it wrote, and the directory if it made it.
 
+    provenance.json records the git commit of the sources, and whether the work tree had
+    uncommitted changes outside ``out`` (``provenance.git``): a dirty tree is said on stderr
+    (with ``progress``, at a terminal), and refused (ValueError, before anything is written)
+    with ``require_clean``.
+
     Raises ValueError for bad input or a filesystem fault (exit 2; ``RunBusy`` when another
     process holds the directory's lock, ``CheckpointError`` for a checkpoint that fails its hash
     or invariants), RunFailed when a check fails (exit 1) and RunInterrupted on Ctrl-C (the
@@ -89,8 +95,9 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
     if scheduler is not None:
         cluster.check_available()
     rundir.check_out(out, resume, force)  # refuse before creating anything
+    source = clean_source(out, require_clean, progress)
     new_dirs = rundir.missing_folders(out)
-    ctx = {"threads": threads, "hashes": {}, "provenance": {"versions": versions(), "git": git()},
+    ctx = {"threads": threads, "hashes": {}, "provenance": {"versions": versions(), "git": source},
            "session": {"scheduler": None, "workers": None, "worker_threads": None,
                        "chunks_computed": 0},
            "compile_s": None, "kept": resume}
@@ -115,6 +122,25 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
         if not ctx["kept"]:
             rundir.remove_new_folders(out, new_dirs)
         raise
+
+
+def clean_source(out, require_clean, progress):
+    """The git record of the sources for provenance.json (``provenance.git``, the run's own
+    directory ``out`` left out); a dirty or unknown tree is refused (ValueError) with
+    ``require_clean``, else said on stderr with ``progress`` at a terminal (``bouncer run``
+    says it in its summary too, on stdout)."""
+    record = git(exclude=out)
+    problem = dirty_text(record)
+    if problem and require_clean:
+        raise ValueError(f"--require-clean: {problem}")
+    if problem and progress and _interactive():
+        print(f"bouncer run: warning: {problem}", file=sys.stderr, flush=True)
+    return record
+
+
+def _interactive():
+    """Whether stderr is a terminal (a warning there is read, not parsed)."""
+    return sys.stderr.isatty()
 
 
 def compile_kernels(plan, threads, progress):
@@ -336,8 +362,8 @@ def survival_rows(plan, tally):
 
 
 def result_files(plan, tally):
-    """{name: text or bytes} of survival.csv, counts.csv (or portrait.npy, or velocity.csv)
-    and sample.csv."""
+    """{name: text or bytes} of survival.csv, counts.csv (or portrait.npy, or velocity.csv),
+    joint.csv (scenes that record it) and sample.csv."""
     sc = plan.scene
     files = {}
     if sc.kind == "phase-space":
@@ -350,6 +376,8 @@ def result_files(plan, tally):
         files["survival.csv"] = rundir.csv_text(["curve", "clock", "x", "p", "p_lo", "p_hi"],
                                                 survival_rows(plan, tally))
         files["counts.csv"] = rundir.csv_text(COUNTS_COLUMNS, counts_rows(plan, tally))
+    if sc.joint:
+        files[JOINT_FILE] = joint_text(plan, tally.joint)
     samples = sorted(tally.samples, key=lambda r: (r[0], r[1], r[2]))
     files["sample.csv"] = rundir.csv_text(
         rundir.sample_columns(sc),

@@ -43,6 +43,7 @@ from jsonschema.exceptions import best_match
 
 from reports.runs.chunk import OVERSTEP_TOLERANCE, VERIFY_DPS
 from reports.runs.echo import clip, integer
+from reports.runs.joint_file import JOINT_FILE
 from reports.runs.plan import COLLISION_DECADES, TIME_DECADES, TIME_FIRST
 from reports.runs.rundir import (
     CARRIED_COLUMNS,
@@ -54,7 +55,7 @@ from reports.runs.rundir import (
     read_input_text,
     sample_columns,
 )
-from reports.runs.scenes import DRAG_LAWS, KINDS
+from reports.runs.scenes import DENSITIES, DRAG_LAWS, KINDS
 from reports.runs.survival import BAND
 
 STATUSES = ("partial", "complete", "failed")
@@ -70,7 +71,13 @@ COUNT_FIELDS = ("chunks_done", "collisions", "verification", "curves")
 
 def output_files(scene):
     """The result files a run of ``scene`` writes (besides sample.csv)."""
-    return OUTPUTS.get(scene.kind, SURVIVAL_OUTPUTS)
+    return OUTPUTS.get(scene.kind, SURVIVAL_OUTPUTS) + record_files(scene)
+
+
+def record_files(scene):
+    """The files of what a scene asks to record besides its histograms: joint.csv
+    (``[record] joint``, ``reports.runs.joint_file``)."""
+    return (JOINT_FILE,) if scene.joint else ()
 
 
 def hashed_files(scene):
@@ -100,7 +107,12 @@ _SURVIVAL_CURVE = _obj({"particles_done": _INT, "censored": _INT, "stuck": _INT,
 _VELOCITY_CURVE = _obj({"particles_done": _INT, "moving": _INT, "stuck": _INT,
                         "mean_v_at_horizon": {"type": ["number", "null"]}})
 _ALL_FILES = sorted({"scene.toml", "sample.csv", CHECKPOINT, PROVENANCE, *SURVIVAL_OUTPUTS,
-                     *(name for names in OUTPUTS.values() for name in names)})
+                     *(name for names in OUTPUTS.values() for name in names), JOINT_FILE})
+
+# the manifest's scene fields of the start density and the records (``_scene_records``): only
+# where a scene departs from the defaults, so a manifest of a scene without them is unchanged
+_RECORD_FIELDS = {"density": {"enum": [d for d in DENSITIES if d != "uniform"]},
+                  "joint": {"const": True}}
 
 SCHEMA = _obj({
     "status": {"enum": list(STATUSES)},
@@ -111,7 +123,8 @@ SCHEMA = _obj({
                           "time": {"type": ["number", "null"], "exclusiveMinimum": 0}})},
         {"physics": _PHYSICS,
          "physics_per_curve": {"type": "object",
-                               "additionalProperties": {"anyOf": [_PHYSICS, _obj({})]}}}),
+                               "additionalProperties": {"anyOf": [_PHYSICS, _obj({})]}},
+         **_RECORD_FIELDS}),
     "seed": _INT,
     "particles": _POSITIVE_INT,
     "particles_total": _POSITIVE_INT,
@@ -140,7 +153,9 @@ SCHEMA = _obj({
 
 PROVENANCE_SCHEMA = _obj({
     "versions": {"type": "object", "additionalProperties": {"type": ["string", "null"]}},
-    "git": {"anyOf": [{"type": "null"}, _obj({"commit": _TEXT, "dirty": {"type": "boolean"}})]},
+    "git": {"anyOf": [{"type": "null"},
+                      _obj({"commit": _TEXT, "dirty": {"type": "boolean"}},
+                           {"changed": {"type": "array", "items": _TEXT}})]},
     "threads": {"type": ["integer", "null"], "minimum": 1},
     "session": _obj({"scheduler": {"type": ["string", "null"]},
                      "workers": {"type": ["integer", "null"], "minimum": 0},
@@ -274,6 +289,17 @@ def _scene(plan):
                                     for e, x in enumerate(plan.experiments)}
     elif not sc.elastic:
         out["physics"] = sc.physics()
+    out.update(_scene_records(sc))
+    return out
+
+
+def _scene_records(scene):
+    """The manifest's scene fields of a non-uniform start density and of a joint record."""
+    out = {}
+    if scene.density != "uniform":
+        out["density"] = scene.density
+    if scene.joint:
+        out["joint"] = True
     return out
 
 

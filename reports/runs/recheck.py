@@ -22,7 +22,10 @@ invalid scene.toml is not audited at all: ValueError, exit status 2.
    tau - tau_ref > 16*kappa*u*tau_ref fails the check;
 6. the seed: every row is a verification pick drawn from the manifest's seed, and its state is
    replayed from the start drawn from the seed (``reports.runs.replay``);
-7. every field of the manifest equals the one the run's writer builds from scene.toml, the
+7. joint.csv (scenes with ``[record] joint``): equal to the one written from the checkpoint,
+   every row a bin of this run, every particle in one bin, and its marginals equal to
+   counts.csv's histograms (``reports.runs.joint_file``);
+8. every field of the manifest equals the one the run's writer builds from scene.toml, the
    seed, the particle count, the checkpoint and the recomputed sample (``manifest.build``), and
    the status is complete.
 """
@@ -44,6 +47,13 @@ from reports.runs.counts import CheckpointError, Tally
 from reports.runs.driver import result_files, survival_rows
 from reports.runs.echo import clip
 from reports.runs.integrity import curve_problems, parse_counts, survival_problems, tally_problems
+from reports.runs.joint_file import (
+    JOINT_FILE,
+    joint_problems,
+    joint_text,
+    marginal_problems,
+    parse_joint,
+)
 from reports.runs.plan import make_plan
 from reports.runs.replay import SampleRow, replay_problems
 from reports.runs.rundir import CARRIED_COLUMNS
@@ -54,6 +64,7 @@ SHOWN = 5  # discrepancies shown per check; the count of all of them is reported
 SHOWN_LINE = 300  # characters of a line shown in a discrepancy
 _SURVIVAL = "counts.csv and survival.csv"
 _REDERIVED = {"phase-space": "portrait.npy", "velocity": "velocity.csv"}
+_JOINT_CHECKED = "joint.csv (against the checkpoint, its marginals against counts.csv), "
 
 
 def load_run(run_dir):
@@ -202,6 +213,31 @@ def _outputs(run_dir, plan, tally):
     return out
 
 
+def _joint_outputs(run_dir, plan, tally):
+    """Step 7: joint.csv against the checkpoint, the plan and counts.csv (nothing to check for
+    a scene without a joint record: the hashes step refuses a joint.csv it does not write)."""
+    if not plan.scene.joint:
+        return []
+    text = _text(run_dir / JOINT_FILE)
+    if text is None:
+        return [f"{JOINT_FILE} is missing or not UTF-8 text"]
+    out = []
+    if tally is not None:
+        out += _compare(JOINT_FILE, joint_text(plan, tally.joint), text, "the checkpoint")
+    counts_text = _text(run_dir / "counts.csv")
+    try:
+        joint, problems = parse_joint(plan, text)
+        counts, _, count_problems, _ = parse_counts(plan, counts_text or "")
+    except csv.Error as err:
+        return out + [f"{JOINT_FILE} or counts.csv: not readable as CSV ({err})"]
+    out += problems
+    out += [f"{JOINT_FILE}: {msg}" for msg in
+            joint_problems(plan, joint, [plan.particles] * len(plan.experiments))]
+    if not count_problems:  # (counts.csv's own problems are reported by _outputs)
+        out += marginal_problems(plan, joint, counts)
+    return out
+
+
 _SOURCES = {"scene": "scene.toml gives", "chunk_size": "scene.toml gives",
             "seed": "the plan gives", "particles": "the plan gives",
             "particles_total": "the plan gives", "chunks": "the plan gives",
@@ -330,6 +366,7 @@ def recheck(run_dir, progress=False):
             problems.append(f"{rundir.CHECKPOINT}: {len(tally.finished)} of {plan.n_chunks}"
                             " chunks finished")
     problems += _outputs(run_dir, plan, tally)
+    problems += _joint_outputs(run_dir, plan, tally)
     rows, worst, overstepped, sample_problems, parsed = _sample(run_dir, scene, progress)
     problems += sample_problems
     bar = _bar(progress, len(parsed), "replay from the seed")
@@ -345,7 +382,8 @@ def recheck(run_dir, progress=False):
         f" (recorded {recorded:.3g}), {len(overstepped)} overstepped"
         f" (tolerance {OVERSTEP_TOLERANCE:g} kappa*u)",
         f"checked: content hashes, checkpoint invariants, {_REDERIVED.get(scene.kind, _SURVIVAL)}"
-        " re-derived, sample.csv, the sample replayed from the seed, every field of the"
+        f" re-derived, {_JOINT_CHECKED if scene.joint else ''}"
+        "sample.csv, the sample replayed from the seed, every field of the"
         " manifest",
         f"not audited: the content of {rundir.PROVENANCE} (how and when the run was made;"
         " its hash and its schema are checked)",

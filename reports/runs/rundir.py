@@ -7,6 +7,8 @@
     scene.toml       the scene text the run used (rerun: ``bouncer run RUN/scene.toml``)
     survival.csv     curve,clock,x,p,p_lo,p_hi     (escape and transport scenes)
     counts.csv       experiment,curve,clock,outcome,lower_edge,count   (the raw histograms)
+    joint.csv        experiment,outcome,n_lower_edge,t_lower_edge,count (``[record] joint``:
+                     the joint histogram of (n, t), ``reports.runs.joint_file``)
     portrait.npy     phase-space histogram counts[phi_bin, v_bin]     (phase-space scenes)
     sample.csv       the verification sample, recomputed by ``bouncer verify``
     checkpoint.npz   merged counts and the finished chunks (``--resume``)
@@ -287,7 +289,7 @@ def missing_folders(out):
 
 
 RUN_FILES = (MANIFEST, PROVENANCE, "scene.toml", CHECKPOINT, "sample.csv", "survival.csv",
-             "counts.csv", "portrait.npy", "velocity.csv")
+             "counts.csv", "portrait.npy", "velocity.csv", "joint.csv")
 
 
 def remove_run_files(out, names=RUN_FILES):

@@ -1,7 +1,7 @@
 """Scenes: small TOML files describing an ensemble run, validated into a frozen dataclass.
 
 A scene gives its ``name`` (a plain file name: it names the run directory), the model
-parameter ``eps``, the initial measure (uniform on a box in phi and v),
+parameter ``eps``, the initial measure (a density on a box in phi and v: ``[start] density``),
 the holes (arcs of collision phase mod 2*pi, each ``[c - w/2, c + w/2)`` for centre c and width w),
 the horizon (a collision count and/or a time), the particle count per curve, the seed and what
 to record. Four kinds:
@@ -20,6 +20,16 @@ An optional ``[physics]`` table, for every kind, sets the dissipation: air drag
 and the coefficient of restitution ``restitution`` = r in (0, 1] (impacts v1 - u = -r*(v_in - u)).
 Left out, it is the elastic, drag-free model (drag = 0, "linear", r = 1), and ``Scene.elastic``
 is True: the scene runs the elastic kernels unchanged.
+
+The starts. ``[start] density = "uniform"`` (the default) draws them uniformly on the box;
+``"sine"`` with the density proportional to sin(pi*x) * sin(pi*y), where x and y in [0, 1] are
+the box's scaled coordinates (x = (phi - phi_lo) / (phi_hi - phi_lo), likewise y for v): smooth,
+largest at the centre, zero on the edges. Both are drawn from the chunk's own random generator
+(``plan.chunk_starts``), so they are determined by the seed.
+
+What to record besides the histograms of the clocks: ``[record] joint = true`` (escape and
+transport scenes, both clocks) records the joint histogram of (n, t) of every curve's escapes,
+censored and stuck particles on the two clocks' bins (``reports.runs.joint_file``).
 
 Built-in scenes live in ``reports/runs/builtin_scenes/*.toml`` (package data): ``paper-escape``,
 ``paper-transport``, ``paper-phase-space``, ``dissipation-saturation``. ``load_scene`` takes a
@@ -48,13 +58,15 @@ MAX_CHUNK = 2**20
 _TOP = {"name", "kind", "description", "eps", "particles", "seed", "chunk_size", "start",
         "holes", "horizon", "record", "physics"}
 _TABLES = {
-    "start": {"phi", "v"},
+    "start": {"phi", "v", "density"},
     "holes": {"centres", "widths"},
     "horizon": {"collisions", "time"},
-    "record": {"clocks", "bins_per_decade", "verify_samples", "phi_bins", "v_bins", "v_range"},
+    "record": {"clocks", "bins_per_decade", "verify_samples", "phi_bins", "v_bins", "v_range",
+               "joint"},
     "physics": {"restitution", "drag", "drag_law"},
 }
 DRAG_LAWS = ("linear", "quadratic")
+DENSITIES = ("uniform", "sine")  # [start] density: the law of the starts on their box
 
 
 @dataclass(frozen=True)
@@ -99,6 +111,8 @@ class Scene:
     drag: float = 0.0
     drag_law: str = "linear"
     restitutions: tuple[float, ...] = ()
+    density: str = "uniform"
+    joint: bool = False
     source: str = field(default="", compare=False, repr=False)
 
     @property
@@ -325,7 +339,7 @@ def _validate(data, text):
         start_v=v_box, hole_centres=centres, hole_widths=widths, max_collisions=max_n,
         max_time=max_t, clocks=tuple(c for c in CLOCKS if c in clocks), bins_per_decade=bins,
         verify_samples=samples, chunk_size=chunk, description=description, source=text,
-        **physics, **portrait,
+        **physics, **portrait, **_records(start, record, kind, clocks),
     )
     _check_distinct(scene)
     _check_drag(scene)
@@ -334,6 +348,25 @@ def _validate(data, text):
         if kind == "escape":
             _check_outside(exp)
     return scene
+
+
+def _records(start, record, kind, clocks):
+    """{density, joint}: the law of the starts (``[start] density``) and whether the run
+    records the joint histogram of (n, t) (``[record] joint``); the defaults, uniform starts
+    and no joint record, leave a scene as it was without these keys."""
+    density = start.get("density", "uniform")
+    if not isinstance(density, str) or density not in DENSITIES:
+        raise ValueError(f"start.density must be one of {', '.join(DENSITIES)}, got"
+                         f" {density!r}")
+    joint = record.get("joint", False)
+    if not isinstance(joint, bool):
+        raise ValueError(f"record.joint must be true or false, got {joint!r}")
+    if joint and kind not in ("escape", "transport"):
+        raise ValueError(f"record.joint belongs to escape and transport scenes, not {kind}")
+    if joint and tuple(sorted(clocks)) != tuple(sorted(CLOCKS)):
+        raise ValueError(f"record.joint needs both clocks (record.clocks ="
+                         f" {list(CLOCKS)!r}), got {clocks!r}")
+    return {"density": density, "joint": joint}
 
 
 def _physics(table, kind):
