@@ -42,9 +42,11 @@ import functools
 import hashlib
 import os
 import threading
+import types as types_module
 from pathlib import Path
 
 import numba
+import numpy as np
 from numba.core import types
 from numba.extending import overload
 
@@ -114,20 +116,44 @@ def _serialise():
         return True
 
 
+PARALLEL_MIN = 4096  # elements below which a parallel kernel runs its serial compilation
+
+
 def parallel_jit(function):
-    """``numba.njit(parallel=True)`` (cached), called through the workqueue lock (module
-    docstring); the compiled dispatcher is the wrapper's ``kernel``."""
+    """``numba.njit(parallel=True)`` (cached) for calls over at least PARALLEL_MIN elements (the
+    length of the first array argument), called through the workqueue lock (module
+    docstring); a smaller call runs the same function compiled without ``parallel``, where
+    ``prange`` is ``range``: every element is computed alone either way (the kernels' ``prange``
+    loops have no reductions), so the numbers are the same, and a first small call (the README's
+    quick start) pays no parallel compile. The compiled dispatchers are the wrapper's
+    ``kernel`` and ``serial_kernel``."""
     kernel = _cached_njit(parallel=True)(function)
+    serial_kernel = _cached_njit()(_renamed(function, "_serial"))
 
     @functools.wraps(function)
     def call(*args):
+        size = next((len(a) for a in args if isinstance(a, np.ndarray)), PARALLEL_MIN)
+        if size < PARALLEL_MIN:
+            return serial_kernel(*args)
         if _serialise():
             with _WORKQUEUE_LOCK:
                 return kernel(*args)
         return kernel(*args)
 
-    call.kernel = kernel
+    call.kernel, call.serial_kernel = kernel, serial_kernel
     return call
+
+
+def _renamed(function, suffix):
+    """A copy of ``function`` whose name ends in ``suffix``: numba's cache files are named by
+    the function (and keyed by its code, not by the compile options), so the serial and the
+    parallel compilation of one function need two names."""
+    copy = types_module.FunctionType(function.__code__, function.__globals__,
+                                     function.__name__ + suffix, function.__defaults__,
+                                     function.__closure__)
+    copy.__qualname__ = function.__qualname__ + suffix
+    copy.__module__, copy.__doc__ = function.__module__, function.__doc__
+    return copy
 
 
 def typed_overload(function, prefer_literal=False):
