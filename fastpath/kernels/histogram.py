@@ -20,9 +20,17 @@ from fastpath.kernels.arrays import JointCounts
 
 @jit
 def bin_index(edges, x):
-    """k with edges[k] <= x < edges[k+1] (last bin open above, values below edges[0] -> 0)."""
-    k = np.searchsorted(edges, x, side="right") - 1
-    return max(k, 0)
+    """k with edges[k] <= x < edges[k+1] (last bin open above, values below edges[0] -> 0; NaN
+    in the last bin). ``np.searchsorted(edges, x, side="right") - 1`` as a plain bisection:
+    numba's searchsorted compiles comparisons for every dtype, seconds on first use."""
+    lo, hi = 0, len(edges)
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if edges[mid] > x:
+            hi = mid
+        else:  # edges[mid] <= x, or x is NaN (sorted last, as numpy does)
+            lo = mid + 1
+    return max(lo - 1, 0)
 
 
 def log_edges(lo, decades, per_decade, integer=False):

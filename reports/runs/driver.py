@@ -38,15 +38,17 @@ function of the *set* of finished chunks only, whatever order they finish in.
 from __future__ import annotations
 
 import io
+import json
 import sys
-import threading
 import time
 from contextlib import closing
 from dataclasses import replace
 from pathlib import Path
 
+import numba.core.event as numba_event
 import numpy as np
 
+from fastpath.arithmetic.jit import CACHE_ROOT
 from reports.runs import cluster, manifest, rundir
 from reports.runs.chunk import OVERSTEP_TOLERANCE, check_result, run_chunk
 from reports.runs.counts import CheckpointError, Tally
@@ -146,35 +148,96 @@ def _interactive():
 def compile_kernels(plan, threads, progress):
     """Compile (or load from numba's cache) the kernels of ``plan``'s scene by running a
     one-particle chunk, so that compilation is neither charged to the run's rate nor shown
-    as a stalled progress bar; returns the seconds it took."""
+    as a stalled progress bar; returns the seconds it took.
+
+    Loading cached kernels takes about a second and is not mentioned. When numba starts to
+    compile (its ``numba:compile`` event: a kernel the cache does not hold), that is said at
+    once on stderr with the time it is expected to take (``expected_compile_text``), and the
+    time it took is printed when it ends and recorded for the next estimate
+    (``COMPILE_TIMES``).
+    """
     start = time.perf_counter()
-    said = []
-
-    def say():  # only when it takes a while: loading cached kernels takes about a second
-        print(f"{plan.scene.name}: compiling the numba kernels (a first run takes ~30 s; later"
-              " runs load them from numba's cache) ...", end="", file=sys.stderr, flush=True)
-        said.append(True)
-
-    timer = threading.Timer(COMPILE_NOTICE_S, say) if progress else None
-    if timer is not None:
-        timer.start()
+    key = _compile_key(plan.scene)
+    notice = _CompileNotice(None if not progress else lambda: print(
+        f"{plan.scene.name}: compiling the numba kernels ({key}: {expected_compile_text(key)};"
+        " later runs load them from numba's cache) ...", end="", file=sys.stderr, flush=True))
     # a short horizon: the same kernels (argument types do not change), a particle's worth
     # of work (a velocity scene runs every particle to its horizon)
     short = replace(plan.scene, max_collisions=min(plan.scene.max_collisions or WARM_UP_N,
                                                    WARM_UP_N))
-    try:
-        run_chunk(short, plan.seed, 0, 0, 1, threads)  # a failure there is the run's to meet
-    finally:
-        if timer is not None:
-            timer.cancel()
-            timer.join()
-        if said:
-            print(f" {time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
-    return round(time.perf_counter() - start, 3)
+    with numba_event.install_listener("numba:compile", notice):
+        try:
+            run_chunk(short, plan.seed, 0, 0, 1, threads)  # a failure there is the run's to meet
+        finally:
+            seconds = time.perf_counter() - start
+            if notice.compiled and progress:
+                print(f" {seconds:.1f} s", file=sys.stderr, flush=True)
+    if notice.compiled:
+        _record_compile_time(key, seconds)
+    return round(seconds, 3)
 
 
 WARM_UP_N = 10  # collisions of the one particle that compiles the kernels
-COMPILE_NOTICE_S = 2.0  # say that the kernels compile when it takes longer than this
+# compile times of this machine, by ``_compile_key``: the last one measured (the expected one)
+COMPILE_TIMES = Path(CACHE_ROOT) / "compile_times.json"
+# the same, measured with an empty numba cache on the 2-core machine of docs/performance.md:
+# what a first compile is expected to take where this machine has none recorded
+REFERENCE_COMPILE_S = {}
+
+
+class _CompileNotice(numba_event.Listener):
+    """Calls ``say`` (once) when numba starts to compile a kernel."""
+
+    def __init__(self, say=None):
+        self.say, self.compiled = say, False
+
+    def on_start(self, event):
+        if not self.compiled and self.say is not None:
+            self.say()
+        self.compiled = True
+
+    def on_end(self, event):
+        pass
+
+
+def _compile_key(scene):
+    """Which kernels a scene compiles: its kernel and model ("escape kernel, elastic model",
+    ...; transport scenes run the escape kernel)."""
+    kernel = KERNEL_OF_KIND.get(scene.kind, scene.kind)
+    return f"{kernel} kernel, {'elastic' if scene.elastic else 'dissipative'} model"
+
+
+KERNEL_OF_KIND = {"escape": "escape", "transport": "escape", "phase-space": "portrait",
+                  "velocity": "moments"}
+
+
+def expected_compile_text(key):
+    """How long compiling the kernels of ``key`` is expected to take, and from what
+    measurement: the last compile on this machine, else the 2-core reference."""
+    try:
+        seconds = json.loads(COMPILE_TIMES.read_text(encoding="utf-8"))[key]
+        return f"about {seconds:.0f} s, as the last time on this machine"
+    except (OSError, ValueError, KeyError, TypeError):
+        pass
+    if key in REFERENCE_COMPILE_S:
+        return f"about {REFERENCE_COMPILE_S[key]:.0f} s on 2 cores (docs/performance.md)"
+    return "a first run"
+
+
+def _record_compile_time(key, seconds):
+    """Keep ``seconds`` in ``COMPILE_TIMES`` for the next estimate (best effort: a cache folder
+    that cannot be written only loses the estimate)."""
+    try:
+        times = json.loads(COMPILE_TIMES.read_text(encoding="utf-8"))
+        times = times if isinstance(times, dict) else {}
+    except (OSError, ValueError):
+        times = {}
+    times[key] = round(seconds, 1)
+    try:
+        COMPILE_TIMES.parent.mkdir(parents=True, exist_ok=True)
+        rundir.write_atomic(COMPILE_TIMES, json.dumps(times, indent=1, sort_keys=True) + "\n")
+    except OSError:
+        pass
 
 
 def _resume_tally(plan, out, old):
