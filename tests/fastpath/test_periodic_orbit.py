@@ -22,6 +22,7 @@ from fastpath.dynamics import (
     approximants,
     critical_amplitude,
     periodic_orbit,
+    residue_crossing,
     symmetric_orbit,
 )
 from fastpath.dynamics.greene import STANDARD_MAP_K_C, noble
@@ -260,3 +261,41 @@ def test_the_exact_map_search_keeps_only_accelerating_period_one_modes():
     found = accelerator_search(1.6, 1, model="exact", grid=16, v_base=4 * math.pi)
     assert found and all(o.velocity_shift > 0 and o.period == 1 for o in found)
     assert accelerator_search(1.6, 2, model="exact", grid=8, v_base=4 * math.pi) == []
+
+
+# --- Greene's criterion: the critical residue, the extrapolation and its uncertainty -----------
+
+def test_crossings_of_the_critical_residue_converge_geometrically_to_k_c_over_4():
+    """The Holmes map is the standard map: its golden curve breaks at K_c/4. The crossings of
+    R_c alternate around it with a steady ratio near -0.376 (measured: -0.3751 to -0.3768 over
+    the last five levels); the Aitken extrapolation is within its stated uncertainty of K_c/4
+    (Greene's value to its 9 digits, +-1.25e-10 in eps)."""
+    from fastpath.dynamics.greene import extrapolate
+
+    c = critical_amplitude(1, (), model="holmes", levels=12)
+    eps = np.array([x.eps for x in c.crossings])
+    ratios = np.diff(eps)[1:] / np.diff(eps)[:-1]
+    assert np.all(np.abs(ratios[-5:] + 0.376) < 0.005)
+    value, uncertainty = extrapolate(eps, [x.eps_error for x in c.crossings])
+    assert abs(value - K_C_QUARTER) <= uncertainty + 1.25e-10
+    assert abs(c.eps_c - K_C_QUARTER) <= c.uncertainty  # the last crossing and its tail
+
+
+def test_crossings_of_one_quarter_lie_below_the_critical_amplitude():
+    """The bias of targeting R = 1/4: every crossing of 1/4 comes before that of R_c (the
+    residue rises through both), so a sequence of them approaches eps_c from below."""
+    for a in approximants(1, (), levels=9)[-3:]:
+        quarter = residue_crossing(a, model="holmes", target=0.25)
+        critical = residue_crossing(a, model="holmes")
+        assert quarter.eps < critical.eps
+
+
+def test_extrapolation_recovers_a_geometric_limit_and_carries_the_crossing_errors():
+    from fastpath.dynamics.greene import extrapolate
+
+    limit, rho = 0.2429088515, -0.376
+    eps = [limit + 1e-3 * rho**k for k in range(8)]
+    value, uncertainty = extrapolate(eps, [0.0] * 8)
+    assert abs(value - limit) < 1e-15 and uncertainty < 1e-14
+    _, with_errors = extrapolate(eps, [1e-9] * 8)
+    assert 0.9e-9 <= with_errors <= 2e-9  # weights summing to about 1
