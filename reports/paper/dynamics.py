@@ -95,9 +95,10 @@ def recheck(study, quick):
     ok = _overlaps(orbit.residue, cert["residue"]) and orbit.stability == cert["stability"]
     out["period_two"] = (ok, f"period-2 orbit m={branch['m']}, eps={cert['eps']} re-certified")
     row = next(r for r in study["critical"]["rows"] if r["band"] == 1 and r["prefix"] == [2])
-    levels = min(len(row["crossings"]), 8 if quick else len(row["crossings"]))
+    stored = row.get("float_crossings", row["crossings"])  # the float64 ones
+    levels = min(len(stored), 8 if quick else len(stored))
     again = fd.critical_amplitude(1, (2,), levels=levels)
-    diffs = [abs(a.eps - b) for a, b in zip(again.crossings, row["crossings"], strict=False)]
+    diffs = [abs(a.eps - b) for a, b in zip(again.crossings, stored, strict=False)]
     ok = max(diffs) <= 1e-9
     out["critical"] = (ok, f"band 1 (omega = 1.382) crossings of {levels} approximants "
                            f"recomputed, largest difference {max(diffs):.1e}")
@@ -239,9 +240,10 @@ def transition_claims(study, run_name):
         verdict = REFUTED
     else:
         verdict = INCONCLUSIVE
-    table = "; ".join(f"band {j}: {b['eps_c']:.6f} +- {b['uncertainty']:.1e} "
+    table = "; ".join(f"band {j}: {b['eps_c']:.9f} +- {b['uncertainty']:.1e} "
                       f"(omega {b['omega']:.3f})" for j, b in sorted(bands.items()))
-    holmes_text = ", ".join(f"{h['eps_c']:.7f}" for h in crit["holmes"])
+    holmes_text = ", ".join(f"{h['eps_c']:.10f} +- {h['uncertainty']:.1e}"
+                            for h in crit["holmes"])
     sim_text = "; ".join(f"band {s['band']} at {s['factor']:g} eps_c: {s['crossed']}/"
                          f"{s['particles']} crossed within {s['collisions']:,}" for s in sims)
     transition = _claim(
@@ -249,7 +251,8 @@ def transition_claims(study, run_name):
         statement="Invariant spanning curves break near eps = 0.24 at all velocities but the "
                   "lowest; beyond, velocity is unbounded for some orbits",
         quote=QUOTES["transition"],
-        observable="Greene's eps_c (residue of symmetric approximants crossing 1/4) of noble "
+        observable="Greene's eps_c (residues of symmetric approximants crossing the critical "
+                   "residue R_c = 0.2500888, Aitken-extrapolated) of noble "
                    "curves per velocity band j (v ~ pi (j + omega)); direct simulation across "
                    "each band (from the hyperbolic point (pi, pi j) to v = pi (j + 1))",
         regime=f"bands {sorted(bands)}; approximants up to period "
@@ -268,7 +271,7 @@ def transition_claims(study, run_name):
                  f"b = {limit['b']:+.4f} (golden^2; the golden curves approach from below "
                  f"with b = {crit['limits'].get('golden', {}).get('b', math.nan):+.4f}). "
                  f"Holmes map: {holmes_text} "
-                 f"(K_c/4 = {K_C_QUARTER:.7f}). Simulation: {sim_text}"
+                 f"(K_c/4 = {K_C_QUARTER:.10f}). Simulation: {sim_text}"
         if limit else "no high-velocity fit",
         particles_per_curve=None,
         statistical={f"eps_c_band_{j}": [b["eps_c"], b["uncertainty"]]
@@ -346,8 +349,14 @@ def accelerator_claims(study, run_name):
                    REFUTED if not ok_mu and abs(normal["mu"] - 1) > allowed else INCONCLUSIVE)
         if elliptic_below:
             verdict = REFUTED
+        early = ", ".join(f"from n0 = {start}: {fit[0]:.3f}" for start, fit in
+                          normal["fits"].items()
+                          if start.isdigit() and int(start) < normal.get("family_from", 0))
         mu_text = (f"mu(0.6) = {normal['mu']:.3f} +- {normal['mu_se']:.3f} (bootstrap) +- "
-                   f"{normal['mu_systematic']:.3f} (window), |mu - 1| allowed {allowed:.3f}")
+                   f"{normal['mu_systematic']:.3f} (spread over the window family), |mu - 1| "
+                   f"allowed {allowed:.3f}"
+                   + (f"; windows starting in the transient give larger slopes ({early})"
+                      if early else ""))
     diffusion = _claim(
         id="sec2-normal-diffusion", figure="sec2",
         statement="eps = 0.6 lies below the lowest elliptic (island-bearing) accelerator modes, "
@@ -356,9 +365,11 @@ def accelerator_claims(study, run_name):
         observable="slope mu of log <(v_n - v_0)^2> against log n from the paper's start box; "
                    "Newton search for accelerator blocks (Holmes map, standard-map form) by "
                    "period",
-        regime=f"n in [{normal['n'][-1] // 100:,}, {normal['n'][-1]:,}], "
-               f"{normal['particles']} particles; periods {[s['period'] for s in acc['search']]}"
-        if normal else "",
+        regime=(f"fit windows [n0, {normal['n'][-1]:,}] with n0 in "
+                f"{normal.get('family_starts', [normal['n'][-1] // 100])} (past the transient: "
+                f"n0 >= {normal.get('family_from', normal['n'][-1] // 100):,}), "
+                f"{normal['particles']} particles; periods "
+                f"{[s['period'] for s in acc['search']]}") if normal else "",
         rule=f"{CONFIRMED} if |mu - 1| <= {GOOD_APPROXIMATION} + 1.96 sigma + systematic at eps "
              "= 0.6 and no elliptic (island-bearing) accelerator block is found at eps <= 0.6; "
              f"{REFUTED} if either fails",
@@ -412,7 +423,8 @@ def lyapunov_claim(study, run_name):
         tolerance="signs at 5 standard errors; convergence 3 standard errors + 2%",
         verdict=verdict,
         evidence=f"lambda_n = {lam:.4f} +- {se:.4f} at n = {int(n[-1]):,} (change over the last "
-                 f"decade {drift:.4f}); lambda_t ~ t^alpha with alpha = {alpha:.3f} +- "
+                 f"decade {drift:.4f}), {_where_measured(lyap)}; lambda_t ~ t^alpha with "
+                 f"alpha = {alpha:.3f} +- "
                  f"{a_se:.3f} (bootstrap over orbits) +- {a_sys:.3f} (window), "
                  f"{'consistent' if third else 'not consistent'} with the velocity-diffusion "
                  f"value -1/3 (lambda_t = lambda_n n/t, t ~ n^(3/2)). Cross-checks: tangent "
@@ -426,6 +438,23 @@ def lyapunov_claim(study, run_name):
         statistical={"lambda_n": [lam, se], "alpha": [alpha, a_se]},
         systematic={"alpha": a_sys},
         run=run_name)
+
+
+def _where_measured(lyap):
+    """Where the orbits are when lambda_n is read, lambda by velocity band, and the standard
+    map's value (the Holmes model), from the study (older studies lack them)."""
+    if "final_velocity_quartiles" not in lyap:
+        return "velocities at the end not recorded"
+    q = lyap["final_velocity_quartiles"]
+    b = lyap["bands"]
+    rows = [f"v in [{b['edges'][j]:g}, {b['edges'][j + 1]:g}): {b['per_collision'][j]:.3f} +- "
+            f"{b['standard_error'][j]:.3f}" for j in range(len(b["per_collision"]))
+            if b["collisions"][j] > 0]
+    return (f"read when the orbits' speeds have grown to a median of {q[1]:.0f} (quartiles "
+            f"{q[0]:.0f}-{q[2]:.0f}), where the exact map is the standard map at K = 4 eps "
+            f"(its value, the Holmes model from the same phases at v + 10^4: "
+            f"{lyap['holmes_per_collision']:.4f} +- {lyap['holmes_se']:.4f}); by velocity band "
+            f"(log-stretch per collision pooled over the orbits): " + "; ".join(rows))
 
 
 def claims_of(study, run_name, checks):
@@ -485,13 +514,16 @@ def markdown(study, claims, checks, images, source):
         g2 = next((r for r in crit["rows"] if r["band"] == j and r["prefix"] == [2]), None)
         sim = [s for s in study["crossing_simulation"] if s["band"] == j]
         sim_text = ", ".join(f"{s['factor']:g}: {s['crossed']}/{s['particles']}" for s in sim)
-        rows.append([j, f"{g['eps_c']:.6f} +- {g['uncertainty']:.1e}" if g else "-",
-                     f"{g2['eps_c']:.6f} +- {g2['uncertainty']:.1e}" if g2 else "-",
-                     f"{best[j]['eps_c']:.6f} (omega {best[j]['omega']:.3f})",
-                     f"{K_C_QUARTER:.6f}", sim_text or "-"])
-    lines += ["eps_c per velocity band j (Greene, float64); Holmes map = standard map, "
+        rows.append([j, f"{g['eps_c']:.9f} +- {g['uncertainty']:.1e}" if g else "-",
+                     f"{g2['eps_c']:.9f} +- {g2['uncertainty']:.1e}" if g2 else "-",
+                     f"{best[j]['eps_c']:.9f} (omega {best[j]['omega']:.3f})",
+                     f"{K_C_QUARTER:.9f}", sim_text or "-"])
+    lines += ["eps_c per velocity band j (Greene's criterion with the critical residue R_c, "
+              "the crossings' Aitken extrapolation; float64 to period 987, the last levels of "
+              "the golden pairs of bands 1 and 10 and of the Holmes map in multiprecision); "
+              "Holmes map = standard map, "
               "K_c/4 in every band (computed: "
-              + ", ".join(f"{h['eps_c']:.7f} +- {h['uncertainty']:.1e}" for h in crit["holmes"])
+              + ", ".join(f"{h['eps_c']:.10f} +- {h['uncertainty']:.1e}" for h in crit["holmes"])
               + "); simulation: orbits crossing the band within the stated collisions at "
               "factor x the band's largest eps_c:", "",
               _table(["band j", "omega = j+0.618", "omega = j+0.382", "largest found",
@@ -503,7 +535,7 @@ def markdown(study, claims, checks, images, source):
                  f"[{c['residue']['lo_str'][:14]}, {c['residue']['hi_str'][:14]}]",
                  "yes" if c["decided"] else "**no**", c["dps"], f"{c['seconds']:.1f}"]
                 for c in cc]
-        lines += ["Greene orbits certified on both sides of their crossing of 1/4:", "",
+        lines += ["Greene orbits certified on both sides of their crossing of R_c:", "",
                   _table(["band", "omega", "period", "eps", "side", "residue enclosure",
                           "decided", "digits", "s"], rows), ""]
     lines += [f"![Lyapunov exponents]({images['lyapunov']})", "",
