@@ -9,6 +9,8 @@ record (``record_end``) when the kernel is given ``arrays.JointCounts``; with
 ``arrays.EscapeCounts`` they compile to ``record`` alone, as before.
 """
 
+import decimal
+
 import numpy as np
 from numba.extending import overload
 
@@ -34,13 +36,21 @@ def bin_index(edges, x):
 
 
 def log_edges(lo, decades, per_decade, integer=False):
-    """Lower bin edges lo*10**(k/per_decade), k = 0..decades*per_decade (rounded and
-    deduplicated when ``integer``), as float64."""
-    k = np.arange(decades * per_decade + 1)
-    edges = lo * 10.0 ** (k / per_decade)
+    """Lower bin edges lo*10**(k/per_decade), k = 0..decades*per_decade (rounded to integers and
+    deduplicated when ``integer``), as float64.
+
+    Each edge is the float64 nearest the exact value, from 50-digit decimal arithmetic, so the
+    edges are the same on every machine (a vectorised ``10.0 ** x`` differs between CPUs in the
+    last bit, and a run's counts are audited against the edges they were binned with).
+    """
+    with decimal.localcontext() as context:
+        context.prec = 50
+        scale = decimal.Decimal(lo)  # the float's exact value
+        edges = np.array([float(scale * decimal.Decimal(10) ** (decimal.Decimal(k) / per_decade))
+                          for k in range(decades * per_decade + 1)], dtype=np.float64)
     if integer:
         edges = np.unique(np.round(edges))
-    return edges.astype(np.float64)
+    return edges
 
 
 @jit

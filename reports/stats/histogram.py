@@ -22,7 +22,7 @@ O((h w)^2) instead of O(h w) for censoring at either edge.
 Run directories (``bouncer run``): ``manifest.json`` (per experiment ``particles_done``,
 ``censored``, ``escaped``; ``bins``) and ``counts.csv`` with header
 ``experiment,clock,outcome,lower_edge,count``. The bin grid is rebuilt from ``bins`` exactly as
-the runner built it (``fastpath.kernels.escape.log_edges``): collisions
+the runner built it (``fastpath.kernels.histogram.log_edges``): collisions
 unique(round(10**(k/per_decade))), time [0] + first*10**(k/per_decade); the last bin is open.
 
 CSV histograms: header ``lower,upper,count``, rows counting lower <= X < upper, increasing and
@@ -41,6 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fastpath.kernels.histogram import log_edges
 from reports.runs.echo import clip
 from reports.runs.manifest import load_manifest
 from reports.runs.rundir import read_input_text
@@ -92,10 +93,8 @@ def bin_means(edges, clock):
 def run_edges(bins, clock):
     """Lower bin edges of a run's clock, rebuilt from the manifest's ``bins`` entry."""
     spec = bins[clock]
-    k = np.arange(int(spec["decades"]) * int(spec["per_decade"]) + 1)
-    edges = float(spec["first"]) * 10.0 ** (k / int(spec["per_decade"]))
-    if spec.get("integer"):
-        edges = np.unique(np.round(edges))
+    edges = log_edges(float(spec["first"]), int(spec["decades"]), int(spec["per_decade"]),
+                      integer=bool(spec.get("integer")))
     if "below_first" in spec:
         edges = np.concatenate([[float(spec["below_first"][0])], edges])
     return edges.astype(np.float64)
