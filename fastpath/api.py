@@ -96,7 +96,7 @@ def _holmes_steps(phi, v, eps, phi1, v1, status):
     """(phi1, v1, status)[i] of the Holmes map from (phi[i], v[i]) at eps[i]."""
     for i in prange(len(phi)):
         status[i] = departure_status(phi[i], v[i], eps[i])
-        phi1[i], v1[i] = holmes_collide(phi[i], v[i], eps[i])
+        phi1[i], v1[i] = holmes_collide(reduce_phase(phi[i]), v[i], eps[i])
 
 
 @jit
@@ -337,16 +337,18 @@ def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
 def holmes_step(phi, v, eps):
     """One step of the Holmes map: phi1 = (phi + 2v) mod 2*pi, v1 = |v - 2*eps*sin(phi1)|.
 
-    Parameters: phi, v, eps as for ``step`` (broadcast). phi + 2v is reduced exactly: phi1 is
-    good to a few ulps of 2*pi at any v. The state must be a departure
-    (w0 = v + eps*sin(phi) > 0); errors as for ``flight_time``.
+    Parameters: phi, v, eps as for ``step`` (broadcast; any finite phi: it is reduced to
+    [0, 2*pi) first, as ``step`` does). phi + 2v is then reduced exactly: phi1 is good to a few
+    ulps of 2*pi at any v. The state must be a departure (w0 = v + eps*sin(phi) > 0); errors as
+    for ``flight_time``.
     """
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
         status = departure_status(*scalars)
         if status != CONVERGED:
             _raise_on_status(np.array([status]), *([x] for x in scalars))
-        return holmes_collide(*scalars)
+        phi, v, eps = scalars
+        return holmes_collide(reduce_phase(phi), v, eps)
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     out = (np.empty(n), np.empty(n), np.empty(n, np.int8))

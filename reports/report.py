@@ -42,7 +42,13 @@ from reports.paper.dynamics import dynamics_section
 from reports.paper.figures import paper_figures_section
 from reports.paper.physics_checks import physics_checks_section
 from reports.paper.specification_figure import specification_markdown
-from reports.precision.bench import ensemble_table, orbit_table, time_ensembles, time_orbits
+from reports.precision.bench import (
+    ensemble_table,
+    headline_ratios,
+    orbit_table,
+    time_ensembles,
+    time_orbits,
+)
 from reports.precision.hard_case_table import dissipative_case_section, hard_case_markdown
 from reports.precision.methods import default_methods
 from reports.precision.work_precision import (
@@ -87,16 +93,15 @@ def _speed_section(quick, echo):
     echo(f"speed: paper-escape ensembles of {particles:,} particles per curve, exact and Holmes,"
          f" {turns} turns")
     ensembles = time_ensembles(particles, repeats=turns)
-    ratio = ensembles["end to end"].wall / ensembles["Holmes map"].wall
-    kernel = ensembles["kernel only"].wall / ensembles["Holmes map"].wall
+    ratio, kernel = headline_ratios(ensembles)
     collisions, repeats = (200_000, 2) if quick else (10_000_000, 3)
     echo(f"speed: orbits of {collisions:,} collisions, exact and Holmes, {repeats} rounds")
     best = time_orbits(0.6, collisions, repeats)
     return "\n".join([
         "## Speed: exact map against the Holmes map", "",
-        f"Headline: the paper's escape ensemble takes **{ratio:.2f} x** the time of a Holmes-map"
-        f" ensemble on the same starts end to end (verification sample, histograms,"
-        f" checkpoints), **{kernel:.2f} x** kernel against kernel (`bouncer bench`).", "",
+        f"Headline: the paper's escape ensemble takes **{ratio:.2f} x** the time of the bare"
+        f" Holmes-map loop on the same starts end to end (verification sample, histograms,"
+        f" checkpoints), **{kernel:.2f} x** kernel against loop (`bouncer bench`).", "",
         ensemble_table(ensembles), "",
         orbit_table(best, collisions, 0.6, repeats), ""])
 
@@ -142,31 +147,101 @@ def _included_run(out_dir, run_dir, echo):
     ])
 
 
-@contextmanager
-def stage_progress(label, enabled=True):
-    """A progress line on stderr for one report stage: its elapsed time, refreshed every second
-    by a background thread (the stages report no fraction done; runs inside add their own bar)."""
-    if not enabled:
-        yield
-        return
-    from tqdm import tqdm
+# What each stage of a report took at the default size on 2 cores (the committed report's "How
+# long this report took", docs/report/report.md): the weights of the overall progress line. A
+# stage not named here (an included run) weighs INCLUDED_RUN_S.
+STAGE_S = {
+    "paper's figures and claims": 269.0,
+    "dynamics: periodic orbits, Lyapunov exponents, Fermi acceleration": 4.0,
+    "physics checks": 27.0,
+    "speed": 59.0,
+    "work-precision and hard cases": 30.0,
+}
+INCLUDED_RUN_S = 2.0
 
-    bar = tqdm(desc=label, bar_format="{desc}: {elapsed}", file=sys.stderr, leave=True)
-    stop = threading.Event()
 
-    def tick():
-        while not stop.wait(1.0):
-            bar.refresh()
+class ReportProgress:
+    """One progress line on stderr for the whole report: the fraction done and the time left,
+    refreshed every second by a background thread (the runs inside a stage add their own bars).
 
-    ticker = threading.Thread(target=tick, daemon=True)
-    ticker.start()
-    try:
-        yield
-    finally:
-        stop.set()
-        ticker.join()
-        bar.refresh()
-        bar.close()
+    The stages report no fraction of their own, so each weighs what it took in the committed
+    report (``STAGE_S``); within a stage the fraction grows with its elapsed time, up to 95% of
+    its weight until it ends. The pace, the time the finished stages took over their weights
+    (1 before any has finished), scales the weights of the rest: the time left is the weight
+    left times the pace, and it adapts to a slower machine, a larger ``--particles`` or
+    ``--quick`` as the stages finish.
+    """
+
+    def __init__(self, labels, enabled=True):
+        self.weights = [STAGE_S.get(label, INCLUDED_RUN_S) for label in labels]
+        self.labels = list(labels)
+        self.done_weight = self.done_seconds = 0.0
+        self.stage = -1
+        self.start = self.stage_start = time.perf_counter()
+        self.bar = None
+        if enabled:
+            from tqdm import tqdm
+
+            self.bar = tqdm(bar_format="{desc}", file=sys.stderr, leave=True)
+
+    def pace(self):
+        return self.done_seconds / self.done_weight if self.done_weight > 0 else 1.0
+
+    def fraction_and_left(self, now=None):
+        """(fraction of the report done, estimated seconds left)."""
+        now = time.perf_counter() if now is None else now
+        done = self.done_weight
+        if 0 <= self.stage < len(self.weights):
+            weight = self.weights[self.stage]
+            done += min((now - self.stage_start) / self.pace(), 0.95 * weight)
+        total = sum(self.weights)
+        return (done / total if total else 1.0), (total - done) * self.pace()
+
+    def line(self, now=None):
+        now = time.perf_counter() if now is None else now
+        fraction, left = self.fraction_and_left(now)
+        stage = (f"stage {self.stage + 1} of {len(self.labels)}: {self.labels[self.stage]}"
+                 if 0 <= self.stage < len(self.labels) else "done")
+        return (f"report: {100 * fraction:.0f}% ({stage}), {_minutes(now - self.start)}"
+                f" elapsed, about {_minutes(left)} left")
+
+    @contextmanager
+    def stage_of(self, label):
+        """The stage ``label`` (the next of ``labels``) while the block runs."""
+        self.stage = self.labels.index(label, self.stage + 1)
+        self.stage_start = time.perf_counter()
+        stop = threading.Event()
+        ticker = None
+        if self.bar is not None:
+            self.bar.set_description_str(self.line())
+
+            def tick():
+                while not stop.wait(1.0):
+                    self.bar.set_description_str(self.line())
+
+            ticker = threading.Thread(target=tick, daemon=True)
+            ticker.start()
+        try:
+            yield
+        finally:
+            stop.set()
+            if ticker is not None:
+                ticker.join()
+            self.done_weight += self.weights[self.stage]
+            self.done_seconds += time.perf_counter() - self.stage_start
+            if self.bar is not None:
+                self.bar.set_description_str(self.line())
+
+    def close(self):
+        if self.bar is not None:
+            self.stage = len(self.labels)
+            self.bar.set_description_str(self.line())
+            self.bar.close()
+
+
+def _minutes(seconds):
+    seconds = max(0, round(seconds))
+    return f"{seconds // 60}:{seconds % 60:02d}"
 
 
 CLAIMS_HEADING = "## The paper's claims: verdicts"
@@ -242,22 +317,40 @@ def with_rebuild_note(md, note):
 def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), include_runs=(),
                  echo=print, progress=True, paper_only=False):
     """Compute every section and write ``out_dir/report.md``; returns its path. ``progress``:
-    a progress line per stage on stderr. ``paper_only``: only the claims, the paper's figures
-    and the physics checks, spliced into an existing ``report.md`` (written whole if none)."""
+    one progress line for the whole report on stderr (``ReportProgress``). ``paper_only``: only
+    the claims, the paper's figures and the physics checks, spliced into an existing
+    ``report.md`` (written whole if none)."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     timings = []
+    sections = claim_sections(out_dir, particles, quick, echo, include_runs)
+    labels = [label for label, _ in sections] + ["physics checks"]
+    if not (paper_only and (out_dir / "report.md").is_file()):
+        if not paper_only:
+            labels += ["speed", "work-precision and hard cases"]
+        labels += [f"included run {run_dir}" for run_dir in include_runs]
+    overall = ReportProgress(labels, progress)
 
     def timed(label, make):
         t0 = time.perf_counter()
-        with stage_progress(f"report: {label}", progress):
+        with overall.stage_of(label):
             result = make()
         timings.append((label, time.perf_counter() - t0))
         return result
 
+    try:
+        return _build(out_dir, particles, quick, compare, include_runs, echo, paper_only,
+                      sections, timed, timings, start)
+    finally:
+        overall.close()
+
+
+def _build(out_dir, particles, quick, compare, include_runs, echo, paper_only, sections, timed,
+           timings, start):
+    """``build_report``'s sections, each through ``timed`` (its progress and time)."""
     claims, claim_md = [], []
-    for label, make in claim_sections(out_dir, particles, quick, echo, include_runs):
+    for label, make in sections:
         md, section_claims = timed(label, make)
         claim_md.append(md)
         claims += list(section_claims)

@@ -2,9 +2,11 @@
 ``docs/report/dynamics/study.json`` (atomically), which the report's dynamics section reads and
 re-checks a sample of.
 
-Cost (2 shared cores): about 10 minutes, mostly the certified high-period orbits (period 233 at
-~350 digits, ~30 s each), the Lyapunov ensemble (64 orbits x 10^6 collisions) and the
-accelerator search. Deterministic for the fixed random seed of the study.
+Cost (2 cores shared with other work): about 25 minutes, mostly the multiprecision Greene
+crossings (periods 610 to 1597 of six curves, ~11 minutes), the certified high-period orbits
+(period 233 at ~350 digits, about a minute each), the Lyapunov ensembles (64 orbits x 10^6
+collisions, three times) and the accelerator search. Deterministic for the fixed random seed of
+the study.
 
 Run: ``python scripts/dynamics_study.py [--out PATH] [--quick]``.
 """

@@ -15,10 +15,15 @@ The conventions (also in docs/testing.md, "Examples that run"):
   its output ignored. The exit status must be 0, or N where the expected output ends with the
   line ``[exit status N]``. Only ``bouncer`` commands run: install and test commands belong in
   ```bash blocks.
+* A ```sh block is a script of commands, one a line (a ``#`` after a space starts a comment):
+  each runs by bash in a temporary directory shared by the block's commands, as a console
+  block's do, and must exit 0; its output is not compared. Only ``bouncer`` commands.
+* A ```bash block is shown, not run (install and test commands); one made only of ``bouncer``
+  commands must be a ```sh or console block, or say with a skip marker why it cannot run.
 * An HTML comment on the line before a block marks it: ``<!-- docs-test: slow -->`` gives it
   SLOW_LIMIT_S seconds instead of QUICK_LIMIT_S, ``<!-- docs-test: skip (REASON) -->`` does not
   run it, and pytest reports the skip with its reason.
-* Blocks with any other language (```bash, ```toml, ```text, none) are shown, not run.
+* Blocks with any other language (```toml, ```text, none) are shown, not run.
 
 The blocks run in the full suite (``pytest``, or ``pytest tests/test_docs.py``), not in the quick
 loop ``pytest -m "not slow"``: each starts a fresh interpreter (a second or more per block), so
@@ -39,7 +44,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
-RUN_LANGUAGES = ("python", "console", "shell")
+RUN_LANGUAGES = ("python", "console", "shell", "sh")
+SHELL_LANGUAGES = ("bash", "sh", "shell", "console", "zsh", "shell-session")
 QUICK_LIMIT_S = 120
 SLOW_LIMIT_S = 600
 MARKER = re.compile(r"<!--\s*docs-test:\s*(.*?)\s*-->")
@@ -214,6 +220,28 @@ def run_python(block: Block, cwd: Path) -> None:
         f"{block.name}: the python block failed (exit {done.returncode}):\n{_tail(done.stdout)}")
 
 
+def script_commands(text: str) -> list[str]:
+    """The commands of a ```sh block: its lines without comments, blank ones dropped."""
+    commands = []
+    for line in text.splitlines():
+        command = re.split(r"(?:^|\s)#", line, maxsplit=1)[0].strip()
+        if command:
+            commands.append(command)
+    return commands
+
+
+def run_script(block: Block, cwd: Path) -> None:
+    commands = script_commands(block.text)
+    assert commands, f"{block.name}: an sh block with no command"
+    for command in commands:
+        assert command.split()[0] == "bouncer", (
+            f"{block.name}: only bouncer commands run in an sh block; show {command!r} in a"
+            " ```bash block")
+        done = _run(["bash", "-c", command], block, cwd, repr(command))
+        assert done.returncode == 0, (
+            f"{block.name}: {command!r} exited {done.returncode}:\n{_tail(done.stdout)}")
+
+
 def run_session(block: Block, cwd: Path) -> None:
     commands = session_commands(block.text)
     assert commands, f"{block.name}: a {block.language} block with no '$ ' command"
@@ -238,8 +266,40 @@ def test_code_block_runs_as_printed(block, tmp_path):
     cwd = _workdir(tmp_path)
     if block.language == "python":
         run_python(block, cwd)
+    elif block.language == "sh":
+        run_script(block, cwd)
     else:
         run_session(block, cwd)
+
+
+def _all_blocks() -> list[Block]:
+    return [block for path in PAGES
+            for block in fenced_blocks(path.read_text(encoding="utf-8"),
+                                       str(path.relative_to(ROOT)))]
+
+
+def test_a_block_of_bouncer_commands_is_run_or_says_why_not():
+    """A ```bash block is shown, not run: one whose every command is ``bouncer ...`` would be
+    a promise nobody checks. It must be a ```sh (or console) block, run by this file, or carry
+    a skip marker with its reason."""
+    def bouncer_only(block):
+        commands = [c.removeprefix("$ ") for c in script_commands(block.text)
+                    if block.language != "console" or c.startswith("$ ")]
+        return commands and all(c.split()[0] == "bouncer" for c in commands)
+
+    unchecked = [b.name for b in _all_blocks() if b.language in SHELL_LANGUAGES
+                 and b.language not in RUN_LANGUAGES and not b.marker.startswith("skip")
+                 and bouncer_only(b)]
+    assert unchecked == []
+    skipped = [b for b in _all_blocks() if b.marker.startswith("skip")]
+    assert all(b.marker.strip("skip ()") for b in skipped)  # every skip gives its reason
+
+
+def test_sh_blocks_split_into_commands_without_comments():
+    text = "bouncer scenes            # the built-in scenes\n\n# a comment line\n" \
+           "bouncer run x --seed 3  #seed\nbouncer fit 'a#b'\n"
+    assert script_commands(text) == ["bouncer scenes", "bouncer run x --seed 3",
+                                     "bouncer fit 'a#b'"]
 
 
 def test_output_convention_matches_text_lines_and_wildcards():
@@ -279,6 +339,19 @@ def test_a_session_fails_on_other_output_or_exit_status(tmp_path):
                             "[exit status 2]\n"), _workdir(tmp_path / "c"))
     with pytest.raises(AssertionError, match="only bouncer commands"):
         run_session(session("$ pip install .\n"), _workdir(tmp_path / "d"))
+
+
+@pytest.mark.slow
+def test_a_script_fails_on_a_command_that_fails(tmp_path):
+    def script(text):
+        return Block("page.md", 1, "sh", text, "")
+
+    run_script(script("bouncer scenes  # lists them\n"), _workdir(tmp_path / "a"))
+    with pytest.raises(AssertionError, match="'bouncer run no-such-scene' exited 2"):
+        run_script(script("bouncer scenes\nbouncer run no-such-scene\n"),
+                   _workdir(tmp_path / "b"))
+    with pytest.raises(AssertionError, match="only bouncer commands"):
+        run_script(script("pip install .\n"), _workdir(tmp_path / "c"))
 
 
 def test_a_python_block_fails_on_an_exception(tmp_path):

@@ -6,9 +6,22 @@ assume IEEE round-to-nearest arithmetic, which reassociation would break.
 Compiled kernels are cached on disk (``cache=True``), but numba checks only the timestamp of the
 file that defines a kernel, not of the kernels it calls from other modules: an edited callee
 would silently keep its old machine code. So the cache lives in a directory named by a digest of
-all of fastpath's sources, under ``NUMBA_CACHE_DIR`` if set, else the user cache directory.
-numba reads that setting when a kernel is decorated, so it is changed only for that moment and
-other libraries' caches stay where they were.
+all of fastpath's sources (``CACHE_DIR``), under ``NUMBA_CACHE_DIR`` if set, else the user cache
+directory (``CACHE_ROOT``). numba reads that setting when a kernel is decorated, so it is changed
+only for that moment and other libraries' caches stay where they were.
+
+Compile time (docs/performance.md). Nothing is compiled at import; a kernel compiles at its
+first call, for the argument types of that call. Three choices keep that short:
+
+* ``inline_jit`` helpers (the straight-line code of the ensembles' lanes) are compiled once
+  each and marked for LLVM to inline (``forceinline``: LLVM's ``alwaysinline``), so that the
+  loop over lanes still vectorises. numba's own ``inline="always"`` copied and typed their code
+  again at every call site (four evaluations of a flight, each with its sines): most of the
+  escape kernel's compile time.
+* A call from compiled code is typed with the plain types of its arguments
+  (``_one_specialisation_per_type``), not one specialisation per constant value.
+* ``typed_overload`` chooses an implementation when the caller is typed, so that a loop
+  compiled for one model (``fastpath.kernels.particle``) compiles no other model's code.
 
 Two limits of numba that the kernels respect (numba 0.68 loses the writes otherwise, silently):
 inside a ``prange`` loop an array held in a tuple (``fastpath.kernels.arrays``) is written only
@@ -16,20 +29,34 @@ through a called function, never as ``group.array[i] = ...`` in the loop body it
 ``overload`` (``fastpath.physics.model_of``) is not inlined into its caller (``inline="always"``
 dropped writes to arrays unpacked from a tuple). LLVM still inlines and folds it.
 
-Threads. numba's ``workqueue`` threading layer (the fallback where neither TBB nor OpenMP can be
-loaded) aborts the whole process (SIGABRT) when two Python threads enter parallel code at once.
-``parallel_jit`` kernels are therefore called through a wrapper that holds one process-wide lock
-while numba runs that layer (or has not chosen one yet); with TBB or OpenMP, which are safe to
-enter from several threads, calls run concurrently. The kernels are entered from Python only.
+Threads. The ensemble kernels run their groups of blocks in Python threads
+(``fastpath.kernels.threads``). numba's ``workqueue`` threading layer (the fallback where
+neither TBB nor OpenMP can be loaded) aborts the whole process (SIGABRT) when two Python threads
+enter parallel code at once. ``parallel_jit`` kernels (the array calls of ``fastpath.api``, the
+dynamics) are therefore called through a wrapper that holds one process-wide lock while numba
+runs that layer (or has not chosen one yet); with TBB or OpenMP, which are safe to enter from
+several threads, calls run concurrently. The kernels are entered from Python only.
 """
 
 import functools
 import hashlib
 import os
 import threading
+import types as types_module
 from pathlib import Path
 
 import numba
+import numpy as np
+from numba.core import types
+from numba.extending import overload
+
+
+def _cache_root():
+    return os.environ.get("NUMBA_CACHE_DIR") or os.path.join(
+        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
+        "bouncer-verify",
+        "numba",
+    )
 
 
 def _cache_dir():
@@ -37,14 +64,10 @@ def _cache_dir():
     digest = hashlib.sha256()
     for path in sorted(package.rglob("*.py")):
         digest.update(path.relative_to(package).as_posix().encode() + b"\0" + path.read_bytes())
-    root = os.environ.get("NUMBA_CACHE_DIR") or os.path.join(
-        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
-        "bouncer-verify",
-        "numba",
-    )
-    return os.path.join(root, digest.hexdigest()[:16])
+    return os.path.join(CACHE_ROOT, digest.hexdigest()[:16])
 
 
+CACHE_ROOT = _cache_root()  # the caches of every version of fastpath's sources
 CACHE_DIR = _cache_dir()
 
 
@@ -53,11 +76,33 @@ def _cached_njit(**options):
         saved = numba.config.CACHE_DIR
         numba.config.CACHE_DIR = CACHE_DIR
         try:
-            return numba.njit(cache=True, nogil=True, error_model="numpy", **options)(function)
+            dispatcher = numba.njit(cache=True, nogil=True, error_model="numpy",
+                                    **options)(function)
         finally:
             numba.config.CACHE_DIR = saved
+        return _one_specialisation_per_type(dispatcher)
 
     return decorate
+
+
+def _one_specialisation_per_type(dispatcher):
+    """Have compiled callers type their calls of ``dispatcher`` with plain types.
+
+    numba types a constant argument (``collide(phi, v, eps, GENERAL)``, an evaluation index 1,
+    2, 3) as a literal of its value and compiles the callee once for each value; a variable of
+    the same type shares one specialisation. The literal's value does not change the callee's
+    arithmetic (it can only fold a branch, which LLVM does anyway where it inlines), so the
+    calls are typed with the values' types (``numba.core.types.unliteral``): one compilation
+    where there were up to six.
+    """
+    typed_call = dispatcher.get_call_template
+
+    def get_call_template(args, kws):
+        return typed_call(tuple(types.unliteral(a) for a in args),
+                          {k: types.unliteral(v) for k, v in kws.items()})
+
+    dispatcher.get_call_template = get_call_template
+    return dispatcher
 
 
 _WORKQUEUE_LOCK = threading.Lock()
@@ -71,22 +116,55 @@ def _serialise():
         return True
 
 
+PARALLEL_MIN = 4096  # elements below which a parallel kernel runs its serial compilation
+
+
 def parallel_jit(function):
-    """``numba.njit(parallel=True)`` (cached), called through the workqueue lock (module
-    docstring); the compiled dispatcher is the wrapper's ``kernel``."""
+    """``numba.njit(parallel=True)`` (cached) for calls over at least PARALLEL_MIN elements (the
+    length of the first array argument), called through the workqueue lock (module
+    docstring); a smaller call runs the same function compiled without ``parallel``, where
+    ``prange`` is ``range``: every element is computed alone either way (the kernels' ``prange``
+    loops have no reductions), so the numbers are the same, and a first small call (the README's
+    quick start) pays no parallel compile. The compiled dispatchers are the wrapper's
+    ``kernel`` and ``serial_kernel``."""
     kernel = _cached_njit(parallel=True)(function)
+    serial_kernel = _cached_njit()(_renamed(function, "_serial"))
 
     @functools.wraps(function)
     def call(*args):
+        size = next((len(a) for a in args if isinstance(a, np.ndarray)), PARALLEL_MIN)
+        if size < PARALLEL_MIN:
+            return serial_kernel(*args)
         if _serialise():
             with _WORKQUEUE_LOCK:
                 return kernel(*args)
         return kernel(*args)
 
-    call.kernel = kernel
+    call.kernel, call.serial_kernel = kernel, serial_kernel
     return call
 
 
+def _renamed(function, suffix):
+    """A copy of ``function`` whose name ends in ``suffix``: numba's cache files are named by
+    the function (and keyed by its code, not by the compile options), so the serial and the
+    parallel compilation of one function need two names."""
+    copy = types_module.FunctionType(function.__code__, function.__globals__,
+                                     function.__name__ + suffix, function.__defaults__,
+                                     function.__closure__)
+    copy.__qualname__ = function.__qualname__ + suffix
+    copy.__module__, copy.__doc__ = function.__module__, function.__doc__
+    return copy
+
+
+def typed_overload(function, prefer_literal=False):
+    """``numba.extending.overload`` with the kernels' arithmetic options: the implementation
+    that the decorated function returns for the argument types is what compiled callers of
+    ``function`` run (the choice is made when they are typed; with ``prefer_literal`` a
+    constant argument is seen as its value, ``numba.core.types.Literal``)."""
+    return overload(function, jit_options={"error_model": "numpy"},
+                    prefer_literal=prefer_literal)
+
+
 jit = _cached_njit()
-# scalar helpers of the lockstep kernels: inlined into the loop so that it can be vectorised
-inline_jit = _cached_njit(inline="always")
+# scalar helpers of the lockstep kernels: inlined by LLVM into the loop, so that it vectorises
+inline_jit = _cached_njit(forceinline=True)

@@ -156,7 +156,7 @@ def reduce_phase(x):
 def reduce_moderate(x):
     """``reduce_phase`` for |x| < 2**20, with selects instead of branches (it is also used in
     the vectorised lanes of the ensembles: the same arithmetic, the same bits)."""
-    r = _cody_waite(x, math.floor(x / TWO_PI))
+    r = _cody_waite(x, np.floor(x / TWO_PI))  # np.floor: a float, no conversion to integers
     # k from the float quotient can be off by one at the boundaries.
     r = r + TWO_PI if r < 0.0 else (r - TWO_PI if r >= TWO_PI else r)
     # r was -tiny and r + 2*pi rounded up to 2*pi
@@ -184,6 +184,6 @@ def centre_phase(x):
 @inline_jit
 def centre_moderate(x):
     """``centre_phase`` for |x| < 2**20, with selects instead of branches (``reduce_moderate``)."""
-    r = _cody_waite(x, math.floor(x / TWO_PI + 0.5))
+    r = _cody_waite(x, np.floor(x / TWO_PI + 0.5))
     r = r + TWO_PI if r < -PI else (r - TWO_PI if r >= PI else r)
     return x if -PI <= x < PI else r

@@ -31,7 +31,8 @@ error bounds allow for libm, so ``sin_cos_error`` adds nothing there (a departur
 keeps its w0 ~ 1.7e-16 decidable).
 """
 
-import math
+
+import numpy as np
 
 from fastpath.arithmetic.jit import inline_jit
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
@@ -55,7 +56,7 @@ _C12, _C14, _C16, _C18 = (1.0 / 479001600.0, -1.0 / 87178291200.0, 1.0 / 2092278
 @inline_jit
 def sin_cos(x):
     """(sin x, cos x) for |x| < 2**20, each within SIN_COS_ERROR (module docstring)."""
-    k = math.floor(x * _TWO_OVER_PI + 0.5)
+    k = np.floor(x * _TWO_OVER_PI + 0.5)  # a float: the lanes convert no integers
     r = ((x - k * _P1) - k * _P2) - k * _P3
     r2 = r * r
     # Estrin's scheme: the terms in pairs, so that the dependent chain is 4 steps, not 8
@@ -67,7 +68,7 @@ def sin_cos(x):
         ((_C10 + r2 * _C12) + r4 * (_C14 + r2 * _C16)) + r8 * _C18)
     sin_r = r + r * r2 * s_tail
     cos_r = 1.0 + r2 * c_tail
-    q = k - 4.0 * math.floor(0.25 * k)  # k mod 4, exact
+    q = k - 4.0 * np.floor(0.25 * k)  # k mod 4, exact
     s = sin_r if q == 0.0 else (cos_r if q == 1.0 else (-sin_r if q == 2.0 else -cos_r))
     c = cos_r if q == 0.0 else (-sin_r if q == 1.0 else (-cos_r if q == 2.0 else sin_r))
     return s, c

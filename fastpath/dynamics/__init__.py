@@ -1,7 +1,8 @@
 """Dynamics of the collision map in float64: periodic orbits, residues, Lyapunov exponents.
 
 ``periodic_orbit`` (Newton on F^p - id with the exact Jacobian), ``lyapunov`` (tangent map with
-renormalisation, both clocks), ``separation`` (the same exponent from two nearby orbits),
+renormalisation, both clocks), ``lyapunov_by_band`` (its log-stretches by velocity band),
+``separation`` (the same exponent from two nearby orbits),
 ``symmetric_orbit`` and ``critical_amplitude`` (Greene's residue criterion on the symmetric
 orbits of the reversible map), ``accelerator_search``, ``velocities`` and ``first_passage``
 (ensembles). Nothing here is a proof: ``verify.periodic_orbit`` certifies
@@ -20,11 +21,13 @@ from fastpath.dynamics.greene import (
     symmetric_orbit,
 )
 from fastpath.dynamics.jacobian import step_jacobian
-from fastpath.dynamics.lyapunov import Lyapunov, lyapunov, separation
+from fastpath.dynamics.lyapunov import BandExponents, Lyapunov, lyapunov, separation
+from fastpath.dynamics.lyapunov import by_band as lyapunov_by_band
 from fastpath.dynamics.periodic_orbit import OrbitNotFound, PeriodicOrbit, periodic_orbit
 
 __all__ = [
     "Approximant",
+    "BandExponents",
     "CriticalAmplitude",
     "Crossing",
     "Lyapunov",
@@ -35,6 +38,7 @@ __all__ = [
     "critical_amplitude",
     "first_passage",
     "lyapunov",
+    "lyapunov_by_band",
     "periodic_orbit",
     "residue_crossing",
     "separation",

@@ -2,14 +2,16 @@
 
 In the Holmes map's standard-map form (v1 = v - 2*eps*sin(phi1), K = 4*eps) the map commutes
 with v -> v + pi, so such a block repeats forever: v grows by pi*l every p collisions. The exact
-map is not periodic in v; its period-1 blocks are nevertheless exact accelerator modes: a flight
-of duration 2*pi*m from phase phi lands at phase phi at the same plate height, so tau = 2v
-exactly (v = pi*m), and v1 - v = -2*eps*sin(phi) = pi*l needs |eps| >= pi*|l|/2, the Holmes
-condition; the next block starts at v + pi*l, again a multiple of pi.
+map is not periodic in v: the shifted relations that repeat block after block are exactly its
+period-1 modes with l > 0 (``verify.dynamics.accelerator`` proves it): a flight of duration
+2*pi*m from phase phi lands at phase phi at the same plate height, so tau = 2v exactly
+(v = pi*m), and v1 - v = -2*eps*sin(phi) = pi*l needs |eps| >= pi*|l|/2, the Holmes condition;
+the next block starts at v + pi*l, again a multiple of pi. Any other shifted block of the exact
+map is a one-off (its next block is not its shifted copy) and is not kept.
 
 ``search`` runs Newton's method from a grid of starts (``kernels.block_search``) and keeps the
-distinct blocks with l != 0. A search finds what its grid reaches: it proves nothing about
-blocks it does not find.
+distinct modes with l != 0 (for the exact map, those ``periodic_orbit`` accepts). A search finds
+what its grid reaches: it proves nothing about blocks it does not find.
 """
 
 import math
@@ -18,8 +20,8 @@ import numpy as np
 
 from fastpath.dynamics._checks import integer, model_code
 from fastpath.dynamics._internals import CONVERGED
-from fastpath.dynamics.kernels import block_search
-from fastpath.dynamics.periodic_orbit import OrbitNotFound, build_orbit
+from fastpath.dynamics.kernels import EXACT, block_search
+from fastpath.dynamics.periodic_orbit import OrbitNotFound, build_orbit, periodic_orbit
 from fastpath.inputs import real_scalar as real
 
 MAX_ITERATIONS = 40
@@ -48,7 +50,13 @@ def search(eps, period, *, model="holmes", grid=24, v_base=20 * math.pi):
         if status != CONVERGED or shift == 0:
             continue
         try:
-            orbit = build_orbit(phi, v, eps, period, int(m), int(shift), model)
+            if code == EXACT:  # only the exact map's modes (periodic_orbit's rules)
+                orbit = periodic_orbit(phi, v, eps, period, winding=int(m),
+                                       velocity_shift=int(shift), model=model)
+                if orbit.period != period:
+                    continue  # a mode of a shorter period: found at that period
+            else:
+                orbit = build_orbit(phi, v, eps, period, int(m), int(shift), model)
         except OrbitNotFound:
             continue
         key = _canonical(orbit)

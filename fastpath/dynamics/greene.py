@@ -3,9 +3,23 @@
 An invariant curve with rotation number omega (mean phase advance per collision 2*pi*omega, i.e.
 velocity near pi*omega) is approached by periodic orbits of period q and winding m with
 m/q -> omega. Greene: the residues R of these orbits tend to 0 while the curve exists and grow
-without bound once it is broken; at the break-up they tend to a constant close to 1/4
-(0.2500888 for the standard map's golden curve). So eps_k, where the residue of the k-th
-approximant crosses 1/4, converges to the critical amplitude eps_c.
+without bound once it is broken; at the break-up they tend to the critical residue
+R_c = 0.2500888 (Greene 1979; the same for every noble curve, MacKay 1983). So eps_k, where the
+residue of the k-th approximant crosses R_c, converges to the critical amplitude eps_c
+geometrically, with the ratio of successive differences near -0.376 (measured). A crossing of
+any other level converges too, but more slowly and from one side: the crossings of 1/4 lie
+below eps_c by an amount that shrinks only like the growth of the residue's slope.
+
+Uncertainty of eps_c (``critical_amplitude``; the basis, written down): eps_c is the last
+crossing eps_n. With d_k = eps_k - eps_(k-1) and r the largest |d_k/d_(k-1)| over the last
+RATIO_WINDOW ratios (r < 1), the remaining geometric tail is at most |d_n|*r/(1 - r) if the
+ratios stay below r; to it are added the last crossing's own rounding (``Crossing.eps_error``)
+and the effect of the critical residue's last digit, CRITICAL_RESIDUE_ERROR/|dR/deps|. The
+Aitken extrapolation eps_n - d_n**2/(d_n - d_(n-1)) is reported beside it (its change between
+levels is a second, empirical measure). float64 gives the residue to ``residue_error``: where
+that, divided by the slope, is not far below the tail (periods of ~1600 and beyond, where the
+slope's growth no longer outpaces the rounding), ``verify.dynamics.residue`` computes the same
+crossings in multiprecision.
 
 Orbits: the map is reversible (``kernels.symmetric_newton``), so each approximant has a symmetric
 orbit through the line phi = 0 (the plate's top, where the fixed points (0, pi*m) are elliptic
@@ -31,7 +45,10 @@ from fastpath.dynamics.periodic_orbit import TRACE_ROUNDING, OrbitNotFound, buil
 from fastpath.inputs import real_scalar as real
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
-TARGET = 0.25
+CRITICAL_RESIDUE = 0.2500888  # Greene (1979): residues of noble approximants at the break-up
+CRITICAL_RESIDUE_ERROR = 5e-8  # half a unit of its last digit
+TARGET = CRITICAL_RESIDUE
+RATIO_WINDOW = 3  # ratios of successive differences whose largest bounds the tail
 STANDARD_MAP_K_C = 0.971635406  # Greene (1979), MacKay (1983): golden curve of the standard map
 MAX_NEWTON = 60
 _MIN_STEP = 1e-7  # continuation step in eps below which a branch is given up
@@ -220,9 +237,10 @@ def residue_crossing(approximant, *, phase=0.0, model="exact", target=TARGET, ep
 @dataclass(frozen=True)
 class CriticalAmplitude:
     """eps_c of one band by Greene's criterion: the crossings of the approximants, the last
-    crossing ``eps_c``, the geometric ratio of the last differences and ``uncertainty``: the
-    sum of the remaining geometric tail (at least the last difference times that ratio) plus
-    the rounding ``eps_error`` of the last crossing; and the Aitken extrapolation."""
+    crossing ``eps_c``, ``ratio`` the last ratio of successive differences, ``tail_ratio`` the
+    largest |ratio| over the last RATIO_WINDOW, ``uncertainty`` (module docstring: the geometric
+    tail with that ratio, the last crossing's rounding and the critical residue's last digit),
+    ``aitken`` the Aitken extrapolation and ``target`` the residue crossed."""
 
     band: int
     prefix: tuple
@@ -232,23 +250,67 @@ class CriticalAmplitude:
     uncertainty: float
     ratio: float
     aitken: float
+    tail_ratio: float = math.nan
+    target: float = TARGET
+
+
+def tail_uncertainty(eps, eps_error, slope, target=TARGET):
+    """(uncertainty, last ratio, tail ratio, Aitken value) of the last of the crossings ``eps``
+    (module docstring); ``eps_error`` and ``slope`` of the last crossing."""
+    eps = np.asarray(eps, dtype=float)
+    if len(eps) < 3:
+        raise ValueError(f"at least 3 crossings are needed for an uncertainty, got {len(eps)}")
+    d = np.diff(eps)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratios = d[1:] / d[:-1]
+    recent = np.abs(ratios[-RATIO_WINDOW:])
+    r = float(np.max(recent)) if np.all(np.isfinite(recent)) else math.inf
+    tail = abs(d[-1]) * r / (1.0 - r) if r < 1.0 else math.inf
+    digit = CRITICAL_RESIDUE_ERROR / abs(slope) if target == CRITICAL_RESIDUE else 0.0
+    d1, d2 = d[-1], d[-2]
+    aitken = eps[-1] - d1 * d1 / (d1 - d2) if d1 != d2 else eps[-1]
+    return tail + eps_error + digit, float(ratios[-1]), r, float(aitken)
+
+
+def extrapolate(eps, errors):
+    """(A, uncertainty): the Aitken extrapolation A_n of the last three crossings ``eps`` and its
+    uncertainty (basis, written down): twice the change A_n - A_(n-1) over the last level (the
+    extrapolations converge geometrically; twice the last change bounds what remains while
+    their ratio stays below 2/3), plus the crossings' own errors ``errors`` carried through
+    the formula, sum |dA/deps_i|*error_i over the last three (dA/deps_n = 1/(1 - rho)**2,
+    dA/deps_(n-2) = (rho/(1 - rho))**2, rho = d_n/d_(n-1), and the middle one their
+    complement to 1); A_(n-1)'s own errors are counted too (at most 4 crossings used)."""
+    eps = np.asarray(eps, dtype=float)
+    errors = np.asarray(errors, dtype=float)
+    if len(eps) < 4:
+        raise ValueError(f"at least 4 crossings are needed to extrapolate, got {len(eps)}")
+
+    def aitken(e0, e1, e2):
+        d1, d2 = e2 - e1, e1 - e0
+        return e2 - d1 * d1 / (d1 - d2) if d1 != d2 else e2
+
+    def carried(e0, e1, e2, err):
+        rho = (e2 - e1) / (e1 - e0)
+        w_last, w_first = 1.0 / (1.0 - rho) ** 2, (rho / (1.0 - rho)) ** 2
+        weights = (w_first, abs(1.0 - w_last - w_first), w_last)
+        return sum(w * e for w, e in zip(weights, err, strict=True))
+
+    last = aitken(*eps[-3:])
+    before = aitken(*eps[-4:-1])
+    rounding = max(carried(*eps[-3:], errors[-3:]), carried(*eps[-4:-1], errors[-4:-1]))
+    return float(last), float(2.0 * abs(last - before) + rounding)
 
 
 def critical_amplitude(band, prefix=(), *, model="exact", levels=10, smallest=3,
                        target=TARGET):
     """Greene's estimate of the break-up amplitude of the curve omega = band + noble(prefix)."""
     model_code(model)
+    if levels < 3:
+        raise ValueError(f"levels must be >= 3 for an uncertainty, got {levels}")
     crossings = [residue_crossing(a, model=model, target=target)
                  for a in approximants(band, prefix, levels, smallest)]
-    eps = np.array([c.eps for c in crossings])
-    if len(eps) < 3:
-        raise ValueError(f"levels must be >= 3 for an uncertainty, got {levels}")
-    d1, d2 = eps[-1] - eps[-2], eps[-2] - eps[-3]
-    ratio = d1 / d2 if d2 != 0 else math.nan
-    r = abs(ratio)
-    tail = abs(d1) * r / (1.0 - r) if r < 1 else math.inf
-    uncertainty = max(tail, abs(d1) * r) if math.isfinite(tail) else math.inf
-    uncertainty += crossings[-1].eps_error
-    aitken = eps[-1] - d1 * d1 / (d1 - d2) if d1 != d2 else eps[-1]
-    return CriticalAmplitude(band, tuple(prefix), model, crossings, float(eps[-1]),
-                             float(uncertainty), float(ratio), float(aitken))
+    last = crossings[-1]
+    uncertainty, ratio, r, aitken = tail_uncertainty([c.eps for c in crossings],
+                                                     last.eps_error, last.slope, target)
+    return CriticalAmplitude(band, tuple(prefix), model, crossings, float(last.eps),
+                             float(uncertainty), ratio, aitken, r, target)

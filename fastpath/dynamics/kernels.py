@@ -394,7 +394,43 @@ def block_search(phi0, v0, eps, period, model, max_iterations, out):
             continue
         winding = round(time / (2.0 * PI))
         shift = round((v_end - v0[i]) / PI)
+        if winding < 1:  # shorter than pi: no block with a positive winding near this start
+            out[i, 5] = -1
+            continue
         phi, v, g1, g2, _, _, status = newton_block(phi0[i], v0[i], eps, period, winding, shift,
                                                     model, max_iterations)
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = phi, v, winding, shift
         out[i, 4], out[i, 5] = max(abs(g1), abs(g2)), status
+
+
+@jit
+def tangent_bands(phi0, v0, eps, model, n, edges, sums, counts):
+    """``tangent_orbit``'s log-stretches log|J u| of n collisions, summed by the velocity band
+    of the state before each collision: band j holds v in [edges[j], edges[j+1]) (sums[j] and
+    counts[j] accumulate). Returns (collisions done, status)."""
+    phi = reduce_phase(phi0)
+    s, c = math.sin(phi), math.cos(phi)
+    v = v0
+    u1 = u2 = math.sqrt(0.5)
+    top = len(edges) - 1
+    for k in range(1, n + 1):
+        band = np.searchsorted(edges, v, side="right") - 1
+        phi, s, c, v1, _, j11, j12, j21, j22, status = step_tangent(phi, s, c, v, eps, model)
+        if status != CONVERGED:
+            return k - 1, status
+        x, y = j11 * u1 + j12 * u2, j21 * u1 + j22 * u2
+        norm = math.hypot(x, y)
+        if 0 <= band < top:
+            sums[band] += math.log(norm)
+            counts[band] += 1
+        u1, u2 = x / norm, y / norm
+        v = v1
+    return n, CONVERGED
+
+
+@parallel_jit
+def tangent_band_ensemble(phi0, v0, eps, model, n, edges, sums, counts, done, status):
+    """``tangent_bands`` for each start (rows of ``sums`` and ``counts``), in parallel."""
+    for i in prange(len(phi0)):
+        done[i], status[i] = tangent_bands(phi0[i], v0[i], eps, model, n, edges, sums[i],
+                                           counts[i])

@@ -8,6 +8,9 @@ Along an orbit, a tangent vector u_k is mapped by the exact Jacobian of each col
 t_n the time of the n-th collision. Running values are stored at ``checkpoints`` collision counts
 (log-spaced, constant memory). ``separation`` is the same exponent from two nearby orbits without
 the Jacobian (Benettin's renormalised separation), an independent check of the tangent map.
+``by_band`` pools the same log-stretches by the velocity band where they happen: an orbit of the
+chaotic component that diffuses to high velocity reads the exponent of the high-velocity
+(standard-map-like) part; its early collisions give the low-velocity part.
 """
 
 from dataclasses import dataclass
@@ -16,7 +19,7 @@ import numpy as np
 
 from fastpath.dynamics._checks import departing, integer, model_code
 from fastpath.dynamics._internals import CONVERGED, NOT_DEPARTING, FlightStatus, UncertainCollision
-from fastpath.dynamics.kernels import separation_exponent, tangent_ensemble
+from fastpath.dynamics.kernels import separation_exponent, tangent_band_ensemble, tangent_ensemble
 from fastpath.inputs import real_scalar as real
 
 
@@ -129,3 +132,53 @@ def separation(phi, v, eps, n, *, model="exact", distance=1e-9):
         _raise(status, done, phi, v, eps)
     return float(exponent)
 
+
+
+@dataclass(frozen=True)
+class BandExponents:
+    """The tangent map's log-stretch per collision by velocity band (the band of the state
+    before the collision): ``edges`` (band j is [edges[j], edges[j+1])), ``per_collision`` the
+    pooled sum/count per band (NaN where no collision fell), ``standard_error`` over the
+    starts (of their own band means, weighted by their counts; NaN with fewer than 2 starts
+    in the band), ``collisions`` per band and ``orbits`` per band (starts that visited it)."""
+
+    edges: np.ndarray
+    per_collision: np.ndarray
+    standard_error: np.ndarray
+    collisions: np.ndarray
+    orbits: np.ndarray
+    done: np.ndarray
+    status: np.ndarray
+    eps: float
+    model: str
+
+
+def by_band(phi, v, eps, n, edges, *, model="exact"):
+    """The largest Lyapunov exponent's local part in each velocity band: the log-stretches
+    log|DF(x_k) u_k| of n collisions from each start (the renormalised tangent vector of
+    ``lyapunov``), pooled by the band of v_k. A band mean is the exponent of the chaotic
+    component restricted to those velocities when the orbits have spent long enough there
+    for the tangent vector to align (they start at low velocity and diffuse upwards)."""
+    phi_a, v_a = _starts(phi, v)
+    eps = real("eps", eps)
+    n = integer("n", n, minimum=1)
+    code = model_code(model)
+    edges = np.asarray(edges, dtype=float)
+    if edges.ndim != 1 or len(edges) < 2 or np.any(np.diff(edges) <= 0):
+        raise ValueError("edges must be at least two ascending velocities")
+    for p, w in zip(phi_a, v_a, strict=True):
+        departing(p, w, eps)
+    rows, bands = len(phi_a), len(edges) - 1
+    sums, counts = np.zeros((rows, bands)), np.zeros((rows, bands), np.int64)
+    done, status = np.zeros(rows, np.int64), np.zeros(rows, np.int64)
+    tangent_band_ensemble(phi_a, v_a, eps, code, n, edges, sums, counts, done, status)
+    total = counts.sum(0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        pooled = sums.sum(0) / total
+        own = sums / counts
+        weights = counts / total
+        visited = (counts > 0).sum(0)
+        spread = np.nansum(weights**2 * (own - pooled) ** 2, axis=0)
+        error = np.where(visited >= 2, np.sqrt(spread * visited / np.maximum(visited - 1, 1)),
+                         np.nan)
+    return BandExponents(edges, pooled, error, total, visited, done, status, eps, model)

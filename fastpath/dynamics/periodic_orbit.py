@@ -12,6 +12,27 @@ R = (2 - tr M)/4 (Greene) classifies the orbit: elliptic for 0 < R < 1, hyperbol
 R > 1. Over a periodic orbit det M = 1; for l != 0 (the exact map is not periodic in v) det M is
 w_0/w_p, and the classification uses tr M/sqrt(det M) instead of tr M.
 
+The same rules as ``verify.periodic_orbit`` (which proves them), in float64:
+
+* Minimal period. A zero of F^p - id may be an orbit of a shorter period d | p (the fixed point
+  (0, pi) is a zero of every F^p - id). Each divisor d (ascending) is tested at the converged
+  state: if d collisions bring it back to itself, |F^d(x) - x - (2*pi*m_d, pi*l_d)| <= SAME
+  (phase, and v relative to 1 + |v|) with m_d, l_d the nearest integers, the orbit is
+  RELABELLED to period d (``period``, ``winding``, ``velocity_shift``, states and monodromy of
+  the d collisions). Two states closer than SAME are taken as one: float64 cannot tell a
+  genuine period-p orbit that close to a shorter one (a period doubling within ~1e-16 of its
+  birth).
+* Velocity shifts of the exact map (model "exact", l != 0): the shifted relations that repeat
+  block after block are exactly the period-1 modes with l > 0 (``verify.dynamics.accelerator``
+  proves it). A decelerating shift (l < 0) raises OrbitNotFound; a block of p >= 2 collisions
+  with a shift is searched as p blocks of a period-1 mode (shift l/p; OrbitNotFound if l/p is
+  not an integer or Newton finds none) and relabelled to period 1; a mode's later flights at
+  velocities pi*(m + k*l) <= 2*|eps| are computed and must end at 2*pi*(m + k*l) (beyond, the
+  bound of ``verify.dynamics.accelerator`` holds), else OrbitNotFound. The Holmes model
+  (standard-map form) commutes with v -> v + pi: every shifted block there is a mode.
+* A winding taken from the guess (``winding=None``) that rounds below 1 (the guess's p flights
+  last less than pi) raises OrbitNotFound: no orbit with a positive winding is near it.
+
 Nothing here is proved: ``verify.periodic_orbit`` certifies an orbit found here.
 """
 
@@ -21,8 +42,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from fastpath.dynamics._checks import departing, integer, model_code
-from fastpath.dynamics._internals import CONVERGED, NOT_DEPARTING, FlightStatus, UncertainCollision
+from fastpath.dynamics._internals import (
+    CONVERGED,
+    GENERAL,
+    NOT_DEPARTING,
+    FlightStatus,
+    UncertainCollision,
+    collide_from,
+)
 from fastpath.dynamics.kernels import (
+    EXACT,
     UNIT_ROUNDOFF,
     newton_block,
     orbit_monodromy,
@@ -36,6 +65,8 @@ NOT_CONVERGED = -1  # newton_block's status when the iteration does not settle
 # Relative rounding of a Jacobian entry and of one 2x2 product, in units of u: the entries take
 # ~10 operations after a flight time good to a few u (relative to its conditioning).
 TRACE_ROUNDING = 32.0
+SAME = 1e-8  # two states of an orbit this close (phase; v relative to 1 + |v|) are one
+MAX_SLOW_BLOCKS = 1_000  # a mode's later flights checked one by one below v = 2*|eps|
 
 
 class OrbitNotFound(ArithmeticError):
@@ -165,25 +196,31 @@ def periodic_orbit(phi, v, eps, period, *, winding=None, velocity_shift=0, model
     phi, v, eps: the guess and the amplitude (finite reals; the guess must depart,
     v + eps*sin(phi) > 0). period p >= 1. winding m: the orbit's total time is 2*pi*m; by
     default the nearest integer to the guess's own p flights / (2*pi). velocity_shift l: v_p =
-    v + pi*l (l != 0: an accelerator block, v grows by pi*l every p collisions). model: "exact"
-    or "holmes" (the Holmes map in its standard-map form). Returns a :class:`PeriodicOrbit`;
-    raises ValueError for bad input, :class:`OrbitNotFound` when Newton does not converge, and
-    ``fastpath.UncertainCollision`` for a flight float64 cannot decide.
+    v + pi*l (l != 0: an accelerator mode, v grows by pi*l every p collisions; for the exact map
+    only period-1 modes with l > 0, module docstring). model: "exact" or "holmes" (the Holmes
+    map in its standard-map form). Returns a :class:`PeriodicOrbit` whose ``period`` is the
+    minimal one found (module docstring); raises ValueError for bad input,
+    :class:`OrbitNotFound` when Newton does not converge or the relation is not an orbit of the
+    map, and ``fastpath.UncertainCollision`` for a flight float64 cannot decide.
     """
     phi, v, eps = real("phi", phi), real("v", v), real("eps", eps)
     period = integer("period", period, minimum=1)
     shift = integer("velocity_shift", velocity_shift)
     code = model_code(model)
     max_iterations = integer("max_iterations", max_iterations, minimum=1)
+    if winding is not None:
+        winding = integer("winding", winding, minimum=1)
     departing(phi, v, eps, "the guess")
+    where = f"near phi={phi!r}, v={v!r} (eps={eps!r})"
+    if code == EXACT and shift < 0:
+        raise OrbitNotFound(f"velocity shift {shift} < 0 {where}: v falls by pi*{-shift} per "
+                            f"block to 0 after finitely many; not an accelerator mode of the "
+                            f"exact map (its time reverse, at phase -phi, has shift {-shift})")
+    if code == EXACT and shift != 0 and period > 1:
+        return _repeated_mode(phi, v, eps, period, winding, shift, model, max_iterations,
+                              where)
     if winding is None:
-        phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
-        jac = np.empty((period, 4))
-        time, *_, status, _ = orbit_monodromy(phi, v, eps, period, code, phi_k, v_k, tau_k, jac)
-        if status != CONVERGED:
-            _raise_for_status(status, phi, v, eps, "the guess's orbit")
-        winding = round(time / (2.0 * math.pi))
-    winding = integer("winding", winding, minimum=1)
+        winding = _own_winding(phi, v, eps, period, code, where)
     phi1, v1, g1, g2, step, its, status = newton_block(phi, v, eps, period, winding, shift, code,
                                                       max_iterations)
     if status == NOT_CONVERGED:
@@ -193,4 +230,91 @@ def periodic_orbit(phi, v, eps, period, *, winding=None, velocity_shift=0, model
             f"residual {max(abs(g1), abs(g2)):.3g}, last step {step:.3g}; try a closer guess")
     if status != CONVERGED:
         _raise_for_status(status, phi1, v1, eps, "Newton's method")
+    period, winding, shift = _minimal(phi1, v1, eps, period, winding, shift, code)
+    if code == EXACT and shift != 0:
+        _mode_goes_on(phi1, v1, eps, winding, shift, where)
     return build_orbit(phi1, v1, eps, period, winding, shift, model, its)
+
+
+def _own_winding(phi, v, eps, period, code, where):
+    """The winding of the guess's own p flights (rounded); OrbitNotFound below 1."""
+    phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
+    jac = np.empty((period, 4))
+    time, *_, status, _ = orbit_monodromy(phi, v, eps, period, code, phi_k, v_k, tau_k, jac)
+    if status != CONVERGED:
+        _raise_for_status(status, phi, v, eps, "the guess's orbit")
+    winding = round(time / (2.0 * math.pi))
+    if winding < 1:
+        raise OrbitNotFound(f"the guess's {period} flights {where} last {time:.10g} < pi: no "
+                            f"orbit with a winding >= 1 near it (give winding= to search one)")
+    return winding
+
+
+def _repeated_mode(phi, v, eps, period, winding, shift, model, max_iterations, where):
+    """p >= 2 collisions with a shift, exact map: only as p blocks of a period-1 mode."""
+    refusal = (f"a block of {period} collisions with velocity shift {shift} {where} is an orbit "
+               f"of the exact map only as {period} blocks of a period-1 accelerator mode")
+    if shift % period:
+        raise OrbitNotFound(f"{refusal}, whose shift would be {shift}/{period}")
+    step = shift // period
+    one = None
+    if winding is not None:  # p blocks of (phi, pi*m1) -> (phi, pi*(m1 + l1)): p*m1 + l1*p(p-1)/2
+        twice = 2 * winding - step * period * (period - 1)
+        if twice % (2 * period) or twice < 2 * period:
+            raise OrbitNotFound(f"{refusal}: winding {winding} is not that of {period} blocks "
+                                f"of one")
+        one = twice // (2 * period)
+    try:
+        return periodic_orbit(phi, v, eps, 1, winding=one, velocity_shift=step, model=model,
+                              max_iterations=max_iterations)
+    except OrbitNotFound as err:
+        raise OrbitNotFound(f"{refusal}, and none was found: {err}") from None
+
+
+def _block(phi, v, eps, d, code):
+    """(time, v_end, phase_end) of d collisions from (phi, v), or None if a flight fails."""
+    phi_k, v_k, tau_k = np.empty(d), np.empty(d), np.empty(d)
+    jac = np.empty((d, 4))
+    time, v_end, phi_end, *_, status, _ = orbit_monodromy(phi, v, eps, d, code, phi_k, v_k,
+                                                          tau_k, jac)
+    return None if status != CONVERGED else (time, v_end, phi_end)
+
+
+def _minimal(phi, v, eps, period, winding, shift, code):
+    """(period, winding, shift) of the shortest block that closes at the converged state
+    (module docstring: relabelled below ``SAME``)."""
+    for d in range(1, period):
+        if period % d:
+            continue
+        block = _block(phi, v, eps, d, code)
+        if block is None:
+            continue
+        time, v_end, _ = block
+        m_d = round(time / (2.0 * math.pi))
+        l_d = round((v_end - v) / math.pi)
+        closes = (abs(time - 2.0 * math.pi * m_d) <= SAME
+                  and abs(v_end - v - math.pi * l_d) <= SAME * (1.0 + abs(v)))
+        if closes and m_d >= 1 and (l_d == 0) == (shift == 0):
+            return d, m_d, l_d
+    return period, winding, shift
+
+
+def _mode_goes_on(phi, v, eps, winding, shift, where):
+    """The later flights of a period-1 mode of the exact map at velocities pi*(m + k*l) <=
+    2*|eps| end at 2*pi*(m + k*l) (beyond, ``verify.dynamics.accelerator``'s bound)."""
+    level = winding + shift
+    checked = 0
+    s, c = math.sin(phi), math.cos(phi)
+    while math.pi * level <= 2.0 * abs(eps):
+        if checked == MAX_SLOW_BLOCKS:
+            raise OrbitNotFound(f"the accelerator mode {where} has more than {MAX_SLOW_BLOCKS} "
+                                f"blocks below v = 2*|eps|")
+        speed = math.pi * level
+        *_, tau, _, status = collide_from(phi, s, c, speed, eps, GENERAL)
+        if status != CONVERGED or abs(tau - 2.0 * speed) > SAME * (1.0 + tau):
+            raise OrbitNotFound(f"the accelerator mode {where} does not go on: the flight from "
+                                f"v = pi*{level} does not end at 2*pi*{level}")
+        checked += 1
+        level += shift
+
+

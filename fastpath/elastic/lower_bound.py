@@ -38,8 +38,24 @@ step s itself at rounding level (|d| <= E). No second root lies that close (``ma
 
 For |eps| > 1 the gap can be convex (d2 <= |eps| - 1 =: b), and a zero gap with a small slope may
 be the bottom of a near-tangent dip whose sign float64 cannot tell: that flight is UNCERTAIN. At
-most ITERATION_LIMIT evaluations for any input (then MAX_ITERATIONS, as UNCERTAIN). A non-finite
-intermediate (v**2, t*v overflowing) gives OVERFLOW.
+most ITERATION_LIMIT evaluations for any input (then MAX_ITERATIONS, as UNCERTAIN).
+
+Range. The analysis above needs every intermediate finite: a bound E or R that overflows to inf
+would make any point "within rounding of zero" (a CONVERGED far from the root), and an overflowing
+r*r in a step formula gives a zero step and a stop at an arbitrary point. So each point is checked
+(``next_point``): with X = (|r| + R)**2 + 2*a*(|d| + E), OVERFLOW unless X <= RANGE_LIMIT = 2**1000
+and d, r are finite. Then every step formula is finite: the discriminants are at most X; the step
+s_a <= 2*sqrt(X)/a; the local step's trials h <= 64*s_a give |eps|*h <= 2**508 and
+|eps|*h**2/2 either finite or +inf, which lowers c_H to its floor -a (still a valid bound), never
+NaN; E and R are finite by the check. Which inputs pass: before the root t <= v + sqrt(v**2 +
+4|eps|), so with A = |v| + sqrt(|eps|) + 1 (T <= 2A, |r| <= 3A + |eps|, |d| <= 2|eps| + 4A**2,
+|eps| <= A**2) X <= 30*A**2*(1 + |eps|) (to a few u): no elastic flight with
+30*A**2*(1 + |eps|) <= 2**1000 ends OVERFLOW here, e.g. |eps| <= 5e149 for |v| <= 1 and
+|v| <= 4e149 for |eps| <= 1; beyond, a flight ends OVERFLOW at the first point whose X
+exceeds the limit (and where d or r themselves overflow, as before), never CONVERGED. (The
+concave path of ``fastpath.elastic.concave`` for |eps| <= 1 starts at the Holmes time 2*v, where
+|tau - 2*v| <= 4|eps|/tau (docs/model.md): that start,
+where its bound E overflows (v > 5e153) is within rounding of the root and is returned.)
 """
 
 import math
@@ -50,6 +66,7 @@ from fastpath.elastic.gap import gap, gap_error, gap_rate, rate_error
 from fastpath.status import CONVERGED, ITERATION_LIMIT, MAX_ITERATIONS, OVERFLOW, UNCERTAIN
 
 _GROWTH_ROUNDS = 4  # rounds of growing H in the local step
+RANGE_LIMIT = 2.0**1000  # the largest X of a point the analysis admits (module docstring: Range)
 GOING_ON = -1  # ``next_point``: no end yet
 
 
@@ -147,6 +164,8 @@ def next_point(t, bounds, grazes):
     d, r, d_err, r_err, curvature, jerk, eps, a = bounds
     if not (abs(d) < math.inf and abs(r) < math.inf):
         return math.nan, OVERFLOW
+    if not (abs(r) + r_err) ** 2 + 2.0 * a * (abs(d) + d_err) <= RANGE_LIMIT:
+        return math.nan, OVERFLOW  # beyond the range of the error analysis
     if d <= d_err:
         if grazes:
             return t, UNCERTAIN

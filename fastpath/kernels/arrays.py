@@ -77,6 +77,51 @@ class EscapeCounts(NamedTuple):
                    counts(blocks, t_bins), counts(blocks))
 
 
+class JointCounts(NamedTuple):
+    """``EscapeCounts`` (the same fields, filled the same way) and the joint record of (n, t):
+    every particle of block b that ends (escapes, is censored or sticks) appends the code
+
+        (outcome * n_bins + k_n) * t_bins + k_t
+
+    to row b of ``ends`` (``ended[b]`` entries so far; a row holds the block's particles),
+    outcome j < holes for an escape through hole j, holes for censored, holes + 1 for stuck,
+    k_n and k_t its bins of the two clocks (``histogram.record_end``). The caller counts the
+    codes (``joint_histogram``): a histogram does not depend on the order within a row, so the
+    result is the same for any threads. A separate class, so that a kernel called with
+    ``EscapeCounts`` compiles without the record (``histogram.record_end`` is then ``record``)."""
+
+    esc_n: np.ndarray
+    esc_t: np.ndarray
+    cens_n: np.ndarray
+    cens_t: np.ndarray
+    stuck_n: np.ndarray
+    stuck_t: np.ndarray
+    collisions: np.ndarray
+    ends: np.ndarray
+    ended: np.ndarray
+
+    @classmethod
+    def zeros(cls, blocks, per_block, holes, n_bins, t_bins):
+        """Zero counts of ``blocks`` blocks of at most ``per_block`` particles."""
+        return cls(*EscapeCounts.zeros(blocks, holes, n_bins, t_bins),
+                   np.zeros((blocks, per_block), np.int64), np.zeros(blocks, np.int64))
+
+
+def joint_histogram(counts, n_bins, t_bins):
+    """The joint record of ``counts`` (``JointCounts``) as counts[outcome, k_n, k_t], outcomes
+    0 .. holes + 1 (``JointCounts``). ValueError if a block recorded more ends than it holds
+    particles (``histogram.append_joint`` drops those: a particle ended twice)."""
+    holes = counts.esc_n.shape[1]
+    capacity = counts.ends.shape[1]
+    if np.any(counts.ended > capacity):
+        raise ValueError(f"a block of at most {capacity} particles recorded"
+                         f" {int(counts.ended.max())} ends")
+    codes = np.concatenate([row[:k] for row, k in zip(counts.ends, counts.ended, strict=True)])
+    size = (holes + 2) * n_bins * t_bins
+    counts = np.bincount(codes, minlength=size).astype(np.int64, copy=False)
+    return counts.reshape(holes + 2, n_bins, t_bins)
+
+
 class Sample(NamedTuple):
     """The verification sample: particle i with ``slot[i] = s >= 0`` stores in ``rows[s]`` the
     departure and result (``SAMPLE_FIELDS``, then the carried state if rows has the columns and

@@ -37,14 +37,12 @@ phi1, v1, tau) of the picked collision, and with r < 1 the departure's carried e
 """
 
 import numpy as np
-from numba import get_num_threads, prange
 
-from fastpath.arithmetic.jit import inline_jit, jit, parallel_jit
+from fastpath.arithmetic.jit import inline_jit, jit, typed_overload
 from fastpath.arithmetic.phase import MODERATE_LIMIT, centre_moderate
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF, select
 from fastpath.arithmetic.sincos import sin_cos, sin_cos_error
 from fastpath.dissipative.carried import CARRIED, PHI, STATE_SIZE, STUCK, T, V, copy_carried
-from fastpath.dissipative.sticking import detachment
 from fastpath.elastic.collision import collide
 from fastpath.elastic.flight import AUTO, GENERAL, departure_phase
 from fastpath.elastic.holmes import holmes_collide
@@ -52,9 +50,10 @@ from fastpath.elastic.landing import landing_phase_moderate, refine_long_flight
 from fastpath.elastic.lockstep import lockstep_collide
 from fastpath.kernels.arrays import keeps_carried
 from fastpath.kernels.histogram import censor, escape, exit_hole, in_hole, stuck
-from fastpath.kernels.particle import advance, departure_point
+from fastpath.kernels.particle import advance, departure_point, detachment_of
 from fastpath.kernels.records import flag, start_particle, store_carried, store_sample
-from fastpath.physics import DISSIPATIVE, ELASTIC, model_of
+from fastpath.kernels.threads import over_threads
+from fastpath.physics import DISSIPATIVE, Dissipative, Elastic, model_of
 from fastpath.status import CONVERGED
 
 LANES = 64  # particles in flight together in a group (a multiple of the vector width)
@@ -85,34 +84,29 @@ def lane_collide(centred, v, eps, phase_error):
 def escape_chunk(physics, starts, holes, horizon, bins, sample, counts, flags):
     """Run the particles ``starts`` (``arrays.Starts``) to their exit (module docstring).
 
-    physics: an Elastic or Dissipative description. Outputs are added to (the caller zeroes
+    physics: an Elastic or Dissipative description (``fastpath.physics``; a Holmes description
+    is refused: its ensemble is ``holmes_escape_chunk``). Outputs are added to (the caller zeroes
     them): ``counts`` (``arrays.EscapeCounts``, one row per block: len(counts.collisions)
     blocks of consecutive particles), ``flags`` (``arrays.Flags``), ``sample.rows``.
 
-    Groups of whole blocks share lanes, one group per thread: a group ends with its last
-    long-lived particles in half-empty lanes, so the fewer groups the less of that (16 groups
-    of the 2^16 starts of a paper chunk cost 7% more per collision than one, on one thread).
-    A particle counts into its own block's row, so the grouping, like the threads, changes no
-    number: it only spreads the work.
+    Groups of whole blocks share lanes, one group per thread (``fastpath.kernels.threads``): a
+    group ends with its last long-lived particles in half-empty lanes, so the fewer groups the
+    less of that (16 groups of the 2^16 starts of a paper chunk cost 7% more per collision than
+    one, on one thread). A particle counts into its own block's row, so the grouping, like the
+    threads, changes no number: it only spreads the work.
     """
-    _escape_groups(physics, starts, holes, horizon, bins, sample, counts, flags,
-                   detachment(physics), get_num_threads())
-
-
-@parallel_jit
-def _escape_groups(physics, starts, holes, horizon, bins, sample, counts, flags, detach,
-                   groups):
-    """``escape_chunk`` in ``groups`` groups of blocks (at least 1, at most one per block)."""
+    if type(physics) not in (Elastic, Dissipative):
+        raise ValueError(f"escape_chunk takes an Elastic or Dissipative description, got"
+                         f" {physics!r}; the Holmes map's ensemble is holmes_escape_chunk")
     m = len(starts.phi)
-    blocks = len(counts.collisions)
-    per_block = (m + blocks - 1) // blocks
-    groups = max(1, min(blocks, groups))
-    per_group = (blocks + groups - 1) // groups
-    for g in prange(groups):
-        span = (per_block, min(m, g * per_group * per_block),
-                min(m, (g + 1) * per_group * per_block))
-        _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, flags,
-                      detach)
+    per_block = (m + len(counts.collisions) - 1) // len(counts.collisions)
+    detach = detachment_of(physics)
+
+    def run_group(first_block, end_block):
+        span = (per_block, min(m, first_block * per_block), min(m, end_block * per_block))
+        _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, flags, detach)
+
+    over_threads(run_group, len(counts.collisions))
 
 
 # The lanes' entries, rows of two arrays (real, integer) of LANES columns: each row is a
@@ -130,14 +124,29 @@ def _load(physics, real, integer, states, lane, i, per_block, starts, sample, fl
     integer[TARGET_L, lane] = sample.target[i]
     real[PHI_L, lane], real[V_L, lane], real[T_L, lane] = starts.phi[i], starts.v[i], starts.t[i]
     flags.status[i] = 0
-    if model_of(physics) == ELASTIC:
-        real[CENTRED_L, lane], real[PHASE_ERROR_L, lane] = departure_phase(starts.phi[i])
+    return _depart(physics, real, states, lane, i, starts, flags)
+
+
+def _depart(physics, real, states, lane, i, starts, flags):
+    """The departure of particle i in a lane: its centred phase (elastic) or its state
+    (``start_particle``: False if it does not depart), compiled for the model only."""
+
+
+@typed_overload(_depart)
+def _depart_of_model(physics, real, states, lane, i, starts, flags):
+    if physics.instance_class is Elastic:
+        def elastic_departure(physics, real, states, lane, i, starts, flags):
+            real[CENTRED_L, lane], real[PHASE_ERROR_L, lane] = departure_phase(starts.phi[i])
+            return True
+        return elastic_departure
+
+    def dissipative_departure(physics, real, states, lane, i, starts, flags):
+        state = states[lane]
+        if not start_particle(physics, state, i, starts, flags, True):
+            return False
+        real[PHI_L, lane], real[V_L, lane], real[T_L, lane] = departure_point(state)
         return True
-    state = states[lane]
-    if not start_particle(physics, state, i, starts, flags, True):
-        return False
-    real[PHI_L, lane], real[V_L, lane], real[T_L, lane] = departure_point(state)
-    return True
+    return dissipative_departure
 
 
 @inline_jit
@@ -262,24 +271,38 @@ def _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, f
                     phase_error[busy], v[busy], t[busy] = phase_error[lane], v[lane], t[lane]
                     n[busy], slot[busy], target[busy] = n[lane], slot[lane], target[lane]
                     block[busy] = block[lane]
-                    if dissipative:
-                        states[busy, :] = states[lane, :]
-                        carried[busy, :] = carried[lane, :]
+                    if dissipative:  # entry by entry: a slice copy compiles its shape check
+                        for j in range(STATE_SIZE):
+                            states[busy, j] = states[lane, j]
+                        for j in range(len(CARRIED)):
+                            carried[busy, j] = carried[lane, j]
                     busy += 1
             active = busy
 
 
-@parallel_jit
 def holmes_escape_chunk(physics, starts, holes, horizon, bins, counts):
-    """``escape_chunk`` with the Holmes map (flight time 2*v) instead of the exact map: the bare
-    loop the benchmark compares the exact map's lanes with (same starts, holes, horizon, bins
-    and blocks; no verification sample, no flags: the Holmes map has no undecidable flight;
-    starts at t = 0, n = 0)."""
+    """``escape_chunk`` with the Holmes map (flight time 2*v) instead of the exact map: the
+    project's Holmes-map ensemble on the same starts, holes, horizon, bins and blocks (no
+    verification sample, no flags: the Holmes map has no undecidable flight; starts at t = 0,
+    n = 0), its phase reduced exactly (``fastpath.elastic.holmes``). Blocks over threads as
+    ``escape_chunk``."""
     m = len(starts.phi)
-    blocks = len(counts.collisions)
-    per_block = (m + blocks - 1) // blocks
-    for b in prange(blocks):  # (numba drops writes to a tuple's arrays made here directly)
-        _holmes_block(physics.eps, (b, b * per_block, min(m, (b + 1) * per_block)), starts,
+    per_block = (m + len(counts.collisions) - 1) // len(counts.collisions)
+
+    def run_group(first_block, end_block):
+        _holmes_blocks(physics.eps, (first_block, end_block, per_block), starts, holes, horizon,
+                       bins, counts)
+
+    over_threads(run_group, len(counts.collisions))
+
+
+@jit
+def _holmes_blocks(eps, span, starts, holes, horizon, bins, counts):
+    """Blocks first .. end-1 of ``holmes_escape_chunk``, span = (first, end, per_block)."""
+    first, end, per_block = span
+    m = len(starts.phi)
+    for b in range(first, end):
+        _holmes_block(eps, (b, min(m, b * per_block), min(m, (b + 1) * per_block)), starts,
                       holes, horizon, bins, counts)
 
 

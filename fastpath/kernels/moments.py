@@ -29,14 +29,14 @@ and the spread over blocks gives the statistical uncertainty.
 """
 
 import numpy as np
-from numba import prange
 
-from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.arithmetic.jit import jit
 from fastpath.dissipative.carried import EPISODE, STUCK, VK, T, V
-from fastpath.dissipative.sticking import detachment
 from fastpath.inputs import count, float_inputs, physics_options
 from fastpath.kernels.arrays import Flags, MomentGrid, MomentSums, Sample, Starts
+from fastpath.kernels.particle import detachment_of
 from fastpath.kernels.records import particle_buffers, sampled_collision, start_particle
+from fastpath.kernels.threads import over_threads
 from fastpath.physics import describe, holmes
 from fastpath.status import CONVERGED
 
@@ -49,17 +49,24 @@ def moments_chunk(physics, starts, grid, as_step, sample, sums, flags):
     ``fastpath.step``'s (the runs' velocity scenes, audited by ``step``) or, False, an orbit's
     (``fastpath.kernels.particle``). Flags and sample as ``fastpath.kernels.escape``; a resumed
     particle (n > 0) starts at the grid point of its n, which is filled here."""
-    _moments_blocks(physics, starts, grid, as_step, sample, sums, flags, detachment(physics))
-
-
-@parallel_jit
-def _moments_blocks(physics, starts, grid, as_step, sample, sums, flags, detach):
-    """``moments_chunk``, one block of particles per ``prange`` iteration."""
     m = len(starts.phi)
-    blocks = len(sums.collisions)
-    per_block = (m + blocks - 1) // blocks
-    for b in prange(blocks):  # (numba drops writes to a tuple's arrays made here directly)
-        _moments_block(physics, (b, b * per_block, min(m, (b + 1) * per_block), as_step),
+    per_block = (m + len(sums.collisions) - 1) // len(sums.collisions)
+    detach = detachment_of(physics)
+
+    def run_group(first_block, end_block):
+        _moments_blocks(physics, (first_block, end_block, per_block, as_step), starts, grid,
+                        sample, sums, flags, detach)
+
+    over_threads(run_group, len(sums.collisions))
+
+
+@jit
+def _moments_blocks(physics, span, starts, grid, sample, sums, flags, detach):
+    """Blocks first .. end-1 of ``moments_chunk``, span = (first, end, per_block, as_step)."""
+    first, end, per_block, as_step = span
+    m = len(starts.phi)
+    for b in range(first, end):
+        _moments_block(physics, (b, min(m, b * per_block), min(m, (b + 1) * per_block), as_step),
                        starts, grid, sample, sums, flags, detach)
 
 

@@ -16,8 +16,7 @@ import numpy as np
 
 from fastpath.arithmetic.jit import jit
 from fastpath.dissipative.carried import NO_STICKING, PHI, STATE_SIZE, STUCK, T, V
-from fastpath.dissipative.sticking import detachment
-from fastpath.kernels.particle import advance, begin
+from fastpath.kernels.particle import advance, begin, detachment_of
 from fastpath.status import CONVERGED
 
 
@@ -34,7 +33,7 @@ def orbit_loop(physics, phi0, v0, method, out):
     out.phi[0], out.v[0], out.t[0] = state[PHI], v0, 0.0
     if status != CONVERGED:
         return 0, 0, status, False
-    detach = detachment(physics)
+    detach = detachment_of(physics)
     no_holes = np.empty(0)
     episodes = 0
     for k in range(len(out.iterations)):

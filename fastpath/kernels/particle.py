@@ -19,38 +19,75 @@ each loop is compiled once per model and the elastic one carries no dissipative 
 
 ``flight`` and ``step`` are the single flight and collision of ``fastpath.flight`` and
 ``fastpath.step`` for a description.
+
+Compiling per model. numba types every branch of a function before LLVM folds the branches it
+can decide, so a branch on ``model_of`` would still compile the dissipative solvers into the
+elastic loops (most of their compile time). The functions here therefore choose a model's
+implementation when the calling loop is typed (numba's ``overload``, by the class of the
+description): only that model's code is compiled, and the loops stay one loop for every model.
 """
 
 import math
 
-from fastpath.arithmetic.jit import jit
+from numba.core import types
+
+from fastpath.arithmetic.jit import jit, typed_overload
 from fastpath.dissipative import carried
 from fastpath.dissipative.carried import COS, NO_STICKING, PHI, SIN, T, V
 from fastpath.dissipative.drag_flight import solve_drag_flight
 from fastpath.dissipative.impact import dissipative_collide
-from fastpath.elastic.collision import collide, collide_from
+from fastpath.dissipative.sticking import (
+    DETACHES,
+    NEVER,
+    Detachment,
+    can_detach,
+    detachment,
+)
+from fastpath.elastic.collision import CARRIED_SINE_ERROR, collide, collide_from
 from fastpath.elastic.flight import AUTO, GENERAL, solve_flight
 from fastpath.elastic.holmes import holmes_collide
-from fastpath.physics import DISSIPATIVE, ELASTIC, HOLMES, model_of
-from fastpath.status import CONVERGED
+from fastpath.physics import ELASTIC, Dissipative, Elastic, Holmes, model_of
+from fastpath.status import CONVERGED, UNCERTAIN
 
 
 @jit
 def flight(physics, phi, v, method=AUTO):
     """(tau, iterations, status) of the flight from (phi, v), phi any real: the elastic flight,
     or the flight with the description's drag (restitution does not change a flight)."""
-    if model_of(physics) == DISSIPATIVE and physics.drag != 0.0:
-        return solve_drag_flight(physics, phi, v, method)
-    return solve_flight(phi, v, physics.eps, method)
+    return _flight(physics, phi, v, method)
+
+
+def _flight(physics, phi, v, method):
+    """``flight``, compiled for the description's model only (module docstring)."""
+
+
+@typed_overload(_flight)
+def _flight_of_model(physics, phi, v, method):
+    if physics.instance_class is Dissipative:
+        def dissipative_flight(physics, phi, v, method):
+            if physics.drag != 0.0:
+                return solve_drag_flight(physics, phi, v, method)
+            return solve_flight(phi, v, physics.eps, method)
+        return dissipative_flight
+    return lambda physics, phi, v, method: solve_flight(phi, v, physics.eps, method)
 
 
 @jit
 def step(physics, phi, v):
     """(phi1, v1, tau, iterations, status): one collision from (phi, v), phi any real, phi1 in
     [0, 2*pi); the collision of ``fastpath.step`` (Elastic or Dissipative)."""
-    if model_of(physics) == DISSIPATIVE:
-        return dissipative_collide(physics, phi, v)
-    return collide(phi, v, physics.eps)
+    return _step(physics, phi, v)
+
+
+def _step(physics, phi, v):
+    """``step``, compiled for the description's model only (module docstring)."""
+
+
+@typed_overload(_step)
+def _step_of_model(physics, phi, v):
+    if physics.instance_class is Dissipative:
+        return lambda physics, phi, v: dissipative_collide(physics, phi, v)
+    return lambda physics, phi, v: collide(phi, v, physics.eps)
 
 
 @jit
@@ -63,33 +100,98 @@ def begin(physics, state, phi0, v0, t0, as_step):
     return status
 
 
-@jit
 def advance(physics, state, method, as_step, detach, hole_lo):
     """Move ``state`` on by one collision: (status, iterations, tau, sticking, t_start, t_end)
     as ``fastpath.dissipative.carried.advance`` (sticking NO_STICKING without dissipation; the
     state is unchanged where status is not CONVERGED). method: AUTO or LOWER_BOUND (a
-    ``fastpath.elastic.flight`` code); detach: ``fastpath.dissipative.sticking.detachment``;
-    hole_lo: the holes' lower edges, for the dissipative tail (``carried``)."""
-    model = model_of(physics)
-    if model == HOLMES:
-        tau = 2.0 * state[V]
-        state[PHI], state[V] = holmes_collide(state[PHI], state[V], physics.eps)
-        state[T] = state[T] + tau
-        return CONVERGED, 0, tau, NO_STICKING, math.nan, math.nan
-    if model == ELASTIC:
+    ``fastpath.elastic.flight`` code); detach: ``detachment_of(physics)``; hole_lo: the holes'
+    lower edges, for the dissipative tail (``carried``).
+
+    For compiled loops only: the overload below compiles the description's model only, and
+    where ``as_step`` is a constant of the loop (an escape lane: True, an orbit: False) only
+    that kind of elastic collision (module docstring).
+    """
+    raise TypeError("advance is called from compiled code only")
+
+
+@typed_overload(advance, prefer_literal=True)
+def _advance_of_model(physics, state, method, as_step, detach, hole_lo):
+    if physics.instance_class is Holmes:
+        return lambda physics, state, method, as_step, detach, hole_lo: holmes_advance(
+            physics.eps, state)
+    if physics.instance_class is not Elastic:
+        return lambda physics, state, method, as_step, detach, hole_lo: carried.advance(
+            physics, state, method, detach, hole_lo)
+    if isinstance(as_step, types.BooleanLiteral) and as_step.literal_value:
+        return lambda physics, state, method, as_step, detach, hole_lo: step_advance(
+            physics.eps, state, method)
+    if isinstance(as_step, types.BooleanLiteral):
+        return lambda physics, state, method, as_step, detach, hole_lo: orbit_advance(
+            physics.eps, state, method)
+
+    def either_advance(physics, state, method, as_step, detach, hole_lo):
         if as_step:
-            phi1, v1, tau, its, status = collide(state[PHI], state[V], physics.eps, method)
-            sin1, cos1 = state[SIN], state[COS]
-        else:
-            phi1, sin1, cos1, v1, tau, its, status = collide_from(
-                state[PHI], state[SIN], state[COS], state[V], physics.eps,
-                GENERAL if method == AUTO else method)
-        if status != CONVERGED:
-            return status, its, tau, NO_STICKING, math.nan, math.nan
-        state[PHI], state[V], state[T] = phi1, v1, state[T] + tau
-        state[SIN], state[COS] = sin1, cos1
-        return CONVERGED, its, tau, NO_STICKING, math.nan, math.nan
-    return carried.advance(physics, state, method, detach, hole_lo)
+            return step_advance(physics.eps, state, method)
+        return orbit_advance(physics.eps, state, method)
+    return either_advance
+
+
+@jit
+def holmes_advance(eps, state):
+    """``advance`` with the Holmes map (flight time 2*v)."""
+    tau = 2.0 * state[V]
+    state[PHI], state[V] = holmes_collide(state[PHI], state[V], eps)
+    state[T] = state[T] + tau
+    return CONVERGED, 0, tau, NO_STICKING, math.nan, math.nan
+
+
+@jit
+def step_advance(eps, state, method):
+    """``advance`` with the paper's map as ``fastpath.step`` computes it (module docstring)."""
+    phi1, v1, tau, its, status = collide(state[PHI], state[V], eps, method)
+    return _moved(state, status, its, phi1, v1, tau, state[SIN], state[COS])
+
+
+@jit
+def orbit_advance(eps, state, method):
+    """``advance`` with the paper's map as an orbit computes it: the sine and cosine carried
+    from collision to collision, the straight-line flight skipped (module docstring)."""
+    phi1, sin1, cos1, v1, tau, its, status = collide_from(
+        state[PHI], state[SIN], state[COS], state[V], eps,
+        GENERAL if method == AUTO else method, CARRIED_SINE_ERROR)
+    return _moved(state, status, its, phi1, v1, tau, sin1, cos1)
+
+
+@jit
+def _moved(state, status, its, phi1, v1, tau, sin1, cos1):
+    """An elastic collision into ``state`` if CONVERGED: ``advance``'s answer."""
+    if status != CONVERGED:
+        return status, its, tau, NO_STICKING, math.nan, math.nan
+    state[PHI], state[V], state[T] = phi1, v1, state[T] + tau
+    state[SIN], state[COS] = sin1, cos1
+    return CONVERGED, its, tau, NO_STICKING, math.nan, math.nan
+
+
+@jit
+def detachment_of(physics):
+    """``fastpath.dissipative.sticking.detachment`` of a dissipative description; for the elastic
+    and Holmes maps, which never stick, the same record of no detachment without compiling its
+    solver (module docstring)."""
+    return _detachment(physics)
+
+
+def _detachment(physics):
+    """``detachment_of`` (its overload below chooses the model's implementation)."""
+
+
+@typed_overload(_detachment)
+def _detachment_of_model(physics):
+    if physics.instance_class is Dissipative:
+        return lambda physics: detachment(physics)
+    def no_detachment(physics):  # as ``detachment`` computes it for these models
+        kind = DETACHES if can_detach(physics.eps) else NEVER
+        return Detachment(math.nan, 0, UNCERTAIN, math.nan, math.nan, kind)
+    return no_detachment
 
 
 @jit

@@ -10,31 +10,37 @@ len(portrait.collisions) fixed blocks, one row of counts each, filled in particl
 """
 
 import numpy as np
-from numba import prange
 
-from fastpath.arithmetic.jit import jit, parallel_jit
+from fastpath.arithmetic.jit import jit
 from fastpath.arithmetic.phase import TWO_PI
 from fastpath.dissipative.carried import PHI, STUCK, V
-from fastpath.dissipative.sticking import detachment
+from fastpath.kernels.particle import detachment_of
 from fastpath.kernels.records import particle_buffers, sampled_collision, start_particle
+from fastpath.kernels.threads import over_threads
 from fastpath.status import CONVERGED
 
 
 def portrait_chunk(physics, starts, max_collisions, sample, portrait, flags):
     """Fill ``portrait.counts`` (added to) with the collision states of ``starts`` (module
     docstring); flags and sample as ``fastpath.kernels.escape.escape_chunk``."""
-    _portrait_blocks(physics, starts, max_collisions, sample, portrait, flags,
-                     detachment(physics))
-
-
-@parallel_jit
-def _portrait_blocks(physics, starts, max_collisions, sample, portrait, flags, detach):
-    """``portrait_chunk``, one block of particles per ``prange`` iteration."""
     m = len(starts.phi)
-    blocks = len(portrait.collisions)
-    per_block = (m + blocks - 1) // blocks
-    for b in prange(blocks):  # (numba drops writes to a tuple's arrays made here directly)
-        _portrait_block(physics, (b, b * per_block, min(m, (b + 1) * per_block)), starts,
+    per_block = (m + len(portrait.collisions) - 1) // len(portrait.collisions)
+    detach = detachment_of(physics)
+
+    def run_group(first_block, end_block):
+        _portrait_blocks(physics, (first_block, end_block, per_block), starts, max_collisions,
+                         sample, portrait, flags, detach)
+
+    over_threads(run_group, len(portrait.collisions))
+
+
+@jit
+def _portrait_blocks(physics, span, starts, max_collisions, sample, portrait, flags, detach):
+    """Blocks first .. end-1 of ``portrait_chunk``, span = (first, end, per_block)."""
+    first, end, per_block = span
+    m = len(starts.phi)
+    for b in range(first, end):
+        _portrait_block(physics, (b, min(m, b * per_block), min(m, (b + 1) * per_block)), starts,
                         max_collisions, sample, portrait, flags, detach)
 
 

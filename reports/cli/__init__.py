@@ -22,6 +22,7 @@ moment; a run says how to resume). docs/runs.md has the table for every subcomma
                    [--certify] [--dps D] [--json]
 """
 
+import signal
 import sys
 
 SUBCOMMANDS = ("demo", "scenes", "run", "sweep", "plot", "fit", "verify", "report", "check",
@@ -61,28 +62,53 @@ def main(argv=None):
     """The ``bouncer`` command; returns the exit status. Everything, the imports of numba,
     scipy and the rest included, runs under the handlers below: a Ctrl-C at any moment is one
     line and exit status 130."""
+    argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
     try:
-        return _main(argv)
+        mask = _block_for_check(argv)
+        try:
+            return _main(argv)
+        finally:
+            if mask is not None:
+                signal.pthread_sigmask(signal.SIG_SETMASK, mask)
     except KeyboardInterrupt:
         print("bouncer: interrupted", file=sys.stderr)
         return 130
 
 
+CHECK_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP")
+                      if hasattr(signal, name))
+MAX_LINE = 600  # characters of an error line (the values in it are clipped where they arise)
+
+
+def _block_for_check(argv):
+    """``bouncer check`` takes SIGINT, SIGTERM and SIGHUP in one thread that learns who sent
+    them (``verify.check.signals``): they are blocked from the start, before the imports,
+    so that every thread the imports start (numba's, a BLAS's) inherits the block and none
+    takes a signal in its place. Returns the mask to restore, or None."""
+    if argv[:1] != ["check"] or not hasattr(signal, "sigtimedwait"):
+        return None
+    return signal.pthread_sigmask(signal.SIG_BLOCK, CHECK_SIGNALS)
+
+
 def _main(argv):
+    from reports.runs.echo import clip, plain_text
     from reports.runs.rundir import RunFailed, RunInterrupted, os_error_text
+
+    def say(line):  # one line, plain numbers, of bounded length
+        print(clip(plain_text(str(line).replace("\n", " ")), MAX_LINE), file=sys.stderr)
 
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
         return args.func(args)
     except ValueError as err:
-        print(f"bouncer: error: {err}", file=sys.stderr)
+        say(f"bouncer: error: {err}")
         return 2
     except RunFailed as err:
-        print(f"bouncer: run failed: {err}", file=sys.stderr)
+        say(f"bouncer: run failed: {err}")
         return 1
     except OSError as err:
-        print(f"bouncer: error: {os_error_text(err)}", file=sys.stderr)
+        say(f"bouncer: error: {os_error_text(err)}")
         return 2
     except RunInterrupted as err:
         resume = getattr(args, "resume_command", None)

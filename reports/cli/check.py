@@ -12,6 +12,12 @@ reached; or no input could be checked).
 
 Wire it into the ``bouncer`` parser with ``add_parser(subparsers)``; ``main`` runs it alone
 (``python -m reports.cli.check check MODULE:FUNCTION``).
+
+The checked code runs in its own process group, with its output kept from the terminal; it is
+killed with everything it started however the check ends. A module that hangs while it is
+imported is bad input after ``--import-timeout`` (exit 2). A signal it sends to this process
+fails the property that made the call; SIGTERM or SIGHUP from elsewhere stops the check and its
+worker (one line, exit status 128 + the signal: 143, 129), Ctrl-C likewise (exit 130).
 """
 
 import argparse
@@ -53,6 +59,10 @@ def add_parser(subparsers):
     check.add_argument("--budget", type=float, default=120.0, metavar="SECONDS",
                        help="time for the whole check; properties not finished by then are "
                        "inconclusive, exit status 3 (default 120)")
+    check.add_argument("--import-timeout", type=float, default=60.0, metavar="SECONDS",
+                       help="longest the import of MODULE may take; a module that takes "
+                       "longer (it hangs, or waits for input) is bad input, exit status 2 "
+                       "(default 60)")
     check.add_argument("--no-progress", action="store_true",
                        help="no progress bar on stderr")
     check.set_defaults(func=check_command)
@@ -60,7 +70,10 @@ def add_parser(subparsers):
 
 
 def _error(message: str) -> int:
-    print(f"bouncer: error: {message}", file=sys.stderr)
+    from reports.runs.echo import clip, plain_text
+
+    print(clip(plain_text(f"bouncer: error: {message}".replace("\n", " ")), 600),
+          file=sys.stderr)
     return 2
 
 
@@ -72,6 +85,7 @@ def check_command(args) -> int:
         return _error("bouncer check needs hypothesis: pip install 'bouncer-verify[test]'")
     from verify.check import SUITES, check_integrator
     from verify.check.calling import one_line
+    from verify.check.signals import Terminated, watch_signals
 
     if args.suite not in SUITES:
         return _error(f"unknown suite {args.suite!r}; choose one of {', '.join(SUITES)}")
@@ -81,19 +95,26 @@ def check_command(args) -> int:
         return _error(f"--max-examples must be >= 1, got {args.max_examples}")
     if not 0 < args.k < float("inf"):
         return _error(f"-k must be a positive finite number, got {args.k}")
-    for option, value in (("--call-timeout", args.call_timeout), ("--budget", args.budget)):
+    for option, value in (("--call-timeout", args.call_timeout), ("--budget", args.budget),
+                          ("--import-timeout", args.import_timeout)):
         if not value > 0:
             return _error(f"{option} must be a positive number of seconds, got {value}")
     # the worker process imports the user's module (never this process: a module that exits
-    # or crashes while importing must not end the check with its own status)
+    # or crashes while importing must not end the check with its own status); a signal the
+    # checked code sends to this process stops its worker, one from elsewhere ends the check
     bar = None if args.no_progress else _ProgressBar()
     try:
-        report = check_integrator(args.target, step=args.step, suite=args.suite,
-                                  max_examples=args.max_examples, seed=args.seed, k=args.k,
-                                  call_timeout=args.call_timeout, budget=args.budget,
-                                  progress=bar)
+        with watch_signals():
+            report = check_integrator(args.target, step=args.step, suite=args.suite,
+                                      max_examples=args.max_examples, seed=args.seed, k=args.k,
+                                      call_timeout=args.call_timeout, budget=args.budget,
+                                      progress=bar, import_timeout=args.import_timeout)
     except ValueError as err:
         return _error(str(err))
+    except Terminated as stop:
+        print(f"bouncer: {stop}: the check was stopped with its worker process",
+              file=sys.stderr)
+        return 128 + stop.signum
     except Exception as err:  # noqa: BLE001 - no report: the check did not run, not a pass
         print(f"bouncer: error: the check did not finish: {one_line(err)}", file=sys.stderr)
         return 1

@@ -6,20 +6,32 @@ continuous, unless ``--clock collisions``: integer values). ``--json`` prints on
 one object per curve in input order; otherwise a table, and one PNG per curve in ``--out``, or
 else beside the input: next to a CSV, in the folder RUN_DIR-fit beside a run directory (never
 inside it: the run directory holds what its manifest records, and nothing else).
-Unbounded interval ends and infinite values are JSON null.
-Exit status: 0 ok, 2 bad input (one line on stderr).
+Unbounded interval ends and infinite values are JSON null; in the table an interval end the
+data do not bound is printed as such (``[0.53, unbounded]``).
+
+PNG names: ``fit-CURVE-CLOCK.png`` (a run's curve names are its own: no experiment repeated);
+where two inputs of one command would give one name, the input's name comes first, then a
+number. Every curve is analysed before any figure is written, and the figures are written
+atomically: a command that fails (bad input, a curve no law fits, a folder it cannot write)
+leaves none of its files behind.
+Exit status: 0 ok, 2 bad input or a file it cannot write (one line on stderr).
 """
 
 from __future__ import annotations
 
+import csv
+import io
 import json
 import math
 import os
 import re
 import sys
 from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 
+from reports.runs.echo import clip, plain, plain_text
+from reports.runs.rundir import missing_folders, os_error_text, write_atomic
 from reports.stats.analysis import analyse, best_law_text
 from reports.stats.histogram import CLOCKS, read_csv_histogram, read_run
 
@@ -50,16 +62,19 @@ def load(paths, clock):
     """[(curve, default png folder)] of all inputs, in order; ValueError for bad input."""
     curves = []
     for path in map(Path, paths):
-        if path.is_dir():
-            found = read_run(path, clocks=(clock,) if clock else CLOCKS)
-            if not found:
-                raise ValueError(f"{path}: no curves for clock {clock}")
-            beside = path.resolve().parent / f"{path.resolve().name}-fit"
-            curves += [(c, beside) for c in found]
-        elif path.exists():
-            curves.append((read_csv_histogram(path, clock or "time"), path.parent))
-        else:
-            raise ValueError(f"{path}: no such file or directory")
+        try:
+            if path.is_dir():
+                found = read_run(path, clocks=(clock,) if clock else CLOCKS)
+                if not found:
+                    raise ValueError(f"{path}: no curves for clock {clock}")
+                beside = path.resolve().parent / f"{path.resolve().name}-fit"
+                curves += [(c, beside) for c in found]
+            elif path.exists():
+                curves.append((read_csv_histogram(path, clock or "time"), path.parent))
+            else:
+                raise ValueError(f"{path}: no such file or directory")
+        except csv.Error as err:  # a field over csv's size limit, a NUL byte
+            raise ValueError(f"{path}: not readable as CSV ({clip(str(err))})") from None
     return curves
 
 
@@ -69,8 +84,7 @@ def _clean(value):
         return {k: _clean(v) for k, v in value.items() if not k.startswith("_")}
     if isinstance(value, list | tuple):
         return [_clean(v) for v in value]
-    if hasattr(value, "item"):
-        value = value.item()
+    value = plain(value)
     if isinstance(value, float) and not math.isfinite(value):
         return None
     return value
@@ -81,7 +95,9 @@ def _slug(text):
 
 
 def _work(item):
-    curve, folder, out, plot = item
+    """Analyse one curve; with ``plot`` also draw its figure, as PNG bytes (written by the
+    caller once every curve is analysed)."""
+    curve, plot = item
     label = f"fit: {Path(curve.source).name} {curve.curve} ({curve.clock})"
     say = (lambda text: print(f"{label}: {text}", file=sys.stderr, flush=True)) if len(
         curve.escapes) >= STAGES_FROM else None
@@ -90,12 +106,54 @@ def _work(item):
     if plot:
         from reports.stats.figure import plot_curve
 
-        name = "-".join(_slug(s) for s in (curve.experiment, curve.curve, curve.clock) if s)
-        png = Path(out or folder) / f"fit-{name}.png"
-        png.parent.mkdir(parents=True, exist_ok=True)
-        plot_curve(result, curve, png)
-    result = _clean(result)
-    return {"source": curve.source, **result, "png": str(png) if png else None}
+        buffer = io.BytesIO()
+        plot_curve(result, curve, buffer)
+        png = buffer.getvalue()
+    return {"source": curve.source, **_clean(result)}, png
+
+
+def figure_paths(curves, out):
+    """The PNG path of each (curve, default folder): ``fit-CURVE-CLOCK.png`` in ``out`` or the
+    default folder; names that two inputs share get the input's name first, then a number."""
+    def name(curve, source):
+        parts = (Path(curve.source).stem if source else "", curve.curve, curve.clock)
+        return "fit-" + "-".join(_slug(p) for p in parts if p)
+
+    folders = [Path(out) if out else folder for _, folder in curves]
+    plain_names = [folder / name(c, False) for (c, _), folder in zip(curves, folders,
+                                                                      strict=True)]
+    paths, taken = [], set()
+    for (curve, _), folder, first in zip(curves, folders, plain_names, strict=True):
+        path = first if plain_names.count(first) == 1 else folder / name(curve, True)
+        stem, n = path, 1
+        while path in taken:
+            n += 1
+            path = stem.with_name(f"{stem.name}-{n}")
+        taken.add(path)
+        paths.append(path.with_name(path.name + ".png"))
+    return paths
+
+
+def write_figures(paths, pngs):
+    """Write each PNG atomically, making the folders they need; if any write fails, remove
+    what this call wrote (files and folders) and raise the OSError."""
+    written, made = [], []
+    try:
+        for path, png in zip(paths, pngs, strict=True):
+            new = missing_folders(path.parent)
+            path.parent.mkdir(parents=True, exist_ok=True)
+            made += new
+            write_atomic(path, png)
+            written.append(path)
+    except BaseException:
+        for path in written:
+            path.unlink(missing_ok=True)
+        for folder in made:  # deepest first
+            try:
+                folder.rmdir()
+            except OSError:
+                pass
+        raise
 
 
 def table(results):
@@ -109,34 +167,56 @@ def table(results):
     return "\n".join(lines)
 
 
+def _analyse_all(curves, plot, jobs):
+    items = [(c, plot) for c, _ in curves]
+    progress = len(items) >= PROGRESS_FROM
+    done = []
+    if jobs > 1 and len(items) > 1:
+        with ProcessPoolExecutor(max_workers=jobs) as pool:
+            for i, r in enumerate(pool.map(_work, items, chunksize=4), start=1):
+                done.append(r)
+                if progress:
+                    print(f"fit {i}/{len(items)}: {r[0]['curve']} ({r[0]['clock']})",
+                          file=sys.stderr)
+    else:
+        for i, item in enumerate(items, start=1):
+            done.append(_work(item))
+            if progress:
+                print(f"fit {i}/{len(items)}: {item[0].curve} ({item[0].clock})",
+                      file=sys.stderr)
+    return done
+
+
+MAX_LINE = 600  # characters of an error line
+
+
+def _error(text):
+    """One line on stderr (plain numbers, bounded length); exit status 2."""
+    line = clip(plain_text(f"bouncer fit: error: {text}".replace("\n", " ")), MAX_LINE)
+    print(line, file=sys.stderr)
+    return 2
+
+
 def main(args):
     """Run ``bouncer fit``; returns the exit status."""
     try:
         if args.jobs < 1:
             raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
         curves = load(args.paths, args.clock)
-        items = [(c, folder, args.out, not args.json) for c, folder in curves]
-        progress = len(items) >= PROGRESS_FROM
-        results = []
-        if args.jobs > 1 and len(items) > 1:
-            with ProcessPoolExecutor(max_workers=args.jobs) as pool:
-                for i, r in enumerate(pool.map(_work, items, chunksize=4), start=1):
-                    results.append(r)
-                    if progress:
-                        print(f"fit {i}/{len(items)}: {r['curve']} ({r['clock']})",
-                              file=sys.stderr)
-        else:
-            for i, item in enumerate(items, start=1):
-                results.append(_work(item))
-                if progress:
-                    print(f"fit {i}/{len(items)}: {item[0].curve} ({item[0].clock})",
-                          file=sys.stderr)
-    except (ValueError, OSError) as err:
-        print(f"bouncer fit: error: {err}", file=sys.stderr)
-        return 2
+        done = _analyse_all(curves, not args.json, args.jobs)
+        results = [r for r, _ in done]
+        if not args.json:
+            paths = figure_paths(curves, args.out)
+            write_figures(paths, [png for _, png in done])
+            for r, path in zip(results, paths, strict=True):
+                r["png"] = str(path)
+    except ValueError as err:
+        return _error(str(err))
+    except OSError as err:
+        return _error(os_error_text(err))
+    except BrokenProcessPool:
+        return _error("a worker process died (out of memory?); try --jobs 1")
     if args.json:
-        for r in results:
-            r.pop("png")
         print(json.dumps(results, indent=1, allow_nan=False))
     else:
         print(table(results))

@@ -5,8 +5,11 @@ Find a periodic orbit of the collision map near the guess (PHI, V) by Newton's m
 F^p - id (``fastpath.periodic_orbit``), print its states, residue R = (2 - trace)/4 and stability,
 and with ``--certify`` prove it (``verify.periodic_orbit``, exact map only): enclosures of the
 residue and of the first state, the stability decided in interval arithmetic, the digits used.
-``--shift L``: an accelerator block, v grows by pi*L every P collisions. ``--json`` prints one
-JSON object (enclosures as [lo, hi] strings of 20 digits).
+The period printed is the orbit's minimal one (proved with ``--certify``): a guess asked at
+``--period 2`` that lands on a fixed point is reported as period 1, with a note.
+``--shift L``: an accelerator mode, v grows by pi*L every P collisions (for the exact map only
+period-1 modes with L > 0 exist as orbits; other blocks are refused). ``--json`` prints one
+JSON object (enclosures as [lo, hi] strings of 20 digits; "asked_period" the --period given).
 Exit status: 0 ok, 1 no orbit found or not certified (one line on stderr), 2 bad input.
 """
 
@@ -53,7 +56,8 @@ def find(args) -> dict:
     orbit = fastpath.periodic_orbit(args.phi, args.v, args.eps, args.period,
                                     winding=args.winding, velocity_shift=args.shift,
                                     model=args.model)
-    out = {"eps": args.eps, "period": orbit.period, "winding": orbit.winding,
+    out = {"eps": args.eps, "asked_period": args.period, "period": orbit.period,
+           "winding": orbit.winding,
            "velocity_shift": orbit.velocity_shift, "model": orbit.model,
            "phi": orbit.phi.tolist(), "v": orbit.v.tolist(), "trace": orbit.trace,
            "determinant": orbit.determinant, "residue": orbit.residue,
@@ -62,9 +66,10 @@ def find(args) -> dict:
     if args.certify:
         start = time.perf_counter()
         proved = verify.periodic_orbit(float(orbit.phi[0]), float(orbit.v[0]), args.eps,
-                                       args.period, dps=args.dps, winding=orbit.winding,
-                                       velocity_shift=args.shift)
-        out["certified"] = {"phi": _interval(proved.box[0]), "v": _interval(proved.box[1]),
+                                       orbit.period, dps=args.dps, winding=orbit.winding,
+                                       velocity_shift=orbit.velocity_shift)
+        out["certified"] = {"period": proved.period, "winding": proved.winding,
+                            "phi": _interval(proved.box[0]), "v": _interval(proved.box[1]),
                             "trace": _interval(proved.trace),
                             "residue": _interval(proved.residue),
                             "determinant": _interval(proved.determinant),
@@ -76,14 +81,17 @@ def find(args) -> dict:
 def _print(out):
     print(f"periodic orbit: period {out['period']}, winding {out['winding']}, velocity shift "
           f"{out['velocity_shift']}, eps={out['eps']!r} ({out['model']} map)")
+    if out["period"] != out["asked_period"]:
+        print(f"  (asked for period {out['asked_period']}: the orbit found has the shorter "
+              f"period {out['period']})")
     for k, (phi, v) in enumerate(zip(out["phi"], out["v"], strict=True)):
         print(f"  {k:4d}  phi = {phi:.17g}  v = {v:.17g}")
     print(f"residue R = {out['residue']:.15g} (rounding <= {out['residue_error']:.2g}), "
           f"trace {out['trace']:.15g}: {out['stability']}")
     if "certified" in out:
         c = out["certified"]
-        print(f"certified ({c['dps_used']} digits, {c['seconds']:.2f} s): R in "
-              f"[{c['residue'][0]}, {c['residue'][1]}]: {c['stability']}")
+        print(f"certified ({c['dps_used']} digits, {c['seconds']:.2f} s): minimal period "
+              f"{c['period']}, R in [{c['residue'][0]}, {c['residue'][1]}]: {c['stability']}")
 
 
 def main(args):

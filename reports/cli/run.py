@@ -9,6 +9,7 @@ from reports.cli.threads import threads_option
 from reports.runs import rundir
 from reports.runs.driver import run
 from reports.runs.manifest import load_provenance
+from reports.runs.provenance import dirty_text
 from reports.runs.scenes import load_scene
 
 
@@ -19,7 +20,7 @@ def _run(args):
     out = args.out or rundir.default_out("runs", scene.name)
     manifest = run(scene, out, particles=args.particles, seed=args.seed, resume=args.resume,
                    force=args.force, progress=not args.quiet, threads=threads,
-                   scheduler=args.scheduler)
+                   scheduler=args.scheduler, require_clean=args.require_clean)
     record = load_provenance(out)
     ver = manifest["verification"]
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
@@ -31,6 +32,9 @@ def _run(args):
     print(f"verification: {ver['sampled']} sampled collisions, worst error "
           f"{ver['worst_error']:.3g} kappa*u, {ver['overstepped']} overstepped, "
           f"{ver['uncertain_settled']} uncertain settled by verify")
+    problem = dirty_text(record["git"])
+    if problem:
+        print(f"provenance: {problem}")
     session = record["session"]
     if session["scheduler"]:
         print(f"cluster: {session['scheduler']}, {session['workers']} workers, "
@@ -80,4 +84,7 @@ def add_parser(subparsers):
     run.add_argument("--quiet", action="store_true", help="no progress bar")
     run.add_argument("--scheduler", metavar="ADDRESS",
                      help="Dask scheduler (tcp://host:8786): run the chunks on that cluster")
+    run.add_argument("--require-clean", action="store_true",
+                     help="refuse to run from a git tree with uncommitted changes (outside the"
+                     " run directory), so that provenance.json names the exact code")
     run.set_defaults(func=_run, resume_command=None)

@@ -21,8 +21,8 @@ bounds of ``reports.paper.rules``):
   grid step of eps = pi/2;
 * normal diffusion at eps = 0.6: two parts, "below the lowest accelerator modes" (every period
   searched: no elliptic block at eps <= 0.6) and "normal to a good approximation" (every
-  window's mu of the study at eps = 0.6 within ``rules.SAME`` of 1, not beyond
-  ``rules.SAME_FAILS``);
+  window's mu of the study at eps = 0.6 past the transient, n0 >= the study's
+  ``family_from``, within ``rules.SAME`` of 1, not beyond ``rules.SAME_FAILS``);
 * anomalous diffusion where stable accelerator modes exist: two parts, the certified blocks
   elliptic, and every window's mu at an eps with elliptic accelerator blocks at least
   ``rules.SAME_FAILS`` from 1 (not within ``rules.SAME``);
@@ -127,12 +127,12 @@ def transition_claims(study, run):
         dist = (b["eps_c"] - K_C_QUARTER) / K_C_QUARTER
         if j == 0:
             members.append(F.threshold_member(
-                f"band 0 (omega {b['omega']:.3f}): eps_c = {b['eps_c']:.6f}",
+                f"band 0 (omega {b['omega']:.3f}): eps_c = {b['eps_c']:.9f}",
                 "(eps_c - K_c/4) / (K_c/4)", dist, dist, dist, LOWEST_MARGIN, False))
             members[-1] = F.in_part(near_part, [members[-1]])[0]
         else:
             members.append(F.in_part(near_part, [F.threshold_member(
-                f"band {j} (omega {b['omega']:.3f}): eps_c = {b['eps_c']:.6f} +- "
+                f"band {j} (omega {b['omega']:.3f}): eps_c = {b['eps_c']:.9f} +- "
                 f"{b['uncertainty']:.1e}", "|eps_c - K_c/4| / (K_c/4)", abs(dist), abs(dist),
                 abs(dist), NEAR, True)])[0])
     members.append(_limit_member(study, near_part))
@@ -147,12 +147,15 @@ def transition_claims(study, run):
             verdict, note = (CONFIRMED, "") if s["crossed"] > 0 else (INCONCLUSIVE, F.TOO_FEW)
         members.append(F.Analysis(variant, verdict, "orbits crossed", s["crossed"],
                                   s["crossed"], s["crossed"], (0.0, math.inf), (), note, part))
-    transition = make_claim("sec2-fermi-transition", f"K_c/4 = {K_C_QUARTER:.6f}: "
-                            f"{F.family_text(members)}.", analyses=members, run=run,
+    holmes = ", ".join(f"{h['eps_c']:.10f} +- {h['uncertainty']:.1e}"
+                       for h in study["critical"]["holmes"])
+    transition = make_claim("sec2-fermi-transition", f"K_c/4 = {K_C_QUARTER:.10f}; Holmes "
+                            f"map (the standard map): {holmes}: {F.family_text(members)}.",
+                            analyses=members, run=run,
                             statistical={f"eps_c_band_{j}": [b["eps_c"], b["uncertainty"]]
                                          for j, b in sorted(bands.items())})
     floor = (1 - NEAR) * K_C_QUARTER
-    kept = [F.threshold_member(f"band {j}: eps_c = {b['eps_c']:.6f}", "eps_c", b["eps_c"],
+    kept = [F.threshold_member(f"band {j}: eps_c = {b['eps_c']:.9f}", "eps_c", b["eps_c"],
                                b["eps_c"], b["eps_c"], floor, False)
             for j, b in sorted(bands.items())]
     kept.append(_limit_member(study, ""))
@@ -162,14 +165,37 @@ def transition_claims(study, run):
     return [transition, bounded]
 
 
-def _mu_members(d, holds, fails, part):
-    """One member per fitted window of a diffusion run: mu with 1.96 standard errors, under
-    the two-band rule (``holds``, ``fails``) or, with ``holds`` None, the anomalous reading
-    (|mu - 1| at least ``rules.SAME_FAILS``, fails within ``rules.SAME``)."""
+def window_fits(d):
+    """The fitted windows of a diffusion run that lie past its transient: those starting at
+    the study's ``family_starts`` (n0 >= ``family_from``); all of them in a study without."""
     fits = d.get("fits") or {"main": [d["mu"], d["mu_se"]]}
+    if "family_starts" not in d:
+        return fits
+    starts = {str(n0) for n0 in d["family_starts"]}
+    return {name: fit for name, fit in fits.items() if name in starts}
+
+
+def transient_text(d):
+    """The slopes of the windows that start in the transient (not members), in words."""
+    early = [f"from n0 = {name}: {fit[0]:.3f}" for name, fit in (d.get("fits") or {}).items()
+             if name.isdigit() and int(name) < d.get("family_from", 0)]
+    return (f"; windows starting in the transient (not members) give larger slopes at eps = "
+            f"{d['eps']} ({', '.join(early)})" if early else "")
+
+
+def _mu_members(d, holds, fails, part):
+    """One member per window of a diffusion run past its transient (``window_fits``): mu with
+    1.96 standard errors, under the two-band rule (``holds``, ``fails``) or, with ``holds``
+    None, the anomalous reading (|mu - 1| at least ``rules.SAME_FAILS``, fails within
+    ``rules.SAME``)."""
+    fits = window_fits(d)
+    if not fits:
+        return F.in_part(part, [F.too_few(f"eps = {d['eps']}: no fitted window past the "
+                                          "transient", "mu")])
     out = []
     for name, (mu, se) in fits.items():
-        variant = f"eps = {d['eps']}, {name} window: mu = {mu:.3f} +- {1.96 * se:.3f}"
+        window = f"n0 = {name}" if name.isdigit() else f"{name} window"
+        variant = f"eps = {d['eps']}, {window}: mu = {mu:.3f} +- {1.96 * se:.3f}"
         if holds is None:
             off = abs(mu - 1)
             out.append(F.word_member(variant, "|mu - 1|", off, max(0.0, off - 1.96 * se),
@@ -211,7 +237,8 @@ def accelerator_claims(study, run):
                                "normal to a good approximation")
     diffusion = make_claim("sec2-normal-diffusion", f"Search grid {acc['search_grid']}^2 "
                            f"starts per (eps, period), a search, not a proof of absence: "
-                           f"{F.family_text(members)}.", analyses=members,
+                           f"{F.family_text(members)}"
+                           f"{transient_text(normal) if normal else ''}.", analyses=members,
                            particles_per_curve=normal["particles"] if normal else None,
                            run=run)
     elliptic_eps = sorted({c["eps"] for c in cert if c["stability"] == "elliptic"})
@@ -220,8 +247,9 @@ def accelerator_claims(study, run):
     for e in elliptic_eps:
         if e in diff:
             members += _mu_members(diff[e], None, None, "anomalous diffusion")
-    anomalous = make_claim("sec2-anomalous-diffusion", f"{F.family_text(members)}.",
-                           analyses=members, run=run)
+    anomalous = make_claim("sec2-anomalous-diffusion", f"{F.family_text(members)}"
+                           + "".join(transient_text(diff[e]) for e in elliptic_eps if e in diff)
+                           + ".", analyses=members, run=run)
     return [modes, diffusion, anomalous]
 
 
@@ -243,8 +271,25 @@ def lyapunov_claim(study, run):
             alpha, alpha - SIGMAS * se, alpha + SIGMAS * se, 0.0, True)])[0])
     return make_claim("intro-lyapunov", f"eps = {lyap['eps']}, {lyap['orbits']} orbits from "
                       f"the paper's start box: {F.family_text(members)}; signs at {SIGMAS:g} "
-                      "standard errors.", analyses=members,
+                      f"standard errors. lambda_n is {where_measured(lyap)}.", analyses=members,
                       particles_per_curve=lyap["orbits"], run=run)
+
+
+def where_measured(lyap):
+    """Where the orbits are when lambda_n is read, lambda by velocity band, and the standard
+    map's value (the Holmes model), from the study (older studies lack them)."""
+    if "final_velocity_quartiles" not in lyap:
+        return "read at velocities not recorded"
+    q = lyap["final_velocity_quartiles"]
+    b = lyap["bands"]
+    rows = [f"v in [{b['edges'][j]:g}, {b['edges'][j + 1]:g}): {b['per_collision'][j]:.3f} +- "
+            f"{b['standard_error'][j]:.3f}" for j in range(len(b["per_collision"]))
+            if b["collisions"][j] > 0]
+    return (f"read when the orbits' speeds have grown to a median of {q[1]:.0f} (quartiles "
+            f"{q[0]:.0f}-{q[2]:.0f}), where the exact map is the standard map at K = 4 eps "
+            f"(its value, the Holmes model from the same phases at v + 10^4: "
+            f"{lyap['holmes_per_collision']:.4f} +- {lyap['holmes_se']:.4f}); by velocity band "
+            f"(log-stretch per collision pooled over the orbits): " + "; ".join(rows))
 
 
 def with_recheck(claim, checks):

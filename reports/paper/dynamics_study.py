@@ -7,10 +7,14 @@ collisions):
 - ``period_two``: the orbits born at eps = 1, (s, pi*m - s) and (-s, pi*m + s) with
   eps*sin(s) = s (on the symmetry line phi + v = pi*m), followed in eps until their residue
   passes 1; certified at sample amplitudes;
-- ``critical_amplitudes``: Greene's eps_c of noble curves per velocity band (float64), the
-  Holmes map's value, and the high-velocity fit eps_c = a + b/v + c/v**2;
+- ``critical_amplitudes``: Greene's eps_c of noble curves per velocity band: the crossings of
+  the critical residue R_c = 0.2500888 in float64 up to period 987, their Aitken extrapolation
+  with its uncertainty (``fastpath.dynamics.greene.extrapolate``; the basis is written there),
+  and for the rows of ``precise_rows`` the last levels (to period 1597) again in
+  multiprecision (``verify.dynamics.residue``), where float64's rounding of the residue runs
+  out; the Holmes map's value, and the high-velocity fit eps_c = a + b/v + c/v**2;
 - ``certified_crossings``: the residue of one approximant per band certified on both sides of
-  its crossing of 1/4;
+  its crossing of R_c;
 - ``crossing_simulation``: direct simulation across each band (from the hyperbolic point
   (pi, pi*j) to v = pi*(j + 1)) below and above the band's eps_c;
 - ``lyapunov_study``: the largest exponent in both clocks at eps = 0.6 over the paper's start
@@ -36,7 +40,15 @@ from scipy.optimize import brentq
 import fastpath
 import verify
 from fastpath import dynamics as fd
-from fastpath.dynamics.greene import STANDARD_MAP_K_C, noble
+from fastpath.dynamics.greene import (
+    CRITICAL_RESIDUE,
+    STANDARD_MAP_K_C,
+    approximants,
+    extrapolate,
+    noble,
+    tail_uncertainty,
+)
+from verify.dynamics import residue as precise
 
 K_C_QUARTER = STANDARD_MAP_K_C / 4.0  # the standard map's K_c in the bouncer's eps (K = 4 eps)
 PAPER_EPS = 0.6
@@ -44,6 +56,11 @@ PAPER_BOX = ((3.85, 4.15), (2.0, 4.0))
 SEED = 20240607
 NOBLES = ((), (2,), (3,), (4,), (5,), (1, 2), (2, 2), (1, 3), (3, 2), (1, 4))
 GOLDEN_PAIR = ((), (2,))
+PRECISE_DPS = 40  # digits of the multiprecision crossings (their error is measured at +20)
+HOLMES_SPEED = 1e4  # the standard map does not depend on v: started high, |v| never reaches 0
+BAND_EDGES = (0.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0, 256.0, 512.0, 1024.0, 4096.0)
+DIFFUSION_STARTS = (10, 100, 1_000, 3_000, 10_000)  # first n of the diffusion fit windows
+DIFFUSION_FAMILY_FROM = 1_000  # windows from here on: past the transient (the claim's family)
 
 
 @dataclass(frozen=True)
@@ -60,6 +77,9 @@ class Sizes:
     noble_bands: tuple
     golden_bands: tuple
     levels: int
+    precise_rows: tuple
+    precise_levels: int
+    precise_last: int
     certify_bands: tuple
     certify_level: int
     certify_deep: tuple
@@ -83,7 +103,8 @@ class Sizes:
 QUICK = Sizes(
     fixed_m=(1,), fixed_eps=(-0.2, 0.3, 0.99, 1.01), two_m=(1,), two_points=12,
     two_certify=(1.01,), noble_bands=(0, 1), golden_bands=(10, 30, 100), levels=8,
-    certify_bands=(1,), certify_level=4, certify_deep=(), deep_level=4, sim_bands=(1,),
+    precise_rows=((1, (2,), "exact"),), precise_levels=8, precise_last=2, certify_bands=(1,),
+    certify_level=4, certify_deep=(), deep_level=4, sim_bands=(1,),
     sim_particles=4, sim_collisions=20_000, lyap_orbits=4, lyap_collisions=10_000,
     separation_orbits=2, separation_collisions=5_000, jacobian_states=3,
     search_periods=(1, 2), search_grid=12, search_eps=(1.0, 1.65, 0.05),
@@ -93,7 +114,10 @@ FULL = Sizes(
     fixed_m=(1, 2, 3), fixed_eps=(-0.5, -0.1, 0.1, 0.3, 0.6, 0.9, 0.99, 1.01, 1.2, 2.0),
     two_m=(1, 2, 3, 10), two_points=60, two_certify=(1.001, 1.01, 1.05),
     noble_bands=(0, 1, 2, 5, 10), golden_bands=(10, 20, 30, 50, 100, 200), levels=13,
-    certify_bands=(0, 1, 2, 5, 10), certify_level=7, certify_deep=(1, 10), deep_level=9,
+    precise_rows=((1, (), "holmes"), (1, (2,), "holmes"), (1, (), "exact"), (1, (2,), "exact"),
+                  (10, (), "exact"), (10, (2,), "exact")),
+    precise_levels=14, precise_last=3, certify_bands=(0, 1, 2, 5, 10), certify_level=7,
+    certify_deep=(1, 10), deep_level=9,
     sim_bands=(1, 2, 5, 10), sim_particles=16, sim_collisions=1_000_000, lyap_orbits=64,
     lyap_collisions=1_000_000, separation_orbits=8, separation_collisions=100_000,
     jacobian_states=20, search_periods=(1, 2, 3, 4, 5, 6, 7, 8), search_grid=32,
@@ -229,17 +253,68 @@ def period_two(sizes: Sizes) -> dict:
 # --- Greene's eps_c per band -------------------------------------------------------------------
 
 def _amplitude(band, prefix, levels, model="exact"):
+    """One curve's crossings of R_c in float64, the last crossing with its geometric tail, and
+    the Aitken extrapolation (eps_c) with its uncertainty."""
     c = fd.critical_amplitude(band, prefix, model=model, levels=levels)
     last = c.crossings[-1]
+    eps = [x.eps for x in c.crossings]
+    errors = [x.eps_error for x in c.crossings]
+    value, uncertainty = extrapolate(eps, errors)
     return {"band": band, "prefix": list(prefix), "omega": band + noble(prefix),
-            "v": math.pi * (band + noble(prefix)), "model": model, "eps_c": c.eps_c,
-            "uncertainty": c.uncertainty, "ratio": c.ratio, "aitken": c.aitken,
+            "v": math.pi * (band + noble(prefix)), "model": model, "target": c.target,
+            "eps_c": value, "uncertainty": uncertainty,
+            "last_crossing": c.eps_c, "tail_uncertainty": c.uncertainty,
+            "ratio": c.ratio, "tail_ratio": c.tail_ratio,
             "periods": [x.approximant.period for x in c.crossings],
             "windings": [x.approximant.winding for x in c.crossings],
-            "crossings": [x.eps for x in c.crossings], "v_start": [x.v for x in c.crossings],
+            "crossings": eps, "eps_errors": errors, "v_start": [x.v for x in c.crossings],
             "brackets": [list(x.bracket) for x in c.crossings],
             "last_residue_error": last.residue_error, "last_eps_error": last.eps_error,
-            "orbits": sum(x.orbits for x in c.crossings)}
+            "orbits": sum(x.orbits for x in c.crossings), "precise": None}
+
+
+def _precise(band, prefix, model, sizes):
+    """The curve's crossings to ``precise_levels``, the last ``precise_last`` of them again in
+    multiprecision (``verify.dynamics.residue.crossing`` from the float64 bracket widened by
+    four times its stated error); eps_c = the Aitken extrapolation of the mixed sequence.
+    Records the float64 - multiprecision differences where both exist (float64's measured
+    error)."""
+    start = time.perf_counter()
+    row = _amplitude(band, prefix, sizes.precise_levels, model)
+    eps, errors = list(row["crossings"]), list(row["eps_errors"])
+    done = []
+    for level in range(len(eps) - sizes.precise_last, len(eps)):
+        a = approximants(band, prefix, level + 1)[-1]
+        lo, hi = row["brackets"][level]
+        margin = 4 * errors[level] + 1e-12
+        found = precise.crossing(a.period, a.winding, (lo - margin, hi + margin),
+                                 (row["v_start"][level],) * 2, target=row["target"],
+                                 model=model, dps=PRECISE_DPS)
+        mp_eps = float(found.eps)
+        done.append({"period": a.period, "float": eps[level], "multiprecision": mp_eps,
+                     "difference": eps[level] - mp_eps, "float_error": errors[level],
+                     "eps_error": float(found.eps_error),
+                     "residue_error": float(found.residue_error), "orbits": found.orbits})
+        eps[level], errors[level] = mp_eps, float(found.eps_error)
+        slope = float(found.slope)
+    row.update(float_crossings=row["crossings"], crossings=eps, eps_errors=errors,
+               precise={"levels": done, "seconds": time.perf_counter() - start,
+                        "last_slope": slope})
+    return _with_estimates(row)
+
+
+def _with_estimates(row):
+    """A precise row's estimates from its (mixed) crossings: the extrapolation, the last
+    crossing with its geometric tail, the ratios."""
+    eps, errors = row["crossings"], row["eps_errors"]
+    value, uncertainty = extrapolate(eps, errors)
+    tail, ratio, tail_ratio, _ = tail_uncertainty(eps, errors[-1], row["precise"]["last_slope"],
+                                                  row["target"])
+    d = np.diff(eps)
+    row.update(eps_c=value, uncertainty=uncertainty, last_crossing=eps[-1],
+               tail_uncertainty=tail, ratio=ratio, tail_ratio=tail_ratio)
+    row["precise"]["ratios"] = (d[1:] / d[:-1]).tolist()
+    return row
 
 
 def _fit_limit(rows):
@@ -261,10 +336,15 @@ def critical_amplitudes(sizes: Sizes) -> dict:
     """eps_c by Greene's criterion: every noble of NOBLES in the low bands, the golden pair in
     the high bands, the Holmes map for reference, and the high-velocity limit."""
     start = time.perf_counter()
-    rows = [_amplitude(b, p, sizes.levels) for b in sizes.noble_bands for p in NOBLES]
-    rows += [_amplitude(b, p, sizes.levels) for b in sizes.golden_bands for p in GOLDEN_PAIR
+    precise_rows = {(b, tuple(p), m): _precise(b, p, m, sizes) for b, p, m in sizes.precise_rows}
+
+    def row(b, p, model="exact"):
+        return precise_rows.get((b, tuple(p), model)) or _amplitude(b, p, sizes.levels, model)
+
+    rows = [row(b, p) for b in sizes.noble_bands for p in NOBLES]
+    rows += [row(b, p) for b in sizes.golden_bands for p in GOLDEN_PAIR
              if b not in sizes.noble_bands]
-    holmes = [_amplitude(1, p, sizes.levels + 1, model="holmes") for p in GOLDEN_PAIR]
+    holmes = [row(1, p, "holmes") for p in GOLDEN_PAIR]
     bands = {}
     for r in rows:
         best = bands.get(r["band"])
@@ -276,7 +356,12 @@ def critical_amplitudes(sizes: Sizes) -> dict:
                 and r["band"] in sizes.golden_bands]
         if len(high) >= 3:
             limits["golden" if not prefix else "golden2"] = _fit_limit(high)
-    return {"rows": rows, "holmes": holmes,
+    float_errors = [lv for r in precise_rows.values() for lv in r["precise"]["levels"]]
+    return {"rows": rows, "holmes": holmes, "target": CRITICAL_RESIDUE,
+            "float_vs_multiprecision": {
+                "largest_difference": max((abs(lv["difference"]) for lv in float_errors),
+                                          default=None),
+                "levels": len(float_errors)},
             "band_max": [{"band": b, "eps_c": r["eps_c"], "uncertainty": r["uncertainty"],
                           "omega": r["omega"], "prefix": r["prefix"]}
                          for b, r in sorted(bands.items())],
@@ -288,7 +373,7 @@ def critical_amplitudes(sizes: Sizes) -> dict:
 def certified_crossings(sizes: Sizes, critical: dict) -> list:
     """The residue of the approximant at ``certify_level`` (and at ``deep_level`` for the last
     curve, prefix (2,), of the bands in ``certify_deep``) certified just below and just above
-    its float crossing of 1/4."""
+    its float crossing of the target residue R_c."""
     out = []
     for r in critical["rows"]:
         if r["band"] not in sizes.certify_bands or r["prefix"] not in ([], [2]):
@@ -307,8 +392,9 @@ def certified_crossings(sizes: Sizes, critical: dict) -> list:
                 row = _certified(orbit, seconds)
                 row.update(band=r["band"], prefix=r["prefix"], period=q, eps=eps, side=side,
                            float_residue=guess.residue,
-                           decided=(orbit.residue.hi < 0.25 if side == "below"
-                                    else orbit.residue.lo > 0.25))
+                           target=r["target"],
+                           decided=(orbit.residue.hi < r["target"] if side == "below"
+                                    else orbit.residue.lo > r["target"]))
                 out.append(row)
     return out
 
@@ -397,6 +483,14 @@ def lyapunov_study(sizes: Sizes) -> dict:
         sep.append((a, b))
     sep = np.array(sep)
     diff = sep[:, 0] - sep[:, 1]
+    # where the orbits are when lambda is read, and lambda by velocity band (the low-velocity
+    # part of the chaotic component included), and the standard map's value (Holmes model,
+    # from the same phases at v + HOLMES_SPEED: at low v its absolute value would act)
+    speeds = lyap.velocity[ok]
+    bands = fd.lyapunov_by_band(phi, v, PAPER_EPS, sizes.lyap_collisions, BAND_EDGES)
+    holmes = fd.lyapunov(phi, v + HOLMES_SPEED, PAPER_EPS, sizes.lyap_collisions,
+                         model="holmes", checkpoints=8)
+    holmes_ok = holmes.status == 0
     return {
         "eps": PAPER_EPS, "orbits": int(ok.sum()), "stopped": int((~ok).sum()),
         "collisions_per_orbit": sizes.lyap_collisions, "checkpoints": n.tolist(),
@@ -419,6 +513,15 @@ def lyapunov_study(sizes: Sizes) -> dict:
         "separation_collisions": sizes.separation_collisions,
         "seconds": seconds, "total_collisions": int(sizes.lyap_orbits * sizes.lyap_collisions),
         "seed": SEED,
+        "median_velocity": np.median(np.abs(speeds), axis=0).tolist(),
+        "final_velocity_quartiles": np.percentile(np.abs(speeds[:, -1]), [25, 50, 75]).tolist(),
+        "bands": {"edges": list(BAND_EDGES), "per_collision": bands.per_collision.tolist(),
+                  "standard_error": bands.standard_error.tolist(),
+                  "collisions": bands.collisions.tolist(), "orbits": bands.orbits.tolist()},
+        "holmes_per_collision": float(np.mean(holmes.per_collision[holmes_ok])),
+        "holmes_se": float(np.std(holmes.per_collision[holmes_ok], ddof=1)
+                           / math.sqrt(holmes_ok.sum())) if holmes_ok.sum() > 1 else math.nan,
+        "holmes_orbits": int(holmes_ok.sum()),
     }
 
 
@@ -478,18 +581,22 @@ def _diffusion(eps, sizes):
     sq = (vel[ok] - v[ok, None]) ** 2
     msd = sq.mean(0)
     fits = {}
-    for name, lo in (("wide", n[-1] / 100), ("late", n[-1] / 10)):
-        sel = n >= lo
+    for start in DIFFUSION_STARTS:  # windows [start, n_max]; the family: start >= 10^3
+        sel = n >= min(start, n[-1] / 10)
         best = float(np.polyfit(np.log(n[sel]), np.log(msd[sel]), 1)[0])
         draws = []
         for _ in range(400):
             rows = rng.integers(0, len(sq), len(sq))
             draws.append(np.polyfit(np.log(n[sel]), np.log(sq[rows][:, sel].mean(0)), 1)[0])
-        fits[name] = (best, float(np.std(draws, ddof=1)))
+        fits[str(start)] = (best, float(np.std(draws, ddof=1)))
+    family = [fits[str(s)][0] for s in DIFFUSION_STARTS if s >= DIFFUSION_FAMILY_FROM]
+    first = fits[str(DIFFUSION_FAMILY_FROM)]
     return {"eps": eps, "particles": int(ok.sum()), "stopped": int((~ok).sum()),
             "collisions": int(n[-1]), "n": n.tolist(), "msd": msd.tolist(),
-            "mu": fits["wide"][0], "mu_se": fits["wide"][1],
-            "mu_systematic": abs(fits["wide"][0] - fits["late"][0]), "fits": fits,
+            "mu": first[0], "mu_se": first[1],
+            "mu_systematic": float(max(family) - min(family)), "fits": fits,
+            "family_from": DIFFUSION_FAMILY_FROM,
+            "family_starts": [s for s in DIFFUSION_STARTS if s >= DIFFUSION_FAMILY_FROM],
             "seconds": seconds}
 
 

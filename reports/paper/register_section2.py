@@ -81,8 +81,9 @@ def dynamics_entries():
             "sec2-fermi-transition", "sec2", "Invariant spanning curves break near eps = 0.24 at "
             "all velocities but the lowest; beyond, velocity is unbounded for some orbits",
             Q_TRANSITION,
-            "Greene's eps_c (residue of symmetric approximants crossing 1/4) of noble curves "
-            "per velocity band j (v ~ pi (j + omega)); the high-velocity fit a + b/v + c/v^2; "
+            "Greene's eps_c (residues of symmetric approximants crossing the critical residue "
+            "R_c = 0.2500888, Aitken-extrapolated) of noble curves per velocity band j "
+            "(v ~ pi (j + omega)); the high-velocity fit a + b/v + c/v^2; "
             f"direct simulation across each band, {STUDY}",
             "every velocity band computed, and the limit v -> infinity",
             f"three parts: 'near 0.24 at all but the lowest': each band j >= 1 confirmed within "
@@ -119,14 +120,16 @@ def dynamics_entries():
             "normal (<(v_n - v_0)^2> ~ n^mu, mu = 1)", Q_NORMAL,
             "the slope mu of log <(v_n - v_0)^2> against log n from the paper's start box; the "
             f"Newton search for accelerator blocks by period, {STUDY}",
-            "eps = 0.6, the study's windows of n; the periods searched",
+            "eps = 0.6, the study's windows of n past the transient (starting at n0 >= its "
+            "family_from); the periods searched",
             "two parts: 'below the lowest accelerator modes', each period searched confirmed "
             "if its first elliptic block lies above eps = 0.6, refuted at or below; 'normal to "
             f"a good approximation', each window's mu (1.96 standard errors) confirmed within "
             f"{R.pct(R.SAME)} of 1, refuted wholly beyond {R.pct(R.SAME_FAILS)}; {parts}, "
             "refuted if one is",
             f"'normal to a good approximation': mu within {R.pct(R.SAME)} of 1, not beyond "
-            f"{R.pct(R.SAME_FAILS)}", family="every period searched; every window of mu"),
+            f"{R.pct(R.SAME_FAILS)}",
+            family="every period searched; every window of mu past the transient"),
         entry_of(
             "sec2-anomalous-diffusion", "sec2", "where accelerator modes are stable and "
             "surrounded by islands, the chaotic component's velocity diffuses anomalously",
@@ -139,7 +142,8 @@ def dynamics_entries():
             f"errors) confirmed at or beyond {R.pct(R.SAME_FAILS)}, refuted within "
             f"{R.pct(R.SAME)} (normal); {parts}, refuted if one is",
             f"'anomalous': mu at least {R.pct(R.SAME_FAILS)} from 1; normal: within "
-            f"{R.pct(R.SAME)}", family="every certified block; every window of mu at their eps"),
+            f"{R.pct(R.SAME)}",
+            family="every certified block; every window of mu at their eps past the transient"),
         entry_of(
             "intro-lyapunov", "intro", "The largest Lyapunov exponent is positive per "
             "collision and tends to zero per unit time", Q_LYAPUNOV,

@@ -2,32 +2,41 @@
 
 1. ns per collision of ``fastpath.orbit`` for N collisions at eps = 0.6 from the middle of the
    paper's start box, (phi, v) = (4.0, 3.0): the exact map (``method="auto"``: bracketed Halley;
-   ``method="lower_bound"``: the paper's lower-bound steps) and the Holmes map. The models take
-   turns, R times, on one core (numba's parallel kernels are not involved), and the fastest of
-   each is kept, so load from other processes on a shared machine inflates neither side of the ratio
-   more than the other. Iterations per flight come from the same orbits.
+   ``method="lower_bound"``: the paper's lower-bound steps), fastpath's Holmes map and the bare
+   Holmes loop (``reports.precision.bare_holmes``: the textbook step into the same arrays). The
+   models take turns, R times, on one core (no parallel kernel is involved), and the fastest
+   of each is kept, so load from other processes on a shared machine inflates neither side of
+   the ratio more than the other. Iterations per flight come from the same orbits; the ratios
+   are to the bare loop.
 2. The ensemble workload users run, the paper's escape scene (``paper-escape``: eps = 0.6, starts
-   at 2 < v < 4, six holes), P particles per curve, all cores, against a Holmes-map ensemble on
-   the same starts, holes, horizon and bins (``fastpath.kernels.escape.holmes_escape_chunk``,
-   the bare loop: no verification, no flags, starts drawn before the clock starts):
+   at 2 < v < 4, six holes), P particles per curve, all threads, against Holmes-map ensembles on
+   the same starts, holes, horizon and bins (no verification, no flags, starts drawn before the
+   clock starts): the bare loop (``reports.precision.bare_holmes``, the reference of the ratios)
+   and fastpath's (``fastpath.kernels.escape.holmes_escape_chunk``, the phase reduced exactly):
    * kernel only: ``escape_chunk`` over the same chunks of starts, no verification sample;
    * end to end: ``bouncer run`` into a temporary directory (start generation, the verification
      sample recomputed by verify, histograms, checkpoints, manifest), wall time.
-   The three are timed in turns, R times, and the fastest of each is kept. The ratio is the wall
-   time of the exact ensemble over the Holmes ensemble's (the same particles to their exits;
-   the two maps make slightly different numbers of collisions, so collisions/s are printed too).
+   The four are timed in turns, R times, and the fastest of each is kept. The ratio is the wall
+   time of the exact ensemble over the bare loop's (the same particles to their exits; the two
+   maps make slightly different numbers of collisions, so collisions/s are printed too).
 3. Peak resident memory of the process.
 4. Dissipation (``dissipative_section``): ns per collision of ``fastpath.orbit`` with linear
    drag, quadratic drag and restitution r < 1, next to the elastic orbit at the same eps (2: at
    eps <= 1 an r < 1 orbit sticks for good and stops) and start, interleaved as in 1, printed
    as ratios to the elastic orbit.
+5. Cold start (``time_cold_start``): what a new user waits for, each command in a fresh
+   interpreter with an empty numba cache (every kernel it uses compiled), then once more with
+   the cache it filled: the README's quick start and a first ``bouncer run paper-escape``.
 
 Printed as ratios measured in this run, never asserted in a test: machines are shared and noisy.
 """
 
 from __future__ import annotations
 
+import os
 import resource
+import subprocess
+import sys
 import tempfile
 import time
 from dataclasses import dataclass
@@ -39,6 +48,7 @@ import fastpath
 from fastpath.kernels.arrays import NO_LIMIT, Bins, EscapeCounts, Holes, Horizon, Starts
 from fastpath.kernels.escape import holmes_escape_chunk
 from fastpath.physics import holmes
+from reports.precision.bare_holmes import bare_holmes_chunk, bare_holmes_orbit
 from reports.runs.chunk import kernel
 from reports.runs.counts import Counts
 from reports.runs.driver import run
@@ -57,22 +67,34 @@ class OrbitTiming:
     max_iterations: int | None
 
 
+BARE_HOLMES = "Holmes map, bare loop"
+
+
 def time_orbits(eps=0.6, collisions=10_000_000, repeats=5, start=START):
-    """{label: OrbitTiming}, the best of ``repeats`` interleaved runs of each model."""
+    """{label: OrbitTiming}, the best of ``repeats`` interleaved runs of each model and of the
+    bare Holmes loop."""
     for model, method in ORBIT_MODELS:  # compile (or load from the cache) outside the timing
         fastpath.orbit(*start, eps, 10, model=model, method=method)
+    bare_holmes_orbit(*start, eps, 10)
     best = {}
+
+    def keep(timing):
+        old = best.get(timing.label)
+        if old is None or timing.ns_per_collision < old.ns_per_collision:
+            best[timing.label] = timing
+
     for _ in range(repeats):
         for model, method in ORBIT_MODELS:
             t0 = time.perf_counter()
             orb = fastpath.orbit(*start, eps, collisions, model=model, method=method)
             ns = (time.perf_counter() - t0) / collisions * 1e9
-            label = "Holmes map" if model == "holmes" else f"exact ({method})"
+            label = "Holmes map (fastpath)" if model == "holmes" else f"exact ({method})"
             its = orb.iterations
-            timing = OrbitTiming(label, ns, float(its.mean()) if its is not None else None,
-                                 int(its.max()) if its is not None else None)
-            if label not in best or ns < best[label].ns_per_collision:
-                best[label] = timing
+            keep(OrbitTiming(label, ns, float(its.mean()) if its is not None else None,
+                             int(its.max()) if its is not None else None))
+        t0 = time.perf_counter()
+        bare_holmes_orbit(*start, eps, collisions)
+        keep(OrbitTiming(BARE_HOLMES, (time.perf_counter() - t0) / collisions * 1e9, None, None))
     return best
 
 
@@ -92,22 +114,26 @@ def _chunks(plan):
 
 
 def _kernel_pass(plan, chunks, model):
-    """All chunks through the run's exact kernel call (``chunk.kernel``, no sample) or the
-    Holmes kernel on the same bins and blocks: collisions."""
+    """All chunks through the run's exact kernel call (``chunk.kernel``, no sample), fastpath's
+    Holmes kernel ("holmes") or the bare Holmes loop ("bare") on the same bins and blocks:
+    collisions."""
     sc = plan.scene
     total = 0
     for e, (phi, v, *_rest) in chunks:
         exp = plan.experiments[e]
         m, holes = len(phi), len(exp.hole_lo)
-        if model == "holmes":
+        if model in ("holmes", "bare"):
             counts = EscapeCounts.zeros(BLOCKS, holes, len(plan.n_edges), len(plan.t_edges))
-            holmes_escape_chunk(
-                holmes(sc.eps), Starts(phi=phi, v=v, t=np.zeros(m), n=np.zeros(m, np.int64)),
-                Holes(lo=np.array(exp.hole_lo), width=np.array(exp.hole_width)),
-                Horizon(max_collisions=sc.max_collisions or NO_LIMIT,
-                        max_time=sc.max_time or np.inf),
-                Bins(n_edges=plan.n_edges, t_edges=plan.t_edges, record_n=True, record_t=True),
-                counts)
+            args = (Starts(phi=phi, v=v, t=np.zeros(m), n=np.zeros(m, np.int64)),
+                    Holes(lo=np.array(exp.hole_lo), width=np.array(exp.hole_width)),
+                    Horizon(max_collisions=sc.max_collisions or NO_LIMIT,
+                            max_time=sc.max_time or np.inf),
+                    Bins(n_edges=plan.n_edges, t_edges=plan.t_edges, record_n=True,
+                         record_t=True), counts)
+            if model == "holmes":
+                holmes_escape_chunk(holmes(sc.eps), *args)
+            else:
+                bare_holmes_chunk(sc.eps, *args)
             total += int(counts.collisions.sum())
         else:
             out = Counts.zeros(plan, holes)
@@ -115,6 +141,10 @@ def _kernel_pass(plan, chunks, model):
                    np.zeros(m, np.int64), np.zeros((0, 6)), out)
             total += int(out.collisions)
     return total
+
+
+ENSEMBLES = {"end to end": None, "kernel only": "exact", "Holmes map (fastpath)": "holmes",
+             BARE_HOLMES: "bare"}
 
 
 def time_ensembles(particles=1_000_000, scene_name="paper-escape", repeats=3, threads=None):
@@ -127,20 +157,19 @@ def time_ensembles(particles=1_000_000, scene_name="paper-escape", repeats=3, th
     chunks = _chunks(plan)
     total = particles * len(plan.experiments)
     small = make_plan(scene, 100)  # compile (or load from the cache) outside the timing
-    _kernel_pass(small, _chunks(small)[:1], "exact")
-    _kernel_pass(small, _chunks(small)[:1], "holmes")
+    for model in ("exact", "holmes", "bare"):
+        _kernel_pass(small, _chunks(small)[:1], model)
     best = {}
     for _ in range(repeats):
-        for label in ("end to end", "kernel only", "Holmes map"):
+        for label, model in ENSEMBLES.items():
             t0 = time.perf_counter()
-            if label == "end to end":
+            if model is None:
                 with tempfile.TemporaryDirectory() as tmp:
                     manifest = run(scene, f"{tmp}/run", particles=particles, progress=False,
                                    threads=threads)
                 collisions = manifest["collisions"]
             else:
-                collisions = _kernel_pass(plan, chunks, "holmes" if label == "Holmes map"
-                                          else "exact")
+                collisions = _kernel_pass(plan, chunks, model)
             wall = time.perf_counter() - t0
             if label not in best or wall < best[label].wall:
                 best[label] = EnsembleTiming(label, wall, collisions, total, len(plan.experiments))
@@ -148,23 +177,30 @@ def time_ensembles(particles=1_000_000, scene_name="paper-escape", repeats=3, th
 
 
 def ensemble_table(best, scene_name="paper-escape"):
-    """Markdown table of ``time_ensembles``: wall time, throughput, ratio to the Holmes map."""
-    holmes = best["Holmes map"]
+    """Markdown table of ``time_ensembles``: wall time, throughput, ratio to the bare Holmes
+    loop."""
+    bare = best[BARE_HOLMES]
     t = best["end to end"]
     lines = [
         f"`{scene_name}`, {t.particles:,} particles ({t.particles // t.curves:,} per curve x"
         f" {t.curves} curves),"
         f" {numba.get_num_threads()} threads, fastest of the turns:",
         "",
-        "| ensemble | wall s | collisions/s | particles/s | x Holmes (wall) |",
+        "| ensemble | wall s | collisions/s | particles/s | x bare Holmes loop (wall) |",
         "|---|---|---|---|---|",
     ]
-    for label in ("end to end", "kernel only", "Holmes map"):
+    for label in ENSEMBLES:
         e = best[label]
-        lines.append(f"| {'exact, ' + label if label != 'Holmes map' else label} | {e.wall:.2f}"
-                     f" | {e.collisions / e.wall:.3g} | {e.particles / e.wall:.3g} |"
-                     f" {e.wall / holmes.wall:.2f} |")
+        name = f"exact, {label}" if ENSEMBLES[label] in (None, "exact") else label
+        lines.append(f"| {name} | {e.wall:.2f} | {e.collisions / e.wall:.3g} |"
+                     f" {e.particles / e.wall:.3g} | {e.wall / bare.wall:.2f} |")
     return "\n".join(lines)
+
+
+def headline_ratios(best):
+    """(end to end, kernel only): the exact ensemble's wall time over the bare Holmes loop's."""
+    bare = best[BARE_HOLMES].wall
+    return best["end to end"].wall / bare, best["kernel only"].wall / bare
 
 
 def peak_memory_mib():
@@ -173,20 +209,20 @@ def peak_memory_mib():
 
 
 def orbit_table(best, collisions, eps, repeats):
-    """Markdown table of ``time_orbits`` results, with the ratio to the Holmes map."""
-    holmes = best["Holmes map"].ns_per_collision
+    """Markdown table of ``time_orbits`` results, with the ratio to the bare Holmes loop."""
+    bare = best[BARE_HOLMES].ns_per_collision
     lines = [
         f"`fastpath.orbit`, {collisions:,} collisions at eps = {eps:g} from (phi, v) = "
         f"{START}, one core, best of {repeats} interleaved runs:",
         "",
-        "| model | ns / collision | x Holmes | iterations / flight (mean) | (max) |",
+        "| model | ns / collision | x bare Holmes loop | iterations / flight (mean) | (max) |",
         "|---|---|---|---|---|",
     ]
     for t in best.values():
         its = (f"{t.mean_iterations:.3f} | {t.max_iterations}" if t.mean_iterations is not None
                else "- | -")
         lines.append(f"| {t.label} | {t.ns_per_collision:.1f} | "
-                     f"{t.ns_per_collision / holmes:.2f} | {its} |")
+                     f"{t.ns_per_collision / bare:.2f} | {its} |")
     return "\n".join(lines)
 
 
@@ -237,3 +273,58 @@ def dissipative_section(collisions, repeats):
     collisions = min(int(collisions), DISSIPATIVE_MAX_COLLISIONS)
     best = time_dissipative_orbits(collisions, repeats)
     return dissipative_table(best, collisions, DISSIPATIVE_EPS, repeats)
+
+
+# The README's quick start, as a new user runs it first (``time_cold_start``; the test of the
+# docs checks that the README still holds this code).
+QUICK_START = """\
+import fastpath
+import verify
+
+tau = fastpath.flight_time(4.0, 3.0, 0.6)             # time to the next collision from (phi, v)
+phi1, v1, tau = fastpath.step(4.0, 3.0, 0.6)           # one collision: phase in [0, 2*pi), velocity
+orbit = fastpath.orbit(4.0, 3.0, 0.6, 10_000)         # arrays .phi .v .t of 10,001 collisions
+result = fastpath.flight([0.0, 1.0, 2.0], 3.0, 3.0)   # arrays .tau .iterations .status
+tau_ref = verify.flight_time(4.0, 3.0, 0.6)           # certified: no earlier collision exists
+kappa = verify.condition_number(4.0, 3.0, 0.6, tau_ref)
+print(f"error {abs(tau - tau_ref) / tau_ref / (kappa * 2**-53):.2f} kappa*u")   # 0.10 kappa*u
+"""
+COLD_START_PARTICLES = 20_000
+
+
+def cold_start_commands(particles=COLD_START_PARTICLES):
+    """(label, argv) of ``time_cold_start``; ``{tmp}`` stands for a temporary folder."""
+    return [("README quick start (Python)", [sys.executable, "-c", QUICK_START]),
+            (f"bouncer run paper-escape --particles {particles}",
+             [sys.executable, "-m", "reports.cli", "run", "paper-escape", "--particles",
+              str(particles), "--out", "{tmp}/run", "--quiet", "--force"])]
+
+
+def time_cold_start(commands=None):
+    """[(label, cold s, warm s)]: each command in a fresh interpreter, first with an empty
+    numba cache of its own (``NUMBA_CACHE_DIR``: every kernel it uses is compiled), then again
+    with the cache it filled (the kernels are loaded), wall time."""
+    rows = []
+    for label, argv in cold_start_commands() if commands is None else commands:
+        with tempfile.TemporaryDirectory() as tmp:
+            env = {**os.environ, "NUMBA_CACHE_DIR": os.path.join(tmp, "numba")}
+            walls = []
+            for _ in range(2):
+                t0 = time.perf_counter()
+                done = subprocess.run([a.replace("{tmp}", tmp) for a in argv], env=env,
+                                      capture_output=True, text=True)
+                walls.append(time.perf_counter() - t0)
+                if done.returncode:
+                    raise RuntimeError(f"{label}: exit status {done.returncode}:"
+                                       f" {done.stderr.strip()[-500:]}")
+            rows.append((label, *walls))
+    return rows
+
+
+def cold_start_table(rows):
+    """Markdown table of ``time_cold_start``."""
+    lines = [f"A new user's first calls, {os.cpu_count()} cores, each in a fresh interpreter:"
+             " with an empty numba cache (compiling) and again (loading from the cache):", "",
+             "| command | cold s | warm s |", "|---|---|---|"]
+    lines += [f"| `{label}` | {cold:.1f} | {warm:.1f} |" for label, cold, warm in rows]
+    return "\n".join(lines)

@@ -29,11 +29,13 @@ from fastpath.kernels.arrays import (
     Flags,
     Holes,
     Horizon,
+    JointCounts,
     MomentGrid,
     MomentSums,
     Portrait,
     Sample,
     Starts,
+    joint_histogram,
 )
 from fastpath.kernels.escape import escape_chunk
 from fastpath.kernels.histogram import bin_index, exit_hole
@@ -110,7 +112,7 @@ def kernel(plan, exp, state, slot, target, samples, out):
     else:
         blocks = min(BLOCKS, m)
         holes = len(exp.hole_lo)
-        counts = EscapeCounts.zeros(blocks, holes, len(plan.n_edges), len(plan.t_edges))
+        counts = escape_counts(plan, blocks, m, holes)
         with _KERNEL_LOCK:
             escape_chunk(_physics(sc), starts,
                          Holes(lo=np.array(exp.hole_lo), width=np.array(exp.hole_width)),
@@ -119,6 +121,8 @@ def kernel(plan, exp, state, slot, target, samples, out):
                          Bins(n_edges=plan.n_edges, t_edges=plan.t_edges,
                               record_n="collisions" in sc.clocks, record_t="time" in sc.clocks),
                          sample, counts, flags)
+        if sc.joint:
+            add_joint(out, counts, plan)
         if not sc.elastic:
             out.stuck_n += counts.stuck_n.sum(axis=0)
             out.stuck_t += counts.stuck_t.sum(axis=0)
@@ -131,9 +135,42 @@ def kernel(plan, exp, state, slot, target, samples, out):
     return flags.status, flags.state
 
 
+def escape_counts(plan, blocks, m, holes):
+    """The kernel's counts for m particles in ``blocks`` blocks: ``JointCounts`` for a scene
+    that records the joint histogram (the kernel is then compiled with the record),
+    ``EscapeCounts`` otherwise."""
+    nb, tb = len(plan.n_edges), len(plan.t_edges)
+    if plan.scene.joint:
+        return JointCounts.zeros(blocks, -(-m // blocks), holes, nb, tb)
+    return EscapeCounts.zeros(blocks, holes, nb, tb)
+
+
+def add_joint(out, counts, plan):
+    """The kernel's joint record (``JointCounts``) into ``out.joint`` (outcomes: the holes,
+    censored, stuck). A block that recorded more ends than particles fails the run."""
+    try:
+        joint = joint_histogram(counts, len(plan.n_edges), len(plan.t_edges))
+    except ValueError as err:
+        raise RunFailed(f"the joint record is inconsistent: {err}") from None
+    if joint.shape == out.joint.shape:
+        out.joint += joint
+    else:  # fewer holes than the run's widest curve set
+        holes = len(joint) - 2
+        out.joint[:holes] += joint[:holes]
+        out.joint[-2:] += joint[-2:]
+
+
+def add_joint_end(out, plan, outcome, n, t):
+    """One particle's end, settled here rather than in the kernel, into ``out.joint`` (outcome
+    as in ``add_joint``: hole j, or -2 censored); the same bins as the kernel's."""
+    if out.joint is not None:
+        out.joint[outcome, bin_index(plan.n_edges, n), bin_index(plan.t_edges, t)] += 1
+
+
 def settle(phi, v, eps, physics=None):
     """The collision float64 could not decide, by ``verify.step`` (with the scene's ``physics``
     keywords, none for the elastic model): floats (phi1, v1, tau)."""
+    phi, v = float(phi), float(v)  # plain numbers in verify's messages, not np.float64(...)
     try:
         phi1, v1, tau = verify.step(phi, v, eps, dps=VERIFY_DPS, **(physics or {}))
     except (verify.UndecidableCollision, ValueError) as err:
@@ -183,6 +220,7 @@ def simulate_chunk(plan, e, k):
             if t1 > max_t:  # as the kernel: censored before this collision
                 out.cens_n[bin_index(plan.n_edges, float(n_i))] += 1
                 out.cens_t[bin_index(plan.t_edges, t1)] += 1
+                add_joint_end(out, plan, -2, float(n_i), t1)
                 continue
             out.collisions += 1
             if sc.kind == "phase-space":
@@ -198,6 +236,7 @@ def simulate_chunk(plan, e, k):
                 if j >= 0:
                     out.esc_n[j, bin_index(plan.n_edges, float(n1))] += 1
                     out.esc_t[j, bin_index(plan.t_edges, t1)] += 1
+                    add_joint_end(out, plan, j, float(n1), t1)
                     continue
             resume.append((i, phi1, v1, t1, n1))
         state, slot, target = _resumed(resume, slot, target)

@@ -15,6 +15,10 @@ bookkeeping of the checkpoint (finished chunks, verified sample rows, elapsed ti
     sum_v[e, j], sum_v2[e, j]        velocity scenes only: the exact sums of v_n and v_n**2 over
                                      the particles moving at n_grid[j], ``fractions.Fraction``
                                      in object arrays (see below)
+    joint[e, o, b, c]                scenes with ``[record] joint`` only (else None): particles
+                                     that ended with outcome o (exit hole j < holes, then
+                                     censored, then stuck) in collision bin b and time bin c
+                                     (``reports.runs.joint_file``)
 
 Exact velocity sums. A chunk's kernel adds v_n in float64 within fixed blocks of particles (the
 same for any thread count); each block sum is then converted exactly to a Fraction (a float is
@@ -38,6 +42,7 @@ from __future__ import annotations
 import bisect
 import hashlib
 import json
+import math
 import zipfile
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -66,6 +71,7 @@ class Counts:
     stuck_at: np.ndarray | None = None
     sum_v: np.ndarray | None = None
     sum_v2: np.ndarray | None = None
+    joint: np.ndarray | None = None
 
     def __post_init__(self):
         if self.stuck_n is None:
@@ -80,6 +86,8 @@ class Counts:
         nb, tb = len(plan.n_edges), len(plan.t_edges)
         sc = plan.scene
         shape = (sc.phi_bins, sc.v_bins) if sc.kind == "phase-space" else (0, 0)
+        if sc.joint:
+            extra.update(joint=np.zeros((*lead, holes + 2, nb, tb), np.int64))
         if sc.kind == "velocity":
             grid = (*lead, len(plan.n_grid))
             extra.update(moving=np.zeros(grid, np.int64), stuck_at=np.zeros(grid, np.int64),
@@ -102,6 +110,8 @@ class Counts:
         if self.moving is not None:
             for name in _VELOCITY + _EXACT:
                 getattr(self, name)[at] += getattr(other, name)
+        if self.joint is not None:
+            self.joint[at] += other.joint
         self.collisions += other.collisions
         self.settled += other.settled
 
@@ -120,6 +130,18 @@ def exact_block_sums(block_sums):
     for row in block_sums:
         out += np.array([Fraction(float(x)) for x in row], object)
     return out
+
+
+def _load_joint(arrays, meta):
+    """The dense joint record of a loaded checkpoint, None if it has none; ValueError if only
+    part of it is there or its arrays do not fit its shape."""
+    present = [name for name in _JOINT if name in arrays] + (
+        ["joint_shape"] if "joint_shape" in meta else [])
+    if not present:
+        return None
+    if len(present) != len(_JOINT) + 1:
+        raise ValueError(f"a joint record with only {present}")
+    return joint_from_arrays(arrays["joint_index"], arrays["joint_count"], meta["joint_shape"])
 
 
 def _sample_key(row):
@@ -183,13 +205,42 @@ _ARRAYS = ("esc_n", "esc_t", "cens_n", "cens_t", "portrait")
 _STUCK = ("stuck_n", "stuck_t")  # saved only when a particle stuck: elastic checkpoints unchanged
 _VELOCITY = ("moving", "stuck_at")  # velocity scenes only, as are the exact sums:
 _EXACT = ("sum_v", "sum_v2")  # in the bookkeeping JSON as "numerator/denominator" strings
+MAX_JOINT_BINS = 2**28  # refuse a checkpoint's joint shape beyond this (2 GiB of counts)
+_JOINT = ("joint_index", "joint_count")  # the joint record's non-zero bins (``joint_arrays``)
+
+
+def joint_arrays(joint):
+    """The checkpoint's arrays of a joint record: the flat indices of its non-zero bins
+    (increasing) and their counts; ``joint.shape`` goes into the bookkeeping."""
+    index = np.flatnonzero(joint)
+    return {"joint_index": index.astype(np.int64), "joint_count": joint.ravel()[index]}
+
+
+def joint_from_arrays(index, count, shape):
+    """The dense joint record from ``joint_arrays``; ValueError unless the indices increase
+    strictly inside ``shape`` and each count is positive."""
+    shape = tuple(int(x) for x in shape)
+    if len(shape) != 4 or min(shape) < 1 or math.prod(shape) > MAX_JOINT_BINS:
+        raise ValueError(f"joint record shape {shape} is not (curves, outcomes, n bins, t bins)"
+                         f" of at most {MAX_JOINT_BINS} bins")
+    size = math.prod(shape)
+    if (index.ndim != 1 or index.shape != count.shape or index.dtype != np.int64
+            or count.dtype != np.int64):
+        raise ValueError("joint record arrays of the wrong shape or type")
+    if len(index) and (index[0] < 0 or index[-1] >= size or np.any(np.diff(index) <= 0)
+                       or np.any(count <= 0)):
+        raise ValueError("joint record indices not increasing inside its shape, or a count"
+                         " that is not positive")
+    joint = np.zeros(size, np.int64)
+    joint[index] = count
+    return joint.reshape(shape)
 
 
 def _digest(arrays, meta_json):
-    """SHA-256 over each array's name, dtype, shape and bytes (``_ARRAYS``, then ``_STUCK`` and
-    ``_VELOCITY`` where present), then the bookkeeping JSON."""
+    """SHA-256 over each array's name, dtype, shape and bytes (``_ARRAYS``, then ``_STUCK``,
+    ``_VELOCITY`` and ``_JOINT`` where present), then the bookkeeping JSON."""
     h = hashlib.sha256()
-    for name in (*_ARRAYS, *(n for n in _STUCK + _VELOCITY if n in arrays)):
+    for name in (*_ARRAYS, *(n for n in _STUCK + _VELOCITY + _JOINT if n in arrays)):
         a = np.ascontiguousarray(arrays[name])
         h.update(f"{name}|{a.dtype.str}|{a.shape}|".encode())
         h.update(a.tobytes())
@@ -224,6 +275,9 @@ class Tally(Counts):
             arrays.update({name: getattr(self, name) for name in _VELOCITY})
             book["velocity"] = {name: [[str(x) for x in row] for row in getattr(self, name)]
                                 for name in _EXACT}
+        if self.joint is not None:
+            arrays.update(joint_arrays(self.joint))
+            book["joint_shape"] = list(self.joint.shape)
         meta = json.dumps(book)
         return rundir.save_npz_atomic(path, **arrays, meta=np.array(meta),
                                       digest=np.array(_digest(arrays, meta)))
@@ -233,7 +287,7 @@ class Tally(Counts):
         """The checkpoint at ``path``; CheckpointError if it is unreadable or fails its digest."""
         try:
             with np.load(path) as z:
-                arrays = {name: z[name] for name in (*_ARRAYS, *_STUCK, *_VELOCITY)
+                arrays = {name: z[name] for name in (*_ARRAYS, *_STUCK, *_VELOCITY, *_JOINT)
                           if name in z.files}
                 meta_json, digest = str(z["meta"]), str(z["digest"])
             meta = json.loads(meta_json)
@@ -243,10 +297,11 @@ class Tally(Counts):
             exact = {name: np.array([[Fraction(x) for x in row] for row in rows], object)
                      .reshape(arrays["moving"].shape)
                      for name, rows in meta["velocity"].items()} if "velocity" in meta else {}
+            joint = _load_joint(arrays, meta)
             return cls(*(arrays[name] for name in _ARRAYS), int(meta["collisions"]),
                        int(meta["settled"]), arrays.get("stuck_n"), arrays.get("stuck_t"),
                        arrays.get("moving"), arrays.get("stuck_at"), exact.get("sum_v"),
-                       exact.get("sum_v2"),
+                       exact.get("sum_v2"), joint,
                        finished=Finished.from_json(meta["finished"]),
                        samples=sorted(meta["samples"], key=_sample_key),
                        elapsed=float(meta["elapsed"]), started=str(meta["started"]))

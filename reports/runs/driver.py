@@ -38,23 +38,26 @@ function of the *set* of finished chunks only, whatever order they finish in.
 from __future__ import annotations
 
 import io
+import json
 import sys
-import threading
 import time
 from contextlib import closing
 from dataclasses import replace
 from pathlib import Path
 
+import numba.core.event as numba_event
 import numpy as np
 
+from fastpath.arithmetic.jit import CACHE_ROOT
 from reports.runs import cluster, manifest, rundir
 from reports.runs.chunk import OVERSTEP_TOLERANCE, check_result, run_chunk
 from reports.runs.counts import CheckpointError, Tally
 from reports.runs.executor import Executor
 from reports.runs.integrity import tally_problems
+from reports.runs.joint_file import JOINT_FILE, joint_text
 from reports.runs.lock import RunLock
 from reports.runs.plan import check_size, make_plan
-from reports.runs.provenance import git, now, versions
+from reports.runs.provenance import dirty_text, git, now, versions
 from reports.runs.rundir import CHECKPOINT, PROVENANCE, RunFailed, RunInterrupted
 from reports.runs.scenes import parse_scene
 from reports.runs.signals import deferred_interrupt
@@ -65,7 +68,7 @@ summary = manifest.verification_summary  # the manifest's verification summary o
 
 
 def run(scene, out, particles=None, seed=None, resume=False, force=False, progress=True,
-        threads=None, scheduler=None):
+        threads=None, scheduler=None, require_clean=False):
     """Run (or resume) ``scene`` into the directory ``out``; returns the final manifest.
 
     ``scheduler``: None runs the chunks here, one after another (numba threads inside each);
@@ -78,6 +81,11 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
     nothing behind: a new run that fails (or is interrupted) before its first chunk is
     checkpointed removes what it wrote, and the directory if it made it.
 
+    provenance.json records the git commit of the sources, and whether the work tree had
+    uncommitted changes outside ``out`` (``provenance.git``): a dirty tree is said on stderr
+    (with ``progress``, at a terminal), and refused (ValueError, before anything is written)
+    with ``require_clean``.
+
     Raises ValueError for bad input or a filesystem fault (exit 2; ``RunBusy`` when another
     process holds the directory's lock, ``CheckpointError`` for a checkpoint that fails its hash
     or invariants), RunFailed when a check fails (exit 1) and RunInterrupted on Ctrl-C (the
@@ -89,8 +97,9 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
     if scheduler is not None:
         cluster.check_available()
     rundir.check_out(out, resume, force)  # refuse before creating anything
+    source = clean_source(out, require_clean, progress)
     new_dirs = rundir.missing_folders(out)
-    ctx = {"threads": threads, "hashes": {}, "provenance": {"versions": versions(), "git": git()},
+    ctx = {"threads": threads, "hashes": {}, "provenance": {"versions": versions(), "git": source},
            "session": {"scheduler": None, "workers": None, "worker_threads": None,
                        "chunks_computed": 0},
            "compile_s": None, "kept": resume}
@@ -117,38 +126,118 @@ def run(scene, out, particles=None, seed=None, resume=False, force=False, progre
         raise
 
 
+def clean_source(out, require_clean, progress):
+    """The git record of the sources for provenance.json (``provenance.git``, the run's own
+    directory ``out`` left out); a dirty or unknown tree is refused (ValueError) with
+    ``require_clean``, else said on stderr with ``progress`` at a terminal (``bouncer run``
+    says it in its summary too, on stdout)."""
+    record = git(exclude=out)
+    problem = dirty_text(record)
+    if problem and require_clean:
+        raise ValueError(f"--require-clean: {problem}")
+    if problem and progress and _interactive():
+        print(f"bouncer run: warning: {problem}", file=sys.stderr, flush=True)
+    return record
+
+
+def _interactive():
+    """Whether stderr is a terminal (a warning there is read, not parsed)."""
+    return sys.stderr.isatty()
+
+
 def compile_kernels(plan, threads, progress):
     """Compile (or load from numba's cache) the kernels of ``plan``'s scene by running a
     one-particle chunk, so that compilation is neither charged to the run's rate nor shown
-    as a stalled progress bar; returns the seconds it took."""
+    as a stalled progress bar; returns the seconds it took.
+
+    Loading cached kernels takes about a second and is not mentioned. When numba starts to
+    compile (its ``numba:compile`` event: a kernel the cache does not hold), that is said at
+    once on stderr with the time it is expected to take (``expected_compile_text``), and the
+    time it took is printed when it ends and recorded for the next estimate
+    (``COMPILE_TIMES``).
+    """
     start = time.perf_counter()
-    said = []
-
-    def say():  # only when it takes a while: loading cached kernels takes about a second
-        print(f"{plan.scene.name}: compiling the numba kernels (a first run takes ~30 s; later"
-              " runs load them from numba's cache) ...", end="", file=sys.stderr, flush=True)
-        said.append(True)
-
-    timer = threading.Timer(COMPILE_NOTICE_S, say) if progress else None
-    if timer is not None:
-        timer.start()
+    key = _compile_key(plan.scene)
+    notice = _CompileNotice(None if not progress else lambda: print(
+        f"{plan.scene.name}: compiling the numba kernels ({key}: {expected_compile_text(key)};"
+        " later runs load them from numba's cache) ...", end="", file=sys.stderr, flush=True))
     # a short horizon: the same kernels (argument types do not change), a particle's worth
     # of work (a velocity scene runs every particle to its horizon)
     short = replace(plan.scene, max_collisions=min(plan.scene.max_collisions or WARM_UP_N,
                                                    WARM_UP_N))
-    try:
-        run_chunk(short, plan.seed, 0, 0, 1, threads)  # a failure there is the run's to meet
-    finally:
-        if timer is not None:
-            timer.cancel()
-            timer.join()
-        if said:
-            print(f" {time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
-    return round(time.perf_counter() - start, 3)
+    with numba_event.install_listener("numba:compile", notice):
+        try:
+            run_chunk(short, plan.seed, 0, 0, 1, threads)  # a failure there is the run's to meet
+        finally:
+            seconds = time.perf_counter() - start
+            if notice.compiled and progress:
+                print(f" {seconds:.1f} s", file=sys.stderr, flush=True)
+    if notice.compiled:
+        _record_compile_time(key, seconds)
+    return round(seconds, 3)
 
 
 WARM_UP_N = 10  # collisions of the one particle that compiles the kernels
-COMPILE_NOTICE_S = 2.0  # say that the kernels compile when it takes longer than this
+# compile times of this machine, by ``_compile_key``: the last one measured (the expected one)
+COMPILE_TIMES = Path(CACHE_ROOT) / "compile_times.json"
+# the same, measured with an empty numba cache on the 2-core machine of docs/performance.md:
+# what a first compile is expected to take where this machine has none recorded
+REFERENCE_COMPILE_S = {}
+
+
+class _CompileNotice(numba_event.Listener):
+    """Calls ``say`` (once) when numba starts to compile a kernel."""
+
+    def __init__(self, say=None):
+        self.say, self.compiled = say, False
+
+    def on_start(self, event):
+        if not self.compiled and self.say is not None:
+            self.say()
+        self.compiled = True
+
+    def on_end(self, event):
+        pass
+
+
+def _compile_key(scene):
+    """Which kernels a scene compiles: its kernel and model ("escape kernel, elastic model",
+    ...; transport scenes run the escape kernel)."""
+    kernel = KERNEL_OF_KIND.get(scene.kind, scene.kind)
+    return f"{kernel} kernel, {'elastic' if scene.elastic else 'dissipative'} model"
+
+
+KERNEL_OF_KIND = {"escape": "escape", "transport": "escape", "phase-space": "portrait",
+                  "velocity": "moments"}
+
+
+def expected_compile_text(key):
+    """How long compiling the kernels of ``key`` is expected to take, and from what
+    measurement: the last compile on this machine, else the 2-core reference."""
+    try:
+        seconds = json.loads(COMPILE_TIMES.read_text(encoding="utf-8"))[key]
+        return f"about {seconds:.0f} s, as the last time on this machine"
+    except (OSError, ValueError, KeyError, TypeError):
+        pass
+    if key in REFERENCE_COMPILE_S:
+        return f"about {REFERENCE_COMPILE_S[key]:.0f} s on 2 cores (docs/performance.md)"
+    return "a first run"
+
+
+def _record_compile_time(key, seconds):
+    """Keep ``seconds`` in ``COMPILE_TIMES`` for the next estimate (best effort: a cache folder
+    that cannot be written only loses the estimate)."""
+    try:
+        times = json.loads(COMPILE_TIMES.read_text(encoding="utf-8"))
+        times = times if isinstance(times, dict) else {}
+    except (OSError, ValueError):
+        times = {}
+    times[key] = round(seconds, 1)
+    try:
+        COMPILE_TIMES.parent.mkdir(parents=True, exist_ok=True)
+        rundir.write_atomic(COMPILE_TIMES, json.dumps(times, indent=1, sort_keys=True) + "\n")
+    except OSError:
+        pass
 
 
 def _resume_tally(plan, out, old):
@@ -156,14 +245,15 @@ def _resume_tally(plan, out, old):
     or its invariants."""
     ckpt = out / CHECKPOINT
     advice = "; it cannot be resumed: start the run again with --force"
-    if not ckpt.is_file():
+    if not ckpt.exists():
         if old.get("chunks_done"):
             raise CheckpointError(f"checkpoint {ckpt} is missing but the manifest records"
                                   f" {old['chunks_done']} finished chunks{advice}")
         return Tally.empty(plan)
     try:
+        rundir.check_input(ckpt)
         tally = Tally.load(ckpt)
-    except CheckpointError as err:
+    except (CheckpointError, rundir.InputError) as err:
         raise CheckpointError(f"{err}{advice}") from None
     problems = tally_problems(plan, tally)
     if problems:
@@ -179,10 +269,7 @@ def _run_locked(plan, out, resume, force, progress, execute, ctx):
     ckpt = out / CHECKPOINT
     if resuming:
         old = manifest.load_manifest(out / rundir.MANIFEST)
-        try:
-            text = (out / "scene.toml").read_bytes().decode("utf-8")
-        except UnicodeDecodeError:
-            raise ValueError(f"{out / 'scene.toml'}: not UTF-8 text") from None
+        text = rundir.read_input_text(out / "scene.toml", rundir.MAX_SCENE_BYTES)
         stored = parse_scene(text, str(out / "scene.toml"))
         if stored != scene or old["particles"] != plan.particles or old["seed"] != plan.seed:
             raise ValueError(f"--resume: {out} holds a run of scene {old['scene']['name']!r} with "
@@ -338,8 +425,8 @@ def survival_rows(plan, tally):
 
 
 def result_files(plan, tally):
-    """{name: text or bytes} of survival.csv, counts.csv (or portrait.npy, or velocity.csv)
-    and sample.csv."""
+    """{name: text or bytes} of survival.csv, counts.csv (or portrait.npy, or velocity.csv),
+    joint.csv (scenes that record it) and sample.csv."""
     sc = plan.scene
     files = {}
     if sc.kind == "phase-space":
@@ -352,6 +439,8 @@ def result_files(plan, tally):
         files["survival.csv"] = rundir.csv_text(["curve", "clock", "x", "p", "p_lo", "p_hi"],
                                                 survival_rows(plan, tally))
         files["counts.csv"] = rundir.csv_text(COUNTS_COLUMNS, counts_rows(plan, tally))
+    if sc.joint:
+        files[JOINT_FILE] = joint_text(plan, tally.joint)
     samples = sorted(tally.samples, key=lambda r: (r[0], r[1], r[2]))
     files["sample.csv"] = rundir.csv_text(
         rundir.sample_columns(sc),

@@ -9,7 +9,9 @@ all hold); file checks name the file and line.
   belongs to a finished chunk that carries picks, at most ``samples_per_chunk`` of them;
 * survival.csv: 0 <= p_lo <= p <= p_hi <= 1 and p non-increasing along each (curve, clock);
 * velocity scenes: at every grid point moving + stuck = particles, and the exact sums are
-  consistent (``reports.runs.velocity.velocity_problems``).
+  consistent (``reports.runs.velocity.velocity_problems``);
+* scenes with a joint record: it has the plan's shape, every particle is in one bin, and its
+  marginals are the histograms of the clocks (``record_problems``, ``reports.runs.joint_file``).
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from fractions import Fraction
 import numpy as np
 
 from reports.runs.counts import Counts, Tally
+from reports.runs.joint_file import joint_problems, marginal_problems
 from reports.runs.velocity import velocity_problems
 
 ARRAYS = ("esc_n", "esc_t", "cens_n", "cens_t", "portrait", "stuck_n", "stuck_t")
@@ -82,6 +85,7 @@ def tally_problems(plan, tally):
     problems += [msg for _, _, msg in curve_problems(plan, tally, done)]
     if plan.scene.kind == "velocity":
         problems += velocity_problems(plan, tally, done)
+    problems += record_problems(plan, tally, done)
     if plan.scene.kind == "phase-space" and int(tally.portrait.sum()) > tally.collisions:
         problems.append(f"{int(tally.portrait.sum())} portrait visits but only"
                         f" {tally.collisions} collisions")
@@ -96,6 +100,17 @@ def tally_problems(plan, tally):
                             f" {plan.samples_per_chunk} are drawn")
             break
     return problems
+
+
+def record_problems(plan, tally, done):
+    """The joint record of a checkpoint's tally: present exactly when the scene asks for it,
+    and consistent (``reports.runs.joint_file``: shape, one bin per particle, marginals)."""
+    if tally.joint is None:
+        return ["no joint record, but the scene asks for one"] if plan.scene.joint else []
+    if not plan.scene.joint:
+        return ["a joint record, but the scene asks for none"]
+    problems = joint_problems(plan, tally.joint, done)
+    return problems or marginal_problems(plan, tally.joint, tally, "checkpoint joint record")
 
 
 def velocity_shape_problems(plan, tally):

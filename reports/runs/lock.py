@@ -17,10 +17,13 @@ from pathlib import Path
 
 from filelock import FileLock, Timeout
 
+from reports.runs.echo import clip
 from reports.runs.provenance import now
+from reports.runs.rundir import read_input_text
 
 LOCK_NAME = ".bouncer.lock"
 HOLDER_NAME = ".bouncer.lock.json"
+MAX_HOLDER_BYTES = 4096  # characters of the holder's record read and shown
 
 
 class RunBusy(ValueError):
@@ -30,10 +33,10 @@ class RunBusy(ValueError):
 def holder(out):
     """The recorded holder of ``out``'s lock as a phrase (or "another process")."""
     try:
-        info = json.loads((Path(out) / HOLDER_NAME).read_text(encoding="utf-8"))
-        return (f"pid {info['pid']} on {info['host']} since {info['started']}"
-                f" ({info['command']})")
-    except (OSError, ValueError, KeyError, TypeError):
+        info = json.loads(read_input_text(Path(out) / HOLDER_NAME, MAX_HOLDER_BYTES))
+        return clip(f"pid {info['pid']} on {info['host']} since {info['started']}"
+                    f" ({info['command']})", MAX_HOLDER_BYTES)
+    except (OSError, ValueError, KeyError, TypeError, RecursionError):
         return "another process"
 
 
@@ -56,6 +59,7 @@ class RunLock:
                 "command": " ".join(["bouncer", *sys.argv[1:]])}
         holder_file = self.out / HOLDER_NAME
         try:
+            holder_file.unlink(missing_ok=True)  # a fresh file: never a FIFO left in its place
             holder_file.write_text(json.dumps(info) + "\n", encoding="utf-8")
         except OSError as err:  # a full disk: no lock held, no half-written holder left
             holder_file.unlink(missing_ok=True)

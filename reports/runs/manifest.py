@@ -42,16 +42,20 @@ from jsonschema import Draft202012Validator, validators
 from jsonschema.exceptions import best_match
 
 from reports.runs.chunk import OVERSTEP_TOLERANCE, VERIFY_DPS
+from reports.runs.echo import clip, integer
+from reports.runs.joint_file import JOINT_FILE
 from reports.runs.plan import COLLISION_DECADES, TIME_DECADES, TIME_FIRST
 from reports.runs.rundir import (
     CARRIED_COLUMNS,
     CHECKPOINT,
     MANIFEST,
+    MAX_JSON_BYTES,
     PROVENANCE,
     SAMPLE_COLUMNS,
+    read_input_text,
     sample_columns,
 )
-from reports.runs.scenes import DRAG_LAWS, KINDS
+from reports.runs.scenes import DENSITIES, DRAG_LAWS, KINDS
 from reports.runs.survival import BAND
 
 STATUSES = ("partial", "complete", "failed")
@@ -67,7 +71,13 @@ COUNT_FIELDS = ("chunks_done", "collisions", "verification", "curves")
 
 def output_files(scene):
     """The result files a run of ``scene`` writes (besides sample.csv)."""
-    return OUTPUTS.get(scene.kind, SURVIVAL_OUTPUTS)
+    return OUTPUTS.get(scene.kind, SURVIVAL_OUTPUTS) + record_files(scene)
+
+
+def record_files(scene):
+    """The files of what a scene asks to record besides its histograms: joint.csv
+    (``[record] joint``, ``reports.runs.joint_file``)."""
+    return (JOINT_FILE,) if scene.joint else ()
 
 
 def hashed_files(scene):
@@ -97,7 +107,12 @@ _SURVIVAL_CURVE = _obj({"particles_done": _INT, "censored": _INT, "stuck": _INT,
 _VELOCITY_CURVE = _obj({"particles_done": _INT, "moving": _INT, "stuck": _INT,
                         "mean_v_at_horizon": {"type": ["number", "null"]}})
 _ALL_FILES = sorted({"scene.toml", "sample.csv", CHECKPOINT, PROVENANCE, *SURVIVAL_OUTPUTS,
-                     *(name for names in OUTPUTS.values() for name in names)})
+                     *(name for names in OUTPUTS.values() for name in names), JOINT_FILE})
+
+# the manifest's scene fields of the start density and the records (``_scene_records``): only
+# where a scene departs from the defaults, so a manifest of a scene without them is unchanged
+_RECORD_FIELDS = {"density": {"enum": [d for d in DENSITIES if d != "uniform"]},
+                  "joint": {"const": True}}
 
 SCHEMA = _obj({
     "status": {"enum": list(STATUSES)},
@@ -108,7 +123,8 @@ SCHEMA = _obj({
                           "time": {"type": ["number", "null"], "exclusiveMinimum": 0}})},
         {"physics": _PHYSICS,
          "physics_per_curve": {"type": "object",
-                               "additionalProperties": {"anyOf": [_PHYSICS, _obj({})]}}}),
+                               "additionalProperties": {"anyOf": [_PHYSICS, _obj({})]}},
+         **_RECORD_FIELDS}),
     "seed": _INT,
     "particles": _POSITIVE_INT,
     "particles_total": _POSITIVE_INT,
@@ -137,7 +153,9 @@ SCHEMA = _obj({
 
 PROVENANCE_SCHEMA = _obj({
     "versions": {"type": "object", "additionalProperties": {"type": ["string", "null"]}},
-    "git": {"anyOf": [{"type": "null"}, _obj({"commit": _TEXT, "dirty": {"type": "boolean"}})]},
+    "git": {"anyOf": [{"type": "null"},
+                      _obj({"commit": _TEXT, "dirty": {"type": "boolean"}},
+                           {"changed": {"type": "array", "items": _TEXT}})]},
     "threads": {"type": ["integer", "null"], "minimum": 1},
     "session": _obj({"scheduler": {"type": ["string", "null"]},
                      "workers": {"type": ["integer", "null"], "minimum": 0},
@@ -166,32 +184,32 @@ _Validator = validators.extend(
     type_checker=Draft202012Validator.TYPE_CHECKER.redefine_many(
         {"integer": _is_integer, "number": _is_number}))
 
-MAX_MESSAGE = 200  # characters of the offending value shown in an error
+MAX_MESSAGE = 200  # characters of the schema's message (which shows the offending value)
 
 
 def check(obj, schema, where):
     """ValueError (one line: ``where: field a.b: what is wrong``) unless ``obj`` fits
-    ``schema``."""
+    ``schema``; the field's path and the message are clipped."""
     error = best_match(_Validator(schema).iter_errors(obj))
     if error is None:
         return
-    field = ".".join(map(str, error.absolute_path))
-    message = error.message if len(error.message) <= MAX_MESSAGE else \
-        error.message[:MAX_MESSAGE] + " ..."
+    field = clip(".".join(map(str, error.absolute_path)))
+    message = clip(error.message, MAX_MESSAGE)
     raise ValueError(f"{where}: {'field ' + field + ': ' if field else ''}{message}"
                      .replace("\n", " "))
 
 
 def _json_of(path):
-    """The JSON value in ``path``; ValueError naming the file if it is not UTF-8 JSON."""
+    """The JSON value in ``path``; ValueError naming the file if it is not a regular file of
+    at most ``MAX_JSON_BYTES`` holding UTF-8 JSON (an integer of more digits than Python
+    converts, JSON nested too deeply for the parser included)."""
     path = Path(path)
     try:
-        text = path.read_bytes().decode("utf-8")
-        return json.loads(text)
+        text = read_input_text(path, MAX_JSON_BYTES)
     except FileNotFoundError:
         raise ValueError(f"{path}: no such file") from None
-    except UnicodeDecodeError:
-        raise ValueError(f"{path}: not UTF-8 text") from None
+    try:
+        return json.loads(text, parse_int=integer)
     except json.JSONDecodeError as err:
         raise ValueError(f"{path}: not valid JSON ({err})") from None
     except RecursionError:
@@ -202,7 +220,7 @@ def load_manifest(path):
     """The manifest at ``path`` (a manifest.json or the run directory holding it), validated
     against ``SCHEMA``; ValueError with one line otherwise."""
     path = Path(path)
-    if path.is_dir():
+    if path.is_dir() and path.name != MANIFEST:
         path = path / MANIFEST
     manifest = _json_of(path)
     check(manifest, SCHEMA, path)
@@ -271,6 +289,17 @@ def _scene(plan):
                                     for e, x in enumerate(plan.experiments)}
     elif not sc.elastic:
         out["physics"] = sc.physics()
+    out.update(_scene_records(sc))
+    return out
+
+
+def _scene_records(scene):
+    """The manifest's scene fields of a non-uniform start density and of a joint record."""
+    out = {}
+    if scene.density != "uniform":
+        out["density"] = scene.density
+    if scene.joint:
+        out["joint"] = True
     return out
 
 

@@ -55,6 +55,11 @@ MAX_RUN_S = 365.25 * 86400  # refuse runs estimated above one year of that machi
 SAMPLE_ROW_BYTES = 500  # one verified sample row: ~250 B in sample.csv, as much in the checkpoint
 
 
+# joint.csv and the checkpoint's joint record, per curve: 35-47 KB at 10^5-10^6 particles per
+# curve (paper-escape, paper-transport), growing ~25% per decade of particles
+JOINT_CURVE_BYTES = 100_000
+
+
 @dataclass
 class Plan:
     """What a run computes: the scene with its particle count and seed, chunks and bins."""
@@ -138,10 +143,13 @@ def make_plan(scene, particles=None, seed=None):
 def estimate(plan):
     """(seconds, bytes) a run needs: seconds = particles / PARTICLES_PER_S (2 cores, a
     paper-escape-like scene), bytes = the verification sample twice (sample.csv, checkpoint)
-    plus 1 MB of histograms and manifest."""
+    plus 1 MB of histograms and manifest, plus ``JOINT_CURVE_BYTES`` per curve of a joint
+    record."""
     seconds = plan.particles_total / PARTICLES_PER_S
     rows = min(plan.sampled_chunks * plan.samples_per_chunk, plan.particles_total)
-    return seconds, rows * SAMPLE_ROW_BYTES + 10**6
+    joint = JOINT_CURVE_BYTES * sum(len(x.curves) for x in plan.experiments) if \
+        plan.scene.joint else 0
+    return seconds, rows * SAMPLE_ROW_BYTES + 10**6 + joint
 
 
 def check_size(plan):
@@ -155,13 +163,31 @@ def check_size(plan):
             f" is {MAX_RUN_S * PARTICLES_PER_S:.2g} particles in all (one year): use fewer")
 
 
+def draw_starts(rng, phi_box, v_box, m, density):
+    """m starts (phi, v) on the box phi_box x v_box from ``rng``, phi drawn first, with the
+    scene's ``density`` (``scenes.DENSITIES``):
+
+        uniform   phi = phi_lo + (phi_hi - phi_lo) * U                        (U uniform)
+        sine      density ~ sin(pi x) sin(pi y), x, y the box's scaled coordinates:
+                  x = arccos(1 - 2U) / pi, the inverse of its distribution (1 - cos(pi x)) / 2
+
+    (the uniform draws are ``Generator.uniform``, as they always were)."""
+    if density == "uniform":
+        return rng.uniform(phi_box[0], phi_box[1], m), rng.uniform(v_box[0], v_box[1], m)
+    if density == "sine":
+        x = np.arccos(1.0 - 2.0 * rng.random(m)) / math.pi
+        y = np.arccos(1.0 - 2.0 * rng.random(m)) / math.pi
+        return (phi_box[0] + (phi_box[1] - phi_box[0]) * x,
+                v_box[0] + (v_box[1] - v_box[0]) * y)
+    raise ValueError(f"unknown start density {density!r}")
+
+
 def chunk_starts(plan, e, k):
     """Starts (phi, v) and verification picks (slot, target) of chunk k of experiment e."""
     exp = plan.experiments[e]
     m = plan.chunk_particles(k)
     rng = np.random.default_rng(np.random.SeedSequence(plan.seed, spawn_key=(e, k)))
-    phi = rng.uniform(exp.phi[0], exp.phi[1], m)
-    v = rng.uniform(exp.v[0], exp.v[1], m)
+    phi, v = draw_starts(rng, exp.phi, exp.v, m, plan.scene.density)
     s = min(plan.samples_per_chunk, m) if plan.sampled(e, k) else 0
     picks = rng.choice(m, size=s, replace=False)
     depth = min(plan.scene.max_collisions or SAMPLE_DEPTH, SAMPLE_DEPTH)

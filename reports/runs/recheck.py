@@ -22,7 +22,10 @@ invalid scene.toml is not audited at all: ValueError, exit status 2.
    tau - tau_ref > 16*kappa*u*tau_ref fails the check;
 6. the seed: every row is a verification pick drawn from the manifest's seed, and its state is
    replayed from the start drawn from the seed (``reports.runs.replay``);
-7. every field of the manifest equals the one the run's writer builds from scene.toml, the
+7. joint.csv (scenes with ``[record] joint``): equal to the one written from the checkpoint,
+   every row a bin of this run, every particle in one bin, and its marginals equal to
+   counts.csv's histograms (``reports.runs.joint_file``);
+8. every field of the manifest equals the one the run's writer builds from scene.toml, the
    seed, the particle count, the checkpoint and the recomputed sample (``manifest.build``), and
    the status is complete.
 """
@@ -42,7 +45,15 @@ from reports.runs import rundir
 from reports.runs.chunk import OVERSTEP_TOLERANCE, check_sample
 from reports.runs.counts import CheckpointError, Tally
 from reports.runs.driver import result_files, survival_rows
+from reports.runs.echo import clip
 from reports.runs.integrity import curve_problems, parse_counts, survival_problems, tally_problems
+from reports.runs.joint_file import (
+    JOINT_FILE,
+    joint_problems,
+    joint_text,
+    marginal_problems,
+    parse_joint,
+)
 from reports.runs.plan import make_plan
 from reports.runs.replay import SampleRow, replay_problems
 from reports.runs.rundir import CARRIED_COLUMNS
@@ -50,39 +61,69 @@ from reports.runs.scenes import parse_scene
 from reports.runs.velocity import file_problems as velocity_file_problems
 
 SHOWN = 5  # discrepancies shown per check; the count of all of them is reported
+SHOWN_LINE = 300  # characters of a line shown in a discrepancy
 _SURVIVAL = "counts.csv and survival.csv"
 _REDERIVED = {"phase-space": "portrait.npy", "velocity": "velocity.csv"}
+_JOINT_CHECKED = "joint.csv (against the checkpoint, its marginals against counts.csv), "
 
 
 def load_run(run_dir):
     """(manifest, scene) of a run directory, the manifest validated against its schema;
     ValueError (one line naming the file) if it is not a readable run directory."""
     run_dir = Path(run_dir)
-    if not (run_dir / rundir.MANIFEST).is_file() or not (run_dir / "scene.toml").is_file():
+    if not (run_dir / rundir.MANIFEST).exists() or not (run_dir / "scene.toml").exists():
         raise ValueError(f"{run_dir} is not a run directory (no manifest.json and scene.toml)")
     manifest = manifests.load_manifest(run_dir / rundir.MANIFEST)
-    try:
-        text = (run_dir / "scene.toml").read_bytes().decode("utf-8")
-    except UnicodeDecodeError:
-        raise ValueError(f"{run_dir / 'scene.toml'}: not UTF-8 text") from None
-    return manifest, parse_scene(text, f"{run_dir / 'scene.toml'}")
+    return manifest, read_scene(run_dir)
+
+
+def read_scene(run_dir):
+    """The scene of the run directory's scene.toml (a regular UTF-8 file of bounded size, a
+    valid scene); ValueError naming the file otherwise."""
+    path = Path(run_dir) / "scene.toml"
+    return parse_scene(rundir.read_input_text(path, rundir.MAX_SCENE_BYTES), str(path))
 
 
 def _text(path):
+    """The UTF-8 text of an output file, or None (missing, not a regular file of bounded size,
+    not UTF-8): the checks that need it report it."""
     try:
-        return path.read_bytes().decode("utf-8")
-    except (OSError, UnicodeDecodeError):
+        return rundir.read_input_text(path)
+    except (OSError, ValueError):
         return None
 
 
 def _compare(name, expected, found, what):
-    """Line-by-line differences of two texts: ["name:LINE: ..."]."""
+    """Differences of two texts, byte for byte: one line if the line ends differ (CRLF or CR
+    where the writer writes LF), then ["name:LINE: ..."] per line whose text differs, the line
+    counts if they differ, and one line for any other difference of bytes."""
+    if expected == found:
+        return []
+    out = []
+    ends = _line_ends(found)
+    if ends != _line_ends(expected):
+        out.append(f"{name}: its lines end in {ends}, {what}'s in {_line_ends(expected)} (the"
+                   " comparison is byte for byte)")
     exp, got = expected.splitlines(), found.splitlines()
-    out = [f"{name}:{i}: {what} has {e!r}, the file {g!r}"
-           for i, (e, g) in enumerate(zip(exp, got, strict=False), start=1) if e != g]
+    out += [f"{name}:{i}: {what} has {_shown(e)}, the file {_shown(g)}"
+            for i, (e, g) in enumerate(zip(exp, got, strict=False), start=1) if e != g]
     if len(exp) != len(got):
         out.append(f"{name}: {len(got)} lines, {what} has {len(exp)}")
+    if not out:  # the same lines and line ends, other bytes: the end of the last line
+        out.append(f"{name}: the end of its last line differs from {what}'s")
     return out
+
+
+def _line_ends(text):
+    """How the lines of a text end: "LF", "CRLF", "CR" or a mixture of them."""
+    crlf = text.count("\r\n")
+    kinds = [kind for kind, count in (("LF", text.count("\n") - crlf), ("CRLF", crlf),
+                                      ("CR", text.count("\r") - crlf)) if count]
+    return " and ".join(kinds) or "no line end"
+
+
+def _shown(line):
+    return repr(clip(line, SHOWN_LINE))
 
 
 def _hashes(run_dir, manifest, expected):
@@ -93,11 +134,30 @@ def _hashes(run_dir, manifest, expected):
             for name in recorded if name not in expected]
     for name, digest in recorded.items():
         path = run_dir / name
-        if not path.is_file():
+        try:
+            if rundir.sha256_file(path) != digest:
+                out.append(f"{name}: SHA-256 differs from the manifest's (edited or corrupted)")
+        except FileNotFoundError:
             out.append(f"{name}: missing (the manifest records its hash)")
-        elif rundir.sha256_file(path) != digest:
-            out.append(f"{name}: SHA-256 differs from the manifest's (edited or corrupted)")
+        except (OSError, ValueError) as err:  # a FIFO, a directory, a device, too large
+            out.append(f"{name}: {_reason(err, path)}")
     return out
+
+
+def _reason(err, path):
+    """What is wrong with an unreadable file, without its path (the line names it)."""
+    text = rundir.os_error_text(err) if isinstance(err, OSError) else str(err)
+    return text.removeprefix(f"{path}: ")
+
+
+def _provenance(run_dir):
+    """provenance.json must be the record its schema describes (``manifest.PROVENANCE_SCHEMA``);
+    its content cannot be checked beyond that (how and when the run was made)."""
+    try:
+        manifests.load_provenance(run_dir)
+    except ValueError as err:
+        return [str(err).replace(f"{Path(run_dir) / rundir.PROVENANCE}", rundir.PROVENANCE, 1)]
+    return []
 
 
 def _outputs(run_dir, plan, tally):
@@ -106,9 +166,11 @@ def _outputs(run_dir, plan, tally):
     out = []
     written = result_files(plan, tally) if tally is not None else {}
     if plan.scene.kind == "phase-space":
-        path = run_dir / "portrait.npy"
-        if tally is not None and (not path.is_file()
-                                  or path.read_bytes() != written["portrait.npy"]):
+        try:
+            data = rundir.read_input(run_dir / "portrait.npy")
+        except (OSError, ValueError):
+            data = None
+        if tally is not None and data != written["portrait.npy"]:
             out.append("portrait.npy: differs from the checkpoint's portrait (or is missing)")
     elif plan.scene.kind == "velocity":
         text = _text(run_dir / "velocity.csv")
@@ -148,6 +210,31 @@ def _outputs(run_dir, plan, tally):
         out.append("sample.csv is missing or not UTF-8 text")
     elif tally is not None:
         out += _compare("sample.csv", written["sample.csv"], sample_text, "the checkpoint")
+    return out
+
+
+def _joint_outputs(run_dir, plan, tally):
+    """Step 7: joint.csv against the checkpoint, the plan and counts.csv (nothing to check for
+    a scene without a joint record: the hashes step refuses a joint.csv it does not write)."""
+    if not plan.scene.joint:
+        return []
+    text = _text(run_dir / JOINT_FILE)
+    if text is None:
+        return [f"{JOINT_FILE} is missing or not UTF-8 text"]
+    out = []
+    if tally is not None:
+        out += _compare(JOINT_FILE, joint_text(plan, tally.joint), text, "the checkpoint")
+    counts_text = _text(run_dir / "counts.csv")
+    try:
+        joint, problems = parse_joint(plan, text)
+        counts, _, count_problems, _ = parse_counts(plan, counts_text or "")
+    except csv.Error as err:
+        return out + [f"{JOINT_FILE} or counts.csv: not readable as CSV ({err})"]
+    out += problems
+    out += [f"{JOINT_FILE}: {msg}" for msg in
+            joint_problems(plan, joint, [plan.particles] * len(plan.experiments))]
+    if not count_problems:  # (counts.csv's own problems are reported by _outputs)
+        out += marginal_problems(plan, joint, counts)
     return out
 
 
@@ -254,18 +341,22 @@ def recheck(run_dir, progress=False):
     manifest, scene = load_run(run_dir)
     status = manifest["status"]
     lines = [f"run {run_dir}: scene {scene.name}, status {status}"]
-    if not (run_dir / "sample.csv").is_file() and status != "complete":
+    if not (run_dir / "sample.csv").exists() and status != "complete":
         raise ValueError(f"{run_dir} has no sample.csv (status {status}): nothing to verify yet")
     try:
         plan = make_plan(scene, manifest["particles"], manifest["seed"])
     except ValueError as err:
         raise ValueError(f"{run_dir / 'scene.toml'}: {err}") from None
     problems = _hashes(run_dir, manifest, manifests.hashed_files(scene))
+    problems += _provenance(run_dir)
     try:
+        if (run_dir / rundir.CHECKPOINT).exists():  # (a missing one: Tally.load says so)
+            rundir.check_input(run_dir / rundir.CHECKPOINT)
         tally = Tally.load(run_dir / rundir.CHECKPOINT)
-    except CheckpointError as err:
+    except (CheckpointError, OSError, ValueError) as err:
         tally = None
-        problems.append(str(err))
+        problems.append(str(err) if isinstance(err, CheckpointError) else
+                        f"{rundir.CHECKPOINT}: {_reason(err, run_dir / rundir.CHECKPOINT)}")
     if tally is not None:
         invariants = tally_problems(plan, tally)
         problems += [f"{rundir.CHECKPOINT}: {msg}" for msg in invariants]
@@ -275,6 +366,7 @@ def recheck(run_dir, progress=False):
             problems.append(f"{rundir.CHECKPOINT}: {len(tally.finished)} of {plan.n_chunks}"
                             " chunks finished")
     problems += _outputs(run_dir, plan, tally)
+    problems += _joint_outputs(run_dir, plan, tally)
     rows, worst, overstepped, sample_problems, parsed = _sample(run_dir, scene, progress)
     problems += sample_problems
     bar = _bar(progress, len(parsed), "replay from the seed")
@@ -290,10 +382,11 @@ def recheck(run_dir, progress=False):
         f" (recorded {recorded:.3g}), {len(overstepped)} overstepped"
         f" (tolerance {OVERSTEP_TOLERANCE:g} kappa*u)",
         f"checked: content hashes, checkpoint invariants, {_REDERIVED.get(scene.kind, _SURVIVAL)}"
-        " re-derived, sample.csv, the sample replayed from the seed, every field of the"
+        f" re-derived, {_JOINT_CHECKED if scene.joint else ''}"
+        "sample.csv, the sample replayed from the seed, every field of the"
         " manifest",
-        f"not audited: {rundir.PROVENANCE} (how and when the run was made; only its hash is"
-        " checked)",
+        f"not audited: the content of {rundir.PROVENANCE} (how and when the run was made;"
+        " its hash and its schema are checked)",
     ]
     for problem in problems[:SHOWN * 4]:
         lines.append(problem)

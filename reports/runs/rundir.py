@@ -7,6 +7,8 @@
     scene.toml       the scene text the run used (rerun: ``bouncer run RUN/scene.toml``)
     survival.csv     curve,clock,x,p,p_lo,p_hi     (escape and transport scenes)
     counts.csv       experiment,curve,clock,outcome,lower_edge,count   (the raw histograms)
+    joint.csv        experiment,outcome,n_lower_edge,t_lower_edge,count (``[record] joint``:
+                     the joint histogram of (n, t), ``reports.runs.joint_file``)
     portrait.npy     phase-space histogram counts[phi_bin, v_bin]     (phase-space scenes)
     sample.csv       the verification sample, recomputed by ``bouncer verify``
     checkpoint.npz   merged counts and the finished chunks (``--resume``)
@@ -23,6 +25,7 @@ import io
 import json
 import os
 import shutil
+import stat
 from pathlib import Path
 
 import numpy as np
@@ -47,8 +50,8 @@ class RunInterrupted(Exception):
 def os_error_text(err):
     """One line for an OSError, naming its path(s): "PATH: Permission denied"."""
     paths = [str(p) for p in (err.filename, err.filename2) if p is not None]
-    what = err.strerror or type(err).__name__
-    return f"{' -> '.join(paths)}: {what}" if paths else f"{what}: {err}"
+    what = err.strerror or str(err) or type(err).__name__
+    return f"{' -> '.join(paths)}: {what}" if paths else what
 
 
 SAMPLE_COLUMNS = ("experiment", "chunk", "particle", "n", "phi", "v", "phi1", "v1", "tau",
@@ -63,16 +66,102 @@ def sample_columns(scene):
     return SAMPLE_COLUMNS + (CARRIED_COLUMNS if scene.carries else ())
 
 
+# The largest file each reader takes: far above what a run writes (a scene is a few hundred
+# bytes, a manifest a few kilobytes for hundreds of curves; counts.csv, survival.csv and
+# sample.csv hold at most a few megabytes per curve; a checkpoint or portrait.npy at most the
+# 4e6 bins of a portrait), so that a file swapped for something huge is refused before it is
+# read into memory.
+MAX_SCENE_BYTES = 1 << 20
+MAX_JSON_BYTES = 64 << 20
+MAX_DATA_BYTES = 2 << 30
+
+
+class InputError(ValueError):
+    """A file the command reads is not a regular file of bounded size: one line naming it."""
+
+
+def _kind_of(mode):
+    for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return "not a regular file"
+
+
+def _open_input(path, limit):
+    """A file descriptor of ``path`` opened for reading, after checking that it is a regular
+    file of at most ``limit`` bytes (``read_input``)."""
+    path = Path(path)
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            raise InputError(f"{path}: {_kind_of(info.st_mode)}, not a regular file")
+        if info.st_size > limit:
+            raise InputError(f"{path}: {info.st_size} bytes, more than the {limit} this file"
+                             " may hold")
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd
+
+
+def _blocks(fd, path, limit):
+    """The file's content in blocks; ``InputError`` once more than ``limit`` bytes came (a file
+    that grows while it is read)."""
+    size = 0
+    while block := os.read(fd, 1 << 20):
+        size += len(block)
+        if size > limit:
+            raise InputError(f"{path}: more than the {limit} bytes this file may hold")
+        yield block
+
+
+def read_input(path, limit=MAX_DATA_BYTES):
+    """The bytes of ``path``, which must be a regular file (a symbolic link to one is followed)
+    of at most ``limit`` bytes; ``InputError`` naming it otherwise (a FIFO, a device, a
+    directory, a file too large), before anything is read. The file is opened without
+    blocking, so a FIFO in its place cannot hang the reader. A missing file is
+    ``FileNotFoundError``."""
+    fd = _open_input(path, limit)
+    try:
+        return b"".join(_blocks(fd, path, limit))
+    finally:
+        os.close(fd)
+
+
+def read_input_text(path, limit=MAX_DATA_BYTES, bom=False):
+    """``read_input`` decoded as UTF-8; ``InputError`` naming the file if it is not UTF-8 text.
+    With ``bom`` a leading UTF-8 byte-order mark (a spreadsheet's export) is dropped."""
+    data = read_input(path, limit)
+    try:
+        return data.decode("utf-8-sig" if bom else "utf-8")
+    except UnicodeDecodeError as err:
+        raise InputError(f"{path}: not UTF-8 text (byte {err.start})") from None
+
+
+def check_input(path, limit=MAX_DATA_BYTES):
+    """``InputError`` unless ``path`` is a regular file of at most ``limit`` bytes: for readers
+    that open the file themselves (``numpy.load``)."""
+    os.close(_open_input(path, limit))
+
+
 def sha256_bytes(data):
     """SHA-256 (hex) of text (as UTF-8) or bytes: what ``write_atomic`` writes."""
     return hashlib.sha256(data.encode() if isinstance(data, str) else data).hexdigest()
 
 
-def sha256_file(path):
+def sha256_file(path, limit=MAX_DATA_BYTES):
+    """SHA-256 (hex) of the file's bytes; the file as ``read_input`` takes it (a regular file of
+    at most ``limit`` bytes)."""
     h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
+    fd = _open_input(path, limit)
+    try:
+        for block in _blocks(fd, path, limit):
             h.update(block)
+    finally:
+        os.close(fd)
     return h.hexdigest()
 
 
@@ -110,8 +199,7 @@ def write_json(path, obj):
 
 
 def read_json(path):
-    with open(path, encoding="utf-8") as f:
-        return json.load(f)
+    return json.loads(read_input_text(path, MAX_JSON_BYTES))
 
 
 def csv_text(header, rows):
@@ -127,8 +215,7 @@ def write_csv(path, header, rows):
 
 
 def read_csv(path):
-    with open(path, encoding="utf-8", newline="") as f:
-        return list(csv.DictReader(f))
+    return list(csv.DictReader(io.StringIO(read_input_text(path), newline="")))
 
 
 def save_npz_atomic(path, **arrays):
@@ -202,7 +289,7 @@ def missing_folders(out):
 
 
 RUN_FILES = (MANIFEST, PROVENANCE, "scene.toml", CHECKPOINT, "sample.csv", "survival.csv",
-             "counts.csv", "portrait.npy", "velocity.csv")
+             "counts.csv", "portrait.npy", "velocity.csv", "joint.csv")
 
 
 def remove_run_files(out, names=RUN_FILES):

@@ -1,7 +1,7 @@
 """Scenes: small TOML files describing an ensemble run, validated into a frozen dataclass.
 
 A scene gives its ``name`` (a plain file name: it names the run directory), the model
-parameter ``eps``, the initial measure (uniform on a box in phi and v),
+parameter ``eps``, the initial measure (a density on a box in phi and v: ``[start] density``),
 the holes (arcs of collision phase mod 2*pi, each ``[c - w/2, c + w/2)`` for centre c and width w),
 the horizon (a collision count and/or a time), the particle count per curve, the seed and what
 to record. Four kinds:
@@ -21,6 +21,16 @@ and the coefficient of restitution ``restitution`` = r in (0, 1] (impacts v1 - u
 Left out, it is the elastic, drag-free model (drag = 0, "linear", r = 1), and ``Scene.elastic``
 is True: the scene runs the elastic kernels unchanged.
 
+The starts. ``[start] density = "uniform"`` (the default) draws them uniformly on the box;
+``"sine"`` with the density proportional to sin(pi*x) * sin(pi*y), where x and y in [0, 1] are
+the box's scaled coordinates (x = (phi - phi_lo) / (phi_hi - phi_lo), likewise y for v): smooth,
+largest at the centre, zero on the edges. Both are drawn from the chunk's own random generator
+(``plan.chunk_starts``), so they are determined by the seed.
+
+What to record besides the histograms of the clocks: ``[record] joint = true`` (escape and
+transport scenes, both clocks) records the joint histogram of (n, t) of every curve's escapes,
+censored and stuck particles on the two clocks' bins (``reports.runs.joint_file``).
+
 Built-in scenes live in ``reports/runs/builtin_scenes/*.toml`` (package data): ``paper-escape``,
 ``paper-transport``, ``paper-phase-space``, ``dissipation-saturation``. ``load_scene`` takes a
 built-in name or a path.
@@ -31,10 +41,14 @@ from __future__ import annotations
 import math
 import numbers
 import re
+import sys
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
+
+from reports.runs.echo import clip
+from reports.runs.rundir import MAX_SCENE_BYTES, InputError, read_input
 
 TWO_PI = 2.0 * math.pi
 KINDS = ("escape", "transport", "phase-space", "velocity")
@@ -44,13 +58,15 @@ MAX_CHUNK = 2**20
 _TOP = {"name", "kind", "description", "eps", "particles", "seed", "chunk_size", "start",
         "holes", "horizon", "record", "physics"}
 _TABLES = {
-    "start": {"phi", "v"},
+    "start": {"phi", "v", "density"},
     "holes": {"centres", "widths"},
     "horizon": {"collisions", "time"},
-    "record": {"clocks", "bins_per_decade", "verify_samples", "phi_bins", "v_bins", "v_range"},
+    "record": {"clocks", "bins_per_decade", "verify_samples", "phi_bins", "v_bins", "v_range",
+               "joint"},
     "physics": {"restitution", "drag", "drag_law"},
 }
 DRAG_LAWS = ("linear", "quadratic")
+DENSITIES = ("uniform", "sine")  # [start] density: the law of the starts on their box
 
 
 @dataclass(frozen=True)
@@ -95,6 +111,8 @@ class Scene:
     drag: float = 0.0
     drag_law: str = "linear"
     restitutions: tuple[float, ...] = ()
+    density: str = "uniform"
+    joint: bool = False
     source: str = field(default="", compare=False, repr=False)
 
     @property
@@ -145,7 +163,7 @@ class Scene:
             else:
                 for i, c in enumerate(self.hole_centres, start=1):
                     curves = tuple(
-                        (f"{tag}/" if many else "") + f"P{i}{j}"
+                        (f"{tag}/" if many else "") + _pair(i, j, len(self.hole_centres))
                         for j in range(1, len(self.hole_centres) + 1)
                     )
                     name = (f"{tag}/" if many else "") + f"from hole {i}"
@@ -154,9 +172,18 @@ class Scene:
         return out
 
 
+NAME_DIGITS = 4  # significant digits of a number in a curve name
+
+
 def _num(x):
     """Short text of a number for curve names: 1 not 1.0, pi to 4 digits."""
-    return f"{x:.4g}"
+    return f"{x:.{NAME_DIGITS}g}"
+
+
+def _pair(i, j, holes):
+    """The transport curve from hole i to hole j: P12; with 10 holes or more P1-12 (P112 would
+    also be hole 11 to hole 2)."""
+    return f"P{i}{j}" if holes < 10 else f"P{i}-{j}"
 
 
 def _hole_lo(centre, width):
@@ -180,26 +207,58 @@ def load_scene(name_or_path) -> Scene:
     if key in builtin:
         return parse_scene(builtin[key], origin=f"built-in scene {key!r}")
     path = Path(key)
-    if not path.is_file():
+    if not path.exists():
         names = ", ".join(builtin)
-        raise ValueError(f"no scene {key!r}: not a built-in ({names}) and not a file")
+        raise ValueError(f"no scene {clip(repr(key))}: not a built-in ({names}) and not a file")
+    return parse_scene(_scene_text(path), origin=str(path))
+
+
+def _scene_text(path):
+    """The text of a scene file: a regular file (a FIFO or a device could hang the reader) of
+    at most ``rundir.MAX_SCENE_BYTES``, UTF-8 (a leading byte-order mark is dropped)."""
     try:
-        text = path.read_text(encoding="utf-8")
+        data = read_input(path, MAX_SCENE_BYTES)
+    except InputError as err:
+        raise ValueError(f"scene file {err} (a scene is a small TOML file)") from None
+    try:
+        return data.decode("utf-8-sig")
     except UnicodeDecodeError:
         raise ValueError(f"scene file {path} is not UTF-8 text (is it a TOML file?)") from None
-    return parse_scene(text, origin=str(path))
 
 
 def parse_scene(text: str, origin: str = "scene") -> Scene:
-    """Parse and validate TOML text; ValueError with ``origin: what is wrong``."""
+    """Parse and validate TOML text; ValueError with ``origin: what is wrong`` (one line, the
+    values it shows clipped)."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
-        raise ValueError(f"{origin}: not valid TOML: {err}") from None
+        raise ValueError(f"{origin}: not valid TOML: {clip(str(err))}") from None
+    except RecursionError:
+        raise ValueError(f"{origin}: not valid TOML: nested too deeply") from None
+    except ValueError:  # an integer of more digits than Python converts
+        raise ValueError(f"{origin}: {_long_integer(text)}") from None
     try:
         return _validate(data, text)
     except ValueError as err:
-        raise ValueError(f"{origin}: {err}") from None
+        raise ValueError(f"{origin}: {clip(str(err), MESSAGE_CHARACTERS)}") from None
+    except RecursionError:  # a scene's values are never nested deeply
+        raise ValueError(f"{origin}: a value is nested too deeply") from None
+
+
+MESSAGE_CHARACTERS = 400  # of a validation message, the values it shows included
+
+
+def _long_integer(text):
+    """Where a TOML text holds an integer of more digits than Python converts: its line and
+    key, for the message (tomllib names neither)."""
+    limit = sys.get_int_max_str_digits() or 4300
+    found = re.search(rf"\d[\d_]{{{limit},}}", text)
+    if found is None:
+        return "not valid TOML: a number it cannot convert"
+    line = text.count("\n", 0, found.start()) + 1
+    key = text[text.rfind("\n", 0, found.start()) + 1:found.start()].split("=")[0].strip()
+    return (f"line {line} ({clip(key, 40)}): an integer of {len(found.group())} digits, beyond"
+            " any value of a scene")
 
 
 def _validate(data, text):
@@ -245,6 +304,7 @@ def _validate(data, text):
         for w in widths:
             if not 0 < w < TWO_PI:
                 raise ValueError(f"hole width must be in (0, 2*pi), got {w!r}")
+        _check_size(kind, centres, widths)
         if kind == "transport":
             _check_disjoint(centres, widths)
 
@@ -279,13 +339,34 @@ def _validate(data, text):
         start_v=v_box, hole_centres=centres, hole_widths=widths, max_collisions=max_n,
         max_time=max_t, clocks=tuple(c for c in CLOCKS if c in clocks), bins_per_decade=bins,
         verify_samples=samples, chunk_size=chunk, description=description, source=text,
-        **physics, **portrait,
+        **physics, **portrait, **_records(start, record, kind, clocks),
     )
+    _check_distinct(scene)
+    _check_drag(scene)
     for exp in scene.experiments():
         _check_departures(exp, eps)
         if kind == "escape":
             _check_outside(exp)
     return scene
+
+
+def _records(start, record, kind, clocks):
+    """{density, joint}: the law of the starts (``[start] density``) and whether the run
+    records the joint histogram of (n, t) (``[record] joint``); the defaults, uniform starts
+    and no joint record, leave a scene as it was without these keys."""
+    density = start.get("density", "uniform")
+    if not isinstance(density, str) or density not in DENSITIES:
+        raise ValueError(f"start.density must be one of {', '.join(DENSITIES)}, got"
+                         f" {density!r}")
+    joint = record.get("joint", False)
+    if not isinstance(joint, bool):
+        raise ValueError(f"record.joint must be true or false, got {joint!r}")
+    if joint and kind not in ("escape", "transport"):
+        raise ValueError(f"record.joint belongs to escape and transport scenes, not {kind}")
+    if joint and tuple(sorted(clocks)) != tuple(sorted(CLOCKS)):
+        raise ValueError(f"record.joint needs both clocks (record.clocks ="
+                         f" {list(CLOCKS)!r}), got {clocks!r}")
+    return {"density": density, "joint": joint}
 
 
 def _physics(table, kind):
@@ -441,3 +522,116 @@ def _check_outside(exp):
                 f"the start box phi in {list(exp.phi)} overlaps the hole of {exp.name!r};"
                 " use a transport scene for starts on a hole"
             )
+
+
+# ------------------------------------------------------------------ distinct experiments
+
+
+def _check_distinct(scene):
+    """Every experiment and every curve of the scene has a name of its own.
+
+    The experiments are the product holes.centres x holes.widths (each centre with each
+    width; transport: each width with all the centres), or one per restitution of a velocity
+    scene, and a curve is named by the values that made it. A value listed twice (0.2 and
+    0.20000000000000001 are one float; 0 and -0.0, and a centre and the same centre plus 2*pi,
+    are one hole) would run one experiment twice, and values that differ only beyond the
+    NAME_DIGITS significant digits a name shows would give two experiments one name: their
+    counts would merge in counts.csv and survival.csv. Both are refused, naming the values;
+    then, whatever made them, two experiments or two curves of one name."""
+    lists = {"holes.centres": scene.hole_centres, "holes.widths": scene.hole_widths,
+             "physics.restitution": scene.restitutions}
+    for key, values in lists.items():
+        hint = _PRODUCT if key.startswith("holes") else "one curve per restitution"
+        for first, value in _pairs_alike(values, key == "holes.centres"):
+            if repr(first) == repr(value):
+                raise ValueError(f"{key} lists {value!r} twice ({hint})")
+            if key == "holes.centres" and _same_phase(first, value):
+                raise ValueError(f"{key} {first!r} and {value!r} are the same hole (mod"
+                                 f" 2*pi) ({hint})")
+            if first == value:
+                raise ValueError(f"{key} {first!r} and {value!r} are the same value ({hint})")
+            raise ValueError(f"{key} {first!r} and {value!r} both show as {_num(value)} in"
+                             f" curve names ({NAME_DIGITS} significant digits): make them"
+                             f" differ within {NAME_DIGITS} digits")
+    experiments = scene.experiments()
+    for what, names in (("experiments", [x.name for x in experiments]),
+                        ("curves", [c for x in experiments for c in x.curves])):
+        twice = sorted({n for n in names if names.count(n) > 1})
+        if twice:
+            raise ValueError(f"two {what} are named {twice[0]!r}: each needs a name of its own")
+
+
+_PRODUCT = ("the experiments are holes.centres x holes.widths, each centre with each width:"
+            " list each value once")
+
+
+def _pairs_alike(values, phases):
+    """The first pair of values (earlier, later) that are equal, print alike in a name, or
+    (``phases``) are one point mod 2*pi; none if there is no such pair. Sorted, so the values
+    of a long list are compared with their neighbours only."""
+    def alike(a, b):
+        return a == b or _num(a) == _num(b) or (phases and _same_phase(a, b))
+
+    order = {}
+    for i, value in enumerate(values):
+        order.setdefault(_num(value), []).append(i)
+    found = [(ii[0], ii[1]) for ii in order.values() if len(ii) > 1]
+    if phases and len(values) > 1:
+        ranked = sorted(range(len(values)), key=lambda i: values[i] % TWO_PI)
+        found += [(min(a, b), max(a, b)) for a, b in zip(ranked, ranked[1:] + ranked[:1],
+                                                          strict=True)
+                  if a != b and alike(values[a], values[b])]
+    if not found:
+        return []
+    i, j = min(found, key=lambda ij: (ij[1], ij[0]))
+    return [(values[i], values[j])]
+
+
+MAX_CURVES = 10_000  # curves of a scene: counts.csv, survival.csv and the manifest hold each
+
+
+def _check_size(kind, centres, widths):
+    """At most MAX_CURVES curves: centres x widths (escape), widths x centres**2 (transport:
+    every hole to every hole), before anything is built from them."""
+    curves = len(centres) * len(widths) * (len(centres) if kind == "transport" else 1)
+    if curves > MAX_CURVES:
+        raise ValueError(f"{len(centres)} holes.centres and {len(widths)} holes.widths make"
+                         f" {curves} curves, more than the {MAX_CURVES} a run holds")
+
+
+def _same_phase(a, b):
+    """Whether phases a and b are one point mod 2*pi, up to the rounding of reducing them: a
+    few ulps of the larger of |a|, |b| and 2*pi."""
+    gap = (a - b) % TWO_PI
+    return min(gap, TWO_PI - gap) <= 4 * math.ulp(max(abs(a), abs(b), TWO_PI))
+
+
+# ------------------------------------------------------------------ what the model can run
+
+PHASE_ERROR = 4 * math.ulp(TWO_PI)  # a step's bound on the error of its phase (3.6e-15)
+
+
+def _check_drag(scene):
+    """The drag must not stop a particle faster than one step can resolve a flight.
+
+    Drag k slows a particle of speed V at the rate k (linear, V' = -k*V) or k*V (quadratic,
+    V' = -k*V**2): it stops it within 1/rate. Once the rate is large the particle rides the
+    plate in hops of about that duration (flights of order 1/k). A step's phase is good to
+    PHASE_ERROR = 4 ulps of 2*pi (docs/fastpath.md), so a flight shorter than that is below the
+    resolution of the collision map, and the flight solvers' error bounds no longer separate
+    its root from zero (their rounding bound is relative to a phase of order 1): float64 cannot
+    run such a scene. So 1/rate >= PHASE_ERROR at the scene's largest speed V, the fastest
+    start (|v| at either end of start.v) plus the 2*|eps| an impact can add; for the
+    quadratic law that bounds k*V."""
+    if scene.drag == 0.0:
+        return
+    speed = max(abs(scene.start_v[0]), abs(scene.start_v[1])) + 2.0 * abs(scene.eps)
+    largest = 1.0 / PHASE_ERROR if scene.drag_law == "linear" else 1.0 / (PHASE_ERROR * speed)
+    if scene.drag <= largest:
+        return
+    rate = scene.drag if scene.drag_law == "linear" else scene.drag * speed
+    raise ValueError(
+        f"physics.drag = {scene.drag:.6g} ({scene.drag_law}) stops a particle of speed"
+        f" {speed:.3g} (the fastest start plus 2*|eps|) within {1.0 / rate:.3g} time units,"
+        f" shorter than the {PHASE_ERROR:.2g} a step resolves: float64 cannot run these"
+        f" flights; drag must be <= {largest:.3g} here")

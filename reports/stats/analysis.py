@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 from reports.stats import regimes as rg
-from reports.stats.likelihood import LAWS, PARAMS, fit_law, window_of
+from reports.stats.likelihood import BETA_MAX, LAWS, PARAMS, fit_law, window_of
 from reports.stats.selection import INCONCLUSIVE, choose
 
 SHIFT_DECADES = 0.25
@@ -156,8 +156,27 @@ def _value(v):
 
 
 def _param_text(model, name):
+    return f"{name}={_value(model[name])} {interval_text(model, name)}"
+
+
+def interval_text(model, name):
+    """The 95% interval of parameter ``name`` of a fitted law (``model``: a dict holding
+    ``name`` and ``name_ci95``, or a LawFit's params with ``ci95``), with words for the ends
+    the data do not bound: an infinite end is "unbounded"; the stretched law's c is unbounded
+    above whenever beta's interval reaches 0, for the power law (beta -> 0, c -> inf) is then
+    inside it, whatever finite number the search stopped at; an end of beta at 0 or BETA_MAX is
+    the end of the range fitted."""
     lo, hi = model.get(f"{name}_ci95", (None, None))
-    return f"{name}={_value(model[name])} [{_value(lo)}, {_value(hi)}]"
+    if name == "c" and model.get("beta_ci95", (None, None))[0] == 0.0:
+        return f"[{_end(lo)}, unbounded: beta's interval reaches 0, the power law]"
+    if name == "beta":
+        return (f"[{_end(lo)}{' (the power law)' if lo == 0.0 else ''}, {_end(hi)}"
+                f"{' (the largest beta fitted)' if hi == BETA_MAX else ''}]")
+    return f"[{_end(lo)}, {_end(hi)}]"
+
+
+def _end(v):
+    return "unbounded" if v is None or (isinstance(v, float) and math.isinf(v)) else f"{v:.4g}"
 
 
 def best_law_text(result):

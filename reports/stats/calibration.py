@@ -26,6 +26,7 @@ import sys
 
 import numpy as np
 
+from fastpath.kernels.histogram import log_edges
 from reports.stats.analysis import analyse
 from reports.stats.histogram import Curve, bin_means, survival_boundaries
 from reports.stats.likelihood import LAWS, PARAMS
@@ -40,9 +41,8 @@ SIZES = (300, 10_000, 1_000_000, 100_000_000)
 
 
 def grid_edges(decades=6, per_decade=20):
-    """Integer log lower edges 1..10**decades (as ``fastpath.kernels.escape.log_edges``)."""
-    k = np.arange(decades * per_decade + 1)
-    return np.unique(np.round(10.0 ** (k / per_decade)))
+    """Integer log lower edges 1..10**decades: the runs' collision bins."""
+    return log_edges(1.0, decades, per_decade, integer=True)
 
 
 def survival(law, params, x):

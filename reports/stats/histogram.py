@@ -24,9 +24,6 @@ Run directories (``bouncer run``): ``manifest.json`` (per experiment ``particles
 ``experiment,clock,outcome,lower_edge,count``. The bin grid is rebuilt from ``bins`` exactly as
 the runner built it (``fastpath.kernels.histogram.log_edges``): collisions
 unique(round(10**(k/per_decade))), time [0] + first*10**(k/per_decade); the last bin is open.
-numpy's vectorised power may differ in the last bits between machines (its SIMD code paths), so
-a recorded edge is matched to the grid edge within ``EDGE_ULPS`` units in the last place; the
-grid's neighbouring edges lie a factor 10**(1/per_decade) apart, far beyond that.
 
 CSV histograms: header ``lower,upper,count``, rows counting lower <= X < upper, increasing and
 not overlapping (gaps are empty bins), edges in [0, 2**53] and counts adding up to at most 2**53
@@ -37,13 +34,17 @@ not overlapping (gaps are empty bins), edges in [0, 2**53] and counts adding up 
 from __future__ import annotations
 
 import csv
+import io
 import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from fastpath.kernels.histogram import log_edges
+from reports.runs.echo import clip
 from reports.runs.manifest import load_manifest
+from reports.runs.rundir import read_input_text
 
 CLOCKS = ("collisions", "time")
 # Counts and clock values up to 2**53: float64, in which the fits work, holds every integer up
@@ -51,7 +52,6 @@ CLOCKS = ("collisions", "time")
 # integers merge, would be silently rounded).
 MAX_COUNT = 2**53
 MAX_CLOCK = float(2**53)
-EDGE_ULPS = 16  # a recorded bin edge is the grid's edge within this many units in the last place
 
 
 @dataclass(frozen=True)
@@ -93,48 +93,38 @@ def bin_means(edges, clock):
 def run_edges(bins, clock):
     """Lower bin edges of a run's clock, rebuilt from the manifest's ``bins`` entry."""
     spec = bins[clock]
-    k = np.arange(int(spec["decades"]) * int(spec["per_decade"]) + 1)
-    edges = float(spec["first"]) * 10.0 ** (k / int(spec["per_decade"]))
-    if spec.get("integer"):
-        edges = np.unique(np.round(edges))
+    edges = log_edges(float(spec["first"]), int(spec["decades"]), int(spec["per_decade"]),
+                      integer=bool(spec.get("integer")))
     if "below_first" in spec:
         edges = np.concatenate([[float(spec["below_first"][0])], edges])
     return edges.astype(np.float64)
-
-
-def grid_index(edges, edge):
-    """Index of the grid edge that ``edge`` is, within ``EDGE_ULPS`` units in the last place
-    (module docstring), or None."""
-    k = int(np.searchsorted(edges, edge))
-    for i in (k - 1, k):
-        if 0 <= i < len(edges) and abs(edges[i] - edge) <= EDGE_ULPS * np.spacing(edges[i]):
-            return i
-    return None
 
 
 def _int_count(text, where):
     try:
         value = float(text)
     except ValueError:
-        raise ValueError(f"{where}: count {text!r} is not a number") from None
-    if not math.isfinite(value) or value != int(value):
-        raise ValueError(f"{where}: count {text!r} is not an integer")
+        raise ValueError(f"{where}: count {clip(repr(text))} is not a number") from None
+    if not math.isfinite(value) and text.strip().lstrip("+").isdigit():
+        value = math.inf  # an integer beyond float64: above 2**53 below
+    elif not math.isfinite(value) or value != int(value):
+        raise ValueError(f"{where}: count {clip(repr(text))} is not an integer")
     if value < 0:
-        raise ValueError(f"{where}: negative count {text}")
+        raise ValueError(f"{where}: negative count {clip(text)}")
     if value > MAX_COUNT:
-        raise ValueError(f"{where}: count {text} is above 2**53 = {MAX_COUNT}, the largest"
-                         " count float64 holds exactly")
+        raise ValueError(f"{where}: count {clip(text)} is above 2**53 = {MAX_COUNT}, the"
+                         " largest count float64 holds exactly")
     return int(value)
 
 
 def read_run(path, clocks=CLOCKS):
     """Curves (experiment order of the manifest, then clock, then outcome) of a run directory."""
     path = Path(path)
-    if not (path / "manifest.json").is_file():
+    if not (path / "manifest.json").exists():
         raise ValueError(f"{path}: no manifest.json (not a run directory)")
     manifest = load_manifest(path / "manifest.json")  # its schema: one line if malformed
     counts_file = path / "counts.csv"
-    if not counts_file.is_file():
+    if not counts_file.exists():
         kind = manifest["scene"]["kind"]
         if kind in ("phase-space", "velocity"):  # these kinds record no survival counts
             raise ValueError(f"{path}: a {kind} run has no survival counts to fit (no counts.csv;"
@@ -142,12 +132,13 @@ def read_run(path, clocks=CLOCKS):
         raise ValueError(f"{path}: no counts.csv")
     experiments = manifest["curves"]
     rows = {}
-    with open(counts_file, newline="", encoding="utf-8") as f:
+    text = read_input_text(counts_file)
+    with io.StringIO(text, newline="") as f:
         reader = csv.reader(f)
         header = next(reader, None)
         if header != ["experiment", "clock", "outcome", "lower_edge", "count"]:
             raise ValueError(f"{counts_file}: header must be experiment,clock,outcome,"
-                             f"lower_edge,count, got {header}")
+                             f"lower_edge,count, got {clip(header)}")
         for line, row in enumerate(reader, start=2):
             where = f"{counts_file}:{line}"
             if len(row) != 5:
@@ -156,7 +147,8 @@ def read_run(path, clocks=CLOCKS):
             try:
                 edge = float(edge)
             except ValueError:
-                raise ValueError(f"{where}: lower_edge {edge!r} is not a number") from None
+                raise ValueError(f"{where}: lower_edge {clip(repr(edge))} is not a number") \
+                    from None
             key = (exp, clock, outcome)
             rows.setdefault(key, []).append((edge, _int_count(count, where)))
     curves = []
@@ -171,8 +163,8 @@ def read_run(path, clocks=CLOCKS):
             for outcome in [*outcomes, "censored"]:
                 counts = np.zeros(len(edges), dtype=np.int64)
                 for edge, count in rows.get((exp, clock, outcome), []):
-                    k = grid_index(edges, edge)
-                    if k is None:
+                    k = np.searchsorted(edges, edge)
+                    if k == len(edges) or edges[k] != edge:
                         raise ValueError(f"{counts_file}: {exp}/{clock}/{outcome}: lower_edge "
                                          f"{edge!r} is not on the manifest's bin grid")
                     counts[k] += count
@@ -195,16 +187,15 @@ def read_run(path, clocks=CLOCKS):
 def read_csv_histogram(path, clock="time"):
     """The one curve of a ``lower,upper,count`` CSV histogram (module docstring)."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
+    try:  # a regular file of bounded size; a byte-order mark (a spreadsheet's export) dropped
+        text = read_input_text(path, bom=True)
     except FileNotFoundError:
         raise ValueError(f"{path}: no such file") from None
-    except UnicodeDecodeError:
-        raise ValueError(f"{path}: not a text file") from None
     reader = csv.reader(text.splitlines())
     header = [h.strip() for h in next(reader, [])]
     if header != ["lower", "upper", "count"]:
-        raise ValueError(f"{path}: header must be lower,upper,count, got {','.join(header)!r}")
+        raise ValueError(f"{path}: header must be lower,upper,count, got"
+                         f" {clip(repr(','.join(header)))}")
     lower, upper, counts = [], [], []
     censored = None  # count of the censored row, once read
     total = 0
@@ -217,7 +208,8 @@ def read_csv_histogram(path, clock="time"):
         try:
             lo, hi = float(row[0]), float(row[1])
         except ValueError:
-            raise ValueError(f"{where}: bin edges {row[0]!r}, {row[1]!r} are not numbers") from None
+            raise ValueError(f"{where}: bin edges {clip(repr(row[0]))}, {clip(repr(row[1]))}"
+                             " are not numbers") from None
         count = _int_count(row[2], where)
         total += count
         if total > MAX_COUNT:
@@ -226,17 +218,18 @@ def read_csv_histogram(path, clock="time"):
         if censored is not None:
             raise ValueError(f"{where}: rows after the censored row (upper = inf)")
         if not math.isfinite(lo) or math.isnan(hi) or not lo < hi:
-            raise ValueError(f"{where}: bins not increasing: lower {row[0]} upper {row[1]}")
+            raise ValueError(f"{where}: bins not increasing: lower {clip(row[0])} upper"
+                             f" {clip(row[1])}")
         if lo < 0 or (math.isfinite(hi) and hi > MAX_CLOCK):
-            raise ValueError(f"{where}: bin edges {row[0]}, {row[1]} outside [0, 2**53]: clock"
-                             " values (collisions, time) are >= 0, and float64 cannot tell"
-                             " neighbouring ones apart above 2**53")
+            raise ValueError(f"{where}: bin edges {clip(row[0])}, {clip(row[1])} outside"
+                             " [0, 2**53]: clock values (collisions, time) are >= 0, and"
+                             " float64 cannot tell neighbouring ones apart above 2**53")
         if lower and lo < upper[-1]:
-            raise ValueError(f"{where}: bins not increasing: lower {row[0]} < previous upper "
-                             f"{upper[-1]!r}")
+            raise ValueError(f"{where}: bins not increasing: lower {clip(row[0])} < previous"
+                             f" upper {upper[-1]!r}")
         if clock == "collisions" and (lo != round(lo) or (math.isfinite(hi) and hi != round(hi))):
-            raise ValueError(f"{where}: collision-clock bins need integer edges, got {row[0]}, "
-                             f"{row[1]}")
+            raise ValueError(f"{where}: collision-clock bins need integer edges, got"
+                             f" {clip(row[0])}, {clip(row[1])}")
         if lower and lo > upper[-1]:  # a gap: an empty bin
             lower.append(upper[-1])
             upper.append(lo)

@@ -8,12 +8,16 @@ line per curve, +- one standard error shaded. Wilson bands are shaded.
 With ``fit`` the curves of ``clock`` get the maximum-likelihood fits of ``bouncer fit``
 (``reports.stats``, binned censored counts): ``fit="regimes"`` draws the law of every regime
 ``bouncer fit`` finds; a law name (exponential, stretched, power) fits that law over the bins
-of ``window`` (its ends moved to the nearest bin boundaries). Each fitted law is drawn dashed,
-anchored at the data's survival at its window start.
+of ``window`` (its ends moved to the nearest bin boundaries). Each fitted law is drawn in its
+curve's colour (dashed; the regimes of one curve in dash patterns of their own), anchored at
+the data's survival at its window start, with a legend entry naming the curve, the law and the
+window. Interval ends the data do not bound are printed in words
+(``reports.stats.analysis.interval_text``). The image is written atomically.
 """
 
 from __future__ import annotations
 
+import io
 from collections import defaultdict
 from pathlib import Path
 
@@ -22,7 +26,7 @@ import numpy as np
 from reports.runs import rundir
 from reports.runs.recheck import load_run
 from reports.runs.survival import read_survival
-from reports.stats.analysis import analyse, best_law_text
+from reports.stats.analysis import analyse, best_law_text, interval_text
 from reports.stats.hazard import boundary_index, curve_probability
 from reports.stats.histogram import read_run
 from reports.stats.likelihood import fit_law, window_of
@@ -51,6 +55,7 @@ def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None)
             raise ValueError("--fit fits survival curves; a velocity run has none")
         fig = _velocity_figure(plt, run_dir, scene, manifest)
     elif scene.kind == "phase-space":
+        rundir.check_input(run_dir / "portrait.npy")
         counts = np.load(run_dir / "portrait.npy")
         fig, ax = plt.subplots(figsize=(7, 5))
         ax.imshow(np.log1p(counts.T), origin="lower", aspect="auto", cmap="Greys",
@@ -80,14 +85,17 @@ def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None)
                                     alpha=0.2, lw=0)
                     if fit and ck == clock and (curve is None or curve == name) and (
                             name, ck) in curves:
-                        lines += _fit_lines(ax, curves[name, ck], fit, window, scene)
+                        lines += _fit_lines(ax, curves[name, ck], fit, window, scene,
+                                            line.get_color())
                 _axes(ax, scene, ck, title, manifest)
         fig.tight_layout()
     default = {"phase-space": "portrait.png", "velocity": "velocity.png"}.get(scene.kind,
                                                                             "survival.png")
     out = Path(out) if out else run_dir / default
-    fig.savefig(out, dpi=120)
+    image = io.BytesIO()
+    fig.savefig(image, dpi=120, format="png")
     plt.close(fig)
+    rundir.write_atomic(out, image.getvalue())  # never a half-written image
     lines.insert(0, f"wrote {out}")
     return lines
 
@@ -124,23 +132,31 @@ def _groups(scene, data):
     return [(f"{scene.name} {w}".strip(), ns) for w, ns in by_width.items()]
 
 
-def _draw(ax, curve, fit, scene):
+FIT_STYLES = ("--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))  # one per regime, cycled
+
+
+def _draw(ax, curve, fit, scene, label, colour, style="--"):
+    """The fitted law, dashed in the curve's colour, anchored at the data's survival at its
+    window start; its legend entry names the curve, the law and its window."""
     a = boundary_index(curve, fit.window.start)
     x = np.geomspace(fit.window.start, fit.window.end, 200)
     p = curve_probability(curve)[a] * np.exp(fit.log_survival(x))
     xs = np.sqrt(x) if scene.kind == "escape" and curve.clock == "time" else x
-    ax.plot(xs, p, "k--", lw=1)
+    ax.plot(xs, p, color=colour, ls=style, lw=1.2, label=f"{curve.curve}: {label}")
 
 
-def _fit_lines(ax, curve, fit, window, scene):
+def _fit_lines(ax, curve, fit, window, scene, colour):
     """Draw the maximum-likelihood fits of one curve; returns the report lines."""
     name = f"{curve.curve} ({curve.clock})"
     try:
         if fit == "regimes":
             result = analyse(curve)
             out = []
-            for law, regime in zip(result["_regime_fits"], result["regimes"], strict=True):
-                _draw(ax, curve, law, scene)
+            for i, (law, regime) in enumerate(zip(result["_regime_fits"], result["regimes"],
+                                                  strict=True)):
+                _draw(ax, curve, law, scene, f"{regime['law'].replace('_', ' ')} on"
+                      f" [{regime['from']:g}, {regime['to']:g}]", colour,
+                      FIT_STYLES[i % len(FIT_STYLES)])
                 out.append(f"{name}: {regime['law'].replace('_', ' ')} for x in "
                            f"[{regime['from']:g}, {regime['to']:g}]")
             out.append(f"{name}: late regime, best {best_law_text(result)}")
@@ -149,8 +165,10 @@ def _fit_lines(ax, curve, fit, window, scene):
         law = fit_law(FIT_LAWS[fit], window_of(curve, min(a, b), max(a, b)))
     except ValueError as err:
         return [f"{name}: no fit: {err}"]
-    _draw(ax, curve, law, scene)
-    params = ", ".join(f"{k} = {v:.4g} [{law.ci95[k][0]:.4g}, {law.ci95[k][1]:.4g}]"
+    _draw(ax, curve, law, scene, f"{law.law.replace('_', ' ')} on [{law.window.start:g},"
+          f" {law.window.end:g}]", colour)
+    model = {**law.params, **{f"{k}_ci95": ci for k, ci in law.ci95.items()}}
+    params = ", ".join(f"{k} = {v:.4g} {interval_text(model, k)}"
                        for k, v in law.params.items())
     return [f"{name}: {law.law.replace('_', ' ')} ({params}) by maximum likelihood on "
             f"[{law.window.start:g}, {law.window.end:g}]"]

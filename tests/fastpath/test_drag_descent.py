@@ -77,3 +77,19 @@ def test_departures_faster_than_terminal_are_accepted_and_right(case):
     ref, _ = first_root(phi, v, eps, k, LAWS[law], 2.0 * res.tau)
     d_err = gap_state(centre_phase(phi), v, eps, k, LAWS[law], float(ref))[3]
     assert abs(res.tau - float(ref)) <= tau_tolerance(d_err, phi, v, eps, k, LAWS[law], ref)
+
+
+STRONG = [(phi, v, eps, k) for phi in (0.5, 2.5) for eps in (0.6, -0.9)
+          for k in (10.0, 1000.0) for v in (1e5, 1e6, 1e8) if k * v >= 1e6]
+
+
+@pytest.mark.parametrize(("phi", "v", "eps", "k"), STRONG)
+def test_linear_drag_descents_with_k_v_up_to_1e11_converge(phi, v, eps, k):
+    """At k*v >= 1e8 the flight's rounding bound on d' (charged with |V'| at the departure,
+    1 + k*v) exceeded |d'| at the root and the steps crept towards it; with the local bound
+    (``tight_linear_bounds``) they converge, within the solver's bound of verify's root."""
+    res = fastpath.flight(phi, v, eps, drag=k)
+    assert res.status == fastpath.FlightStatus.CONVERGED, res
+    ref = verify.flight_time(phi, v, eps, dps=30, drag=k)
+    d_err = gap_state(centre_phase(phi), v, eps, k, LAWS["linear"], float(ref))[3]
+    assert abs(res.tau - float(ref)) <= tau_tolerance(d_err, phi, v, eps, k, LAWS["linear"], ref)

@@ -1,6 +1,7 @@
 """The ensemble kernels: hole membership, bins, conservation of particles, thread independence."""
 
 import math
+import re
 
 import numba
 import numpy as np
@@ -19,7 +20,7 @@ from fastpath.kernels.arrays import (
 )
 from fastpath.kernels.escape import escape_chunk
 from fastpath.kernels.histogram import bin_index, exit_hole, log_edges
-from fastpath.physics import elastic
+from fastpath.physics import dissipative, elastic, holmes
 
 TWO_PI = 2 * math.pi
 EPS = 0.6
@@ -28,7 +29,8 @@ T_EDGES = np.concatenate([[0.0], log_edges(0.1, 9, 10)])
 
 
 def run_kernel(
-    phi0, v0, hole_lo, hole_width, max_n=NO_LIMIT, max_t=np.inf, blocks=8, sample_target=None
+    phi0, v0, hole_lo, hole_width, max_n=NO_LIMIT, max_t=np.inf, blocks=8, sample_target=None,
+    physics=None,
 ):
     m = len(phi0)
     holes = len(hole_lo)
@@ -50,7 +52,7 @@ def run_kernel(
         target[:] = sample_target
         samples = np.zeros((m, 6))
     escape_chunk(
-        elastic(EPS),
+        elastic(EPS) if physics is None else physics,
         Starts(phi=np.asarray(phi0, float), v=np.asarray(v0, float), t=np.zeros(m),
                n=np.zeros(m, np.int64)),
         Holes(lo=np.asarray(hole_lo, float), width=np.asarray(hole_width, float)),
@@ -64,6 +66,27 @@ def run_kernel(
     )
     out["samples"] = samples
     return out
+
+
+@pytest.mark.parametrize("physics", [holmes(EPS), (EPS, 0.0, 0, 1.0), "elastic"],
+                         ids=["Holmes", "plain tuple", "string"])
+def test_escape_chunk_refuses_what_is_not_an_elastic_or_dissipative_description(physics):
+    """The lanes run the exact map: a Holmes description (or anything else) is refused by name
+    rather than run through the exact loop with its lanes' phases unset."""
+    phi, v = starts(20)
+    with pytest.raises(ValueError, match=re.escape(repr(physics))):
+        run_kernel(phi, v, [0.0], [0.3], max_n=50, physics=physics)
+
+
+def test_escape_chunk_runs_a_dissipative_description_with_restitution_one():
+    """A Dissipative description that is the elastic map (drag 0, r = 1) is run, not refused,
+    and gives the elastic description's counts."""
+    phi, v = starts(200)
+    want = run_kernel(phi, v, [(2.5 - 0.15) % TWO_PI], [0.3], max_n=300)
+    got = run_kernel(phi, v, [(2.5 - 0.15) % TWO_PI], [0.3], max_n=300,
+                     physics=dissipative(EPS, 0.0, 0, 1.0))
+    for key in ("esc_n", "esc_t", "cens_n", "cens_t", "collisions"):
+        np.testing.assert_array_equal(got[key], want[key], err_msg=key)
 
 
 def starts(m, seed=1):
@@ -100,6 +123,22 @@ def test_bins_put_values_in_half_open_intervals():
     assert bin_index(T_EDGES, 0.1) == 1
     assert bin_index(T_EDGES, 1e12) == len(T_EDGES) - 1
     assert len(N_EDGES) > 8 * 5 and N_EDGES[-1] == 1e8  # eight decades, integer edges
+
+
+@pytest.mark.parametrize("edges", [N_EDGES, T_EDGES, np.array([2.0]), np.array([0.0, 0.0, 1.0])],
+                         ids=["collisions", "times", "one edge", "repeated edge"])
+def test_bin_index_is_numpys_right_searchsorted_less_one(edges):
+    """The bin of every kind of value (edges themselves and their neighbours, below the first,
+    far above the last, integers, infinities, NaN) is np.searchsorted(side="right") - 1,
+    clipped at 0."""
+    rng = np.random.default_rng(4)
+    values = [*edges, *np.nextafter(edges, -np.inf), *np.nextafter(edges, np.inf),
+              *rng.uniform(-1.0, 1.2 * edges[-1], 200), -np.inf, np.inf, np.nan, -1e300, 1e300]
+    for x in values:
+        assert bin_index(edges, x) == max(np.searchsorted(edges, x, side="right") - 1, 0), x
+    for n in (0, 1, 2, 7, 10**6, 10**8, 2**62):
+        want = max(np.searchsorted(edges, float(n), side="right") - 1, 0)
+        assert bin_index(edges, n) == want, n
 
 
 def test_every_particle_escapes_or_is_censored():

@@ -1,19 +1,21 @@
 """The ensemble kernels give the same counts on 1 and on 2 threads.
 
 Each block of particles has its own histogram rows and the caller sums integer counts, so the
-result must not depend on the number of threads. The comparison means
-something only if the second run really has two threads working: numba must offer two, the
-setting must read back as 2, and a probe kernel must see two distinct thread ids in its prange.
-On a machine where numba offers one thread the tests are skipped, never passed.
+result must not depend on the number of threads. The comparison means something only if the
+second run really has two threads working: numba's thread count (the setting the kernels
+follow, ``fastpath.kernels.threads``) must read back as 2, and the kernel's groups of blocks
+must have run in two distinct threads. On a machine where numba offers one thread the tests are
+skipped, never passed.
 """
 
 import math
+import threading
 
 import numba
 import numpy as np
 import pytest
-from numba import prange
 
+from fastpath.kernels import escape, portrait
 from fastpath.kernels.arrays import (
     Bins,
     EscapeCounts,
@@ -27,6 +29,7 @@ from fastpath.kernels.arrays import (
 from fastpath.kernels.escape import escape_chunk
 from fastpath.kernels.histogram import log_edges
 from fastpath.kernels.portrait import portrait_chunk
+from fastpath.kernels.threads import groups_of, over_threads
 from fastpath.physics import elastic
 
 TWO_PI = 2 * math.pi
@@ -41,27 +44,29 @@ pytestmark = pytest.mark.skipif(
 )
 
 
-@numba.njit(parallel=True)
-def _thread_ids(blocks):
-    """The numba thread id that ran each prange iteration (and a little work for each)."""
-    ids, work = np.zeros(blocks, np.int64), np.zeros(blocks)
-    for b in prange(blocks):
-        for k in range(20000):
-            work[b] += math.sin(k + b)
-        ids[b] = numba.get_thread_id()
-    return ids, work
+def on_threads(threads, run, monkeypatch):
+    """``run()`` with numba set to ``threads`` threads, checked to be in force and in use: the
+    kernels' groups of blocks ran in ``threads`` distinct threads."""
+    idents = set()
 
+    def recorded(run_group, blocks):
+        def run_and_record(first, end):
+            idents.add(threading.get_ident())
+            run_group(first, end)
 
-def on_threads(threads, run):
-    """``run()`` with numba set to ``threads`` threads, checked to be in force and in use."""
+        over_threads(run_and_record, blocks)
+
+    for module in (escape, portrait):
+        monkeypatch.setattr(module, "over_threads", recorded)
     before = numba.get_num_threads()
     try:
         numba.set_num_threads(threads)
         assert numba.get_num_threads() == threads
-        assert len(set(_thread_ids(64)[0])) == threads
-        return run()
+        result = run()
     finally:
         numba.set_num_threads(before)
+    assert len(idents) == threads
+    return result
 
 
 def escape_run(eps, max_n, max_t, m=6000, seed=7):
@@ -99,17 +104,17 @@ def escape_run(eps, max_n, max_t, m=6000, seed=7):
 @pytest.mark.slow
 @pytest.mark.parametrize(("eps", "max_n", "max_t"), [(0.6, 60, np.inf), (0.6, 2**62, 300.0),
                                                       (1.5, 500, 2000.0)])
-def test_escape_counts_are_the_same_on_one_and_two_threads(eps, max_n, max_t):
+def test_escape_counts_are_the_same_on_one_and_two_threads(eps, max_n, max_t, monkeypatch):
     """Every output array, block by block (not only the sums), bit for bit."""
-    one = on_threads(1, escape_run(eps, max_n, max_t))
-    two = on_threads(2, escape_run(eps, max_n, max_t))
+    one = on_threads(1, escape_run(eps, max_n, max_t), monkeypatch)
+    two = on_threads(2, escape_run(eps, max_n, max_t), monkeypatch)
     assert one["esc_n"].sum() > 0 and one["cens_n"].sum() > 0
     assert len(np.flatnonzero(one["collisions"])) == BLOCKS  # every block has work
     for key in one:
         np.testing.assert_array_equal(one[key], two[key], err_msg=key)
 
 
-def test_portrait_counts_are_the_same_on_one_and_two_threads():
+def test_portrait_counts_are_the_same_on_one_and_two_threads(monkeypatch):
     m = 3000
     rng = np.random.default_rng(3)
     phi0, v0 = rng.uniform(0.0, TWO_PI, m), rng.uniform(2.0, 6.0, m)
@@ -125,7 +130,15 @@ def test_portrait_counts_are_the_same_on_one_and_two_threads():
                        Flags(status=flags, state=flag_state))
         return counts, collisions, flags
 
-    one, two = on_threads(1, run), on_threads(2, run)
+    one, two = on_threads(1, run, monkeypatch), on_threads(2, run, monkeypatch)
     assert one[0].sum() > 0
     for a, b in zip(one, two, strict=True):
         np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize(("blocks", "groups", "spans"), [
+    (64, 2, [(0, 32), (32, 64)]), (3, 2, [(0, 2), (2, 3)]), (1, 4, [(0, 1)]),
+    (5, 3, [(0, 2), (2, 4), (4, 5)]), (4, 3, [(0, 2), (2, 4)]), (7, 0, [(0, 7)])])
+def test_groups_of_blocks_cover_every_block_once_in_order(blocks, groups, spans):
+    """Consecutive groups, none empty, at most ``groups`` of them, every block in one."""
+    assert groups_of(blocks, groups) == spans

@@ -47,3 +47,49 @@ def test_exact_and_holmes_steps_differ_by_order_eps_over_v(eps):
     record(f"exact vs Holmes: max |diff|*v/eps at eps={eps}", f"{worst:.3g}")
     assert scaled_phase.max() <= 10.0
     assert scaled_velocity.max() <= 10.0
+
+
+def _holmes_reference(phi, v, eps):
+    """(phi + 2v) mod 2*pi and |v - 2*eps*sin(phi1)| at enough digits for any double v."""
+    import mpmath
+
+    with mpmath.workdps(360):
+        x = mpmath.mpf(phi) + 2 * mpmath.mpf(v)
+        turn = 2 * mpmath.pi
+        phi1 = x - turn * mpmath.floor(x / turn)
+        return phi1, abs(mpmath.mpf(v) - 2 * mpmath.mpf(eps) * mpmath.sin(phi1))
+
+
+def _ulps_of_two_pi(a, b):
+    import mpmath
+
+    with mpmath.workdps(40):
+        d = abs(mpmath.mpf(a) - b)
+        d = min(d, 2 * mpmath.pi - d)
+        return float(d) / math.ulp(TWO_PI)
+
+
+HOLMES_PHASE_ULPS = 5.0  # the phase's reduction (its rounding) + the landing's few ulps of 2*pi
+
+
+@given(phi=st.floats(-20.0, 20.0), log_v=st.floats(-1.0, 300.0), eps=st.floats(0.0, 2.0))
+def test_holmes_step_reduces_any_phase_at_any_speed(phi, log_v, eps):
+    v = 10.0**log_v
+    if not v + eps * math.sin(phi) > 1e-9:
+        return
+    phi1, v1 = fastpath.holmes_step(phi, v, eps)
+    ref_phi, ref_v = _holmes_reference(phi, v, eps)
+    assert 0.0 <= phi1 < TWO_PI
+    assert _ulps_of_two_pi(phi1, ref_phi) <= HOLMES_PHASE_ULPS
+    assert abs(v1 - float(ref_v)) <= 8 * 2.0**-53 * (v + 2 * eps) + 2 * eps * 1e-15
+
+
+def test_holmes_step_array_path_reduces_like_the_scalar_path():
+    rng = np.random.default_rng(3)
+    phi = np.concatenate([[100.0, -100.0, 1e10, -1e15], rng.uniform(-20, 20, 200)])
+    v = np.concatenate([[1e20, 1e20, 3.0, 1e200], 10.0 ** rng.uniform(17, 300, 200)])
+    phi1, v1 = fastpath.holmes_step(phi, v, 0.6)
+    for i in range(len(phi)):
+        assert (phi1[i], v1[i]) == fastpath.holmes_step(float(phi[i]), float(v[i]), 0.6)
+        ref_phi, _ = _holmes_reference(float(phi[i]), float(v[i]), 0.6)
+        assert _ulps_of_two_pi(phi1[i], ref_phi) <= HOLMES_PHASE_ULPS

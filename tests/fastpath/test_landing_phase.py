@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 import pytest
+from fastpath_figures import record
 from fastpath_tolerances import ULP_2PI, K, U, kappa
 from mpmath import mp
 
@@ -122,3 +123,20 @@ def test_holmes_phase_reduces_phi_plus_2v_exactly(v):
             x = mp.mpf(phi) + 2 * mp.mpf(v)
             ref = float(x - 2 * mp.pi * mp.floor(x / (2 * mp.pi)))
         assert distance(phi1, ref) <= LANDING_ULPS * ULP_2PI, (phi, v)
+
+
+@pytest.mark.parametrize(("phi", "v", "eps"), [
+    (math.pi, 1.886041815035182e64, 1e-300),   # 1.72 ulps, the largest measured
+    (math.pi, 1.178397871306019e175, 0.05),    # 1.70 ulps
+])
+def test_the_worst_measured_landings_stay_within_the_bound(phi, v, eps):
+    phi1, _, _ = fastpath.step(phi, v, eps)
+    ref, tau = reference_landing(phi, v, eps)
+    assert distance(phi1, ref) <= landing_tolerance(phi, v, eps, tau)
+    with mp.workdps(int(math.log10(v)) + 60):  # the error itself, without rounding ref
+        x = mp.mpf(phi) + tau
+        exact = x - 2 * mp.pi * mp.floor(x / (2 * mp.pi))
+        error = abs(mp.mpf(phi1) - exact)
+        error = float(min(error, 2 * mp.pi - error))
+    record(f"landing phase at phi={phi}, v={v:.4g}, eps={eps:g} (ulps of 2*pi)",
+           f"{error / ULP_2PI:.2f}")

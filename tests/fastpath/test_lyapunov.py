@@ -100,3 +100,27 @@ def test_bad_input_raises_value_error(bad):
 def test_separation_refuses_a_large_distance():
     with pytest.raises(ValueError):
         separation(4.0, 3.0, 0.6, 10, distance=0.1)
+
+
+def test_band_exponents_pool_to_the_running_exponent():
+    """The log-stretches pooled by band add up to the orbit's S_n: sum over bands of
+    mean*count equals lambda_n*n (the same tangent vector, the same collisions)."""
+    from fastpath.dynamics import lyapunov_by_band
+
+    phi, v = np.array([4.0, 3.9]), np.array([3.0, 2.5])
+    edges = [0.0, 4.0, 8.0, 16.0, 1e9]
+    bands = lyapunov_by_band(phi, v, 0.6, 20_000, edges)
+    whole = fastpath.lyapunov(phi, v, 0.6, 20_000)
+    total = np.nansum(bands.per_collision * bands.collisions)
+    assert bands.collisions.sum() == 2 * 20_000
+    assert abs(total - np.sum(whole.per_collision * 20_000)) < 1e-8 * 20_000
+    assert np.all(bands.orbits[bands.collisions > 0] >= 1)
+
+
+def test_band_exponents_refuse_bad_edges():
+    from fastpath.dynamics import lyapunov_by_band
+
+    with pytest.raises(ValueError, match="edges"):
+        lyapunov_by_band(4.0, 3.0, 0.6, 10, [1.0])
+    with pytest.raises(ValueError, match="edges"):
+        lyapunov_by_band(4.0, 3.0, 0.6, 10, [1.0, 0.5])

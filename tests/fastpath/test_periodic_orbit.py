@@ -22,6 +22,7 @@ from fastpath.dynamics import (
     approximants,
     critical_amplitude,
     periodic_orbit,
+    residue_crossing,
     symmetric_orbit,
 )
 from fastpath.dynamics.greene import STANDARD_MAP_K_C, noble
@@ -206,3 +207,95 @@ def test_no_accelerator_block_where_the_kicks_cannot_add_up():
     for block in accelerator_search(1.6, 3, grid=12):
         assert block.residual < 1e-9
         assert block.velocity_shift != 0
+
+
+# --- the minimal period, windings taken from the guess, velocity shifts ------------------------
+
+@pytest.mark.parametrize("eps,period", [(0.6, 2), (0.6, 3), (0.3, 5), (1.5, 2), (-0.3, 4)])
+def test_a_fixed_point_asked_at_a_longer_period_is_reported_at_period_one(eps, period):
+    orbit = periodic_orbit(0.0, math.pi, eps, period)
+    assert (orbit.period, orbit.winding, len(orbit.phi)) == (1, 1, 1)
+    assert abs(orbit.trace - (2 - 4 * eps)) < 1e-12
+
+
+def test_a_period_two_orbit_asked_at_period_four_is_reported_at_period_two():
+    s = two_start(1.1)
+    orbit = periodic_orbit(s, math.pi - s, 1.1, 4)
+    assert (orbit.period, orbit.winding) == (2, 2)
+    assert np.allclose(orbit.monodromy, two_monodromy(1.1, 1), atol=1e-10)
+
+
+@pytest.mark.parametrize("guess", [
+    (math.pi, math.pi, math.pi**2 / 4 + 1e-12, 1),  # the first root falls just below pi
+    (math.pi, math.pi, 3.0, 1),
+    (0.5, 0.05, 0.3, 1),                            # a short hop, t ~ 0.4
+    (0.5, 0.05, 0.3, 3),
+])
+def test_a_guess_whose_flights_last_less_than_pi_is_not_an_orbit(guess):
+    with pytest.raises(OrbitNotFound, match="winding"):
+        periodic_orbit(*guess)
+
+
+def test_a_one_off_shifted_block_of_the_exact_map_is_refused():
+    with pytest.raises(OrbitNotFound, match="period-1 accelerator mode"):
+        periodic_orbit(3.8980936554827061, 60.422221713212743, 1.05, 2, velocity_shift=1)
+    with pytest.raises(OrbitNotFound):
+        periodic_orbit(0.3, 20.0, 1.2, 3, velocity_shift=3)
+
+
+def test_a_decelerating_mode_of_the_exact_map_is_refused_but_not_in_the_holmes_model():
+    phi = math.asin(math.pi / 3.2)  # -2*eps*sin(phi) = -pi
+    with pytest.raises(OrbitNotFound, match="time reverse"):
+        periodic_orbit(phi, 4 * math.pi, 1.6, 1, velocity_shift=-1)
+    holmes = periodic_orbit(phi, 4 * math.pi, 1.6, 1, velocity_shift=-1, model="holmes")
+    assert holmes.velocity_shift == -1
+
+
+def test_a_mode_asked_as_two_blocks_is_reported_as_one():
+    phi = -math.asin(math.pi / 3.2)
+    orbit = periodic_orbit(phi, 4 * math.pi, 1.6, 2, velocity_shift=2, winding=9)
+    assert (orbit.period, orbit.winding, orbit.velocity_shift) == (1, 4, 1)
+
+
+def test_the_exact_map_search_keeps_only_accelerating_period_one_modes():
+    found = accelerator_search(1.6, 1, model="exact", grid=16, v_base=4 * math.pi)
+    assert found and all(o.velocity_shift > 0 and o.period == 1 for o in found)
+    assert accelerator_search(1.6, 2, model="exact", grid=8, v_base=4 * math.pi) == []
+
+
+# --- Greene's criterion: the critical residue, the extrapolation and its uncertainty -----------
+
+def test_crossings_of_the_critical_residue_converge_geometrically_to_k_c_over_4():
+    """The Holmes map is the standard map: its golden curve breaks at K_c/4. The crossings of
+    R_c alternate around it with a steady ratio near -0.376 (measured: -0.3751 to -0.3768 over
+    the last five levels); the Aitken extrapolation is within its stated uncertainty of K_c/4
+    (Greene's value to its 9 digits, +-1.25e-10 in eps)."""
+    from fastpath.dynamics.greene import extrapolate
+
+    c = critical_amplitude(1, (), model="holmes", levels=12)
+    eps = np.array([x.eps for x in c.crossings])
+    ratios = np.diff(eps)[1:] / np.diff(eps)[:-1]
+    assert np.all(np.abs(ratios[-5:] + 0.376) < 0.005)
+    value, uncertainty = extrapolate(eps, [x.eps_error for x in c.crossings])
+    assert abs(value - K_C_QUARTER) <= uncertainty + 1.25e-10
+    assert abs(c.eps_c - K_C_QUARTER) <= c.uncertainty  # the last crossing and its tail
+
+
+def test_crossings_of_one_quarter_lie_below_the_critical_amplitude():
+    """The bias of targeting R = 1/4: every crossing of 1/4 comes before that of R_c (the
+    residue rises through both), so a sequence of them approaches eps_c from below."""
+    for a in approximants(1, (), levels=9)[-3:]:
+        quarter = residue_crossing(a, model="holmes", target=0.25)
+        critical = residue_crossing(a, model="holmes")
+        assert quarter.eps < critical.eps
+
+
+def test_extrapolation_recovers_a_geometric_limit_and_carries_the_crossing_errors():
+    from fastpath.dynamics.greene import extrapolate
+
+    limit, rho = 0.2429088515, -0.376
+    eps = [limit + 1e-3 * rho**k for k in range(8)]
+    value, uncertainty = extrapolate(eps, [0.0] * 8)
+    assert abs(value - limit) < 1e-15 and uncertainty < 1e-14
+    _, with_errors = extrapolate(eps, [1e-9] * 8)
+    assert 0.9e-9 <= with_errors <= 2e-9  # weights summing to about 1

@@ -95,8 +95,25 @@ def test_a_crossing_below_eps_c_refutes_the_transition(study):
 def test_ballistic_diffusion_at_the_papers_eps_refutes_normal_diffusion(study):
     broken = copy.deepcopy(study)
     d = next(d for d in broken["accelerator"]["diffusion"] if d["eps"] == 0.6)
-    d["fits"] = {"wide": [2.0, 0.01], "late": [1.9, 0.02]}
+    d["fits"] = {str(n0): [2.0 - 0.05 * k, 0.01] for k, n0 in enumerate(d["family_starts"])}
     assert dynamics_claims.accelerator_claims(broken, None)[1].verdict == "refuted"
+
+
+def test_only_windows_past_the_transient_are_members_of_the_diffusion_family(study):
+    """A window starting in the transient is no reading of "normal diffusion": its slope is
+    not a member; with no window past the transient the claim cannot be decided."""
+    before = dynamics_claims.accelerator_claims(study, None)[1]
+    broken = copy.deepcopy(study)
+    d = next(d for d in broken["accelerator"]["diffusion"] if d["eps"] == 0.6)
+    early = str(min(int(k) for k in d["fits"]))
+    d["fits"][early] = [2.0, 0.01]
+    assert int(early) < d["family_from"]
+    claim = dynamics_claims.accelerator_claims(broken, None)[1]
+    assert (claim.verdict, claim.analyses) == (before.verdict, before.analyses)
+    assert not any(a["variant"].startswith(f"eps = 0.6, n0 = {early}:") for a in claim.analyses)
+    d["fits"] = {early: [1.0, 0.01]}
+    claim = dynamics_claims.accelerator_claims(broken, None)[1]
+    assert (claim.verdict, claim.inconclusive) == ("inconclusive", "data")
 
 
 def test_negative_exponent_refutes_the_lyapunov_remark(study):

@@ -1,6 +1,8 @@
 """`bouncer report` and `bouncer bench` end to end, at smoke-test sizes (no timing asserted)."""
 
 import re
+import sys
+from pathlib import Path
 
 import pytest
 
@@ -34,11 +36,41 @@ def test_report_rejects_bad_input(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_bench_prints_ratios_to_the_holmes_map(capsys):
-    assert main(["bench", "--collisions", "20000", "--repeats", "1", "--particles", "2000"]) == 0
+    assert main(["bench", "--collisions", "20000", "--repeats", "1", "--particles", "2000",
+                 "--no-cold-start"]) == 0
     out = capsys.readouterr().out
     assert re.search(r"\| exact \(auto\) \| [\d.]+ \| [\d.]+ \|", out)
+    assert re.search(r"\| Holmes map, bare loop \| [\d.]+ \| 1.00 \|", out)
+    assert re.search(r"\| exact, end to end \| [\d.]+ \| [\d.e+]+ \| [\d.e+]+ \| [\d.]+ \|", out)
+    assert "headline: the exact escape ensemble end to end takes" in out
     assert "collisions/s" in out and "peak memory" in out
+    assert "cold s" not in out
     assert main(["bench", "--repeats", "0"]) == 2
+
+
+def test_cold_start_runs_each_command_twice_first_with_an_empty_cache_of_its_own(tmp_path):
+    """The first run of a command sees an empty NUMBA_CACHE_DIR, the second the cache the first
+    filled; the next command starts from an empty one again. A failing command is an error."""
+    from reports.precision.bench import cold_start_table, time_cold_start
+
+    log = tmp_path / "log"
+    probe = [sys.executable, "-c",
+             "import os, pathlib, sys; d = pathlib.Path(os.environ['NUMBA_CACHE_DIR']);"
+             " seen = (d / 'kernel').exists(); d.mkdir(parents=True, exist_ok=True);"
+             " (d / 'kernel').touch(); open(sys.argv[1], 'a').write(f'{seen} ')", str(log)]
+    rows = time_cold_start([("a", probe), ("b", probe)])
+    assert log.read_text().split() == ["False", "True", "False", "True"]
+    assert [r[0] for r in rows] == ["a", "b"] and all(r[1] > 0 and r[2] > 0 for r in rows)
+    assert "| `a` |" in cold_start_table(rows)
+    with pytest.raises(RuntimeError, match="exit status 3"):
+        time_cold_start([("fails", [sys.executable, "-c", "import sys; sys.exit(3)"])])
+
+
+def test_the_bench_times_the_quick_start_that_the_readme_shows():
+    from reports.precision.bench import QUICK_START
+
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    assert f"```python\n{QUICK_START}```" in readme
 
 
 def test_a_paper_only_rebuild_replaces_its_sections_and_keeps_the_others():
@@ -69,3 +101,27 @@ def test_the_rebuild_note_follows_the_build_line_and_is_not_repeated():
     twice = with_rebuild_note(once, f"{REBUILD_NOTE} second.")
     assert twice.count(REBUILD_NOTE) == 1 and "second." in twice
     assert twice.index("Built then.") < twice.index("second.") < twice.index("body")
+
+
+def test_report_progress_weighs_the_stages_and_scales_the_time_left_by_the_pace():
+    """The overall fraction and the time left follow the stage weights (``STAGE_S``), grow
+    within a stage with its elapsed time but stop short of its end, and the time left scales
+    with the pace of the finished stages."""
+    from reports.report import STAGE_S, ReportProgress
+
+    labels = ["speed", "physics checks"]
+    speed, physics = STAGE_S["speed"], STAGE_S["physics checks"]
+    progress = ReportProgress(labels, enabled=False)
+    assert progress.fraction_and_left(progress.start) == (0.0, speed + physics)
+    progress.stage, progress.stage_start = 0, 100.0
+    fraction, left = progress.fraction_and_left(100.0 + speed / 2)
+    assert fraction == pytest.approx(speed / 2 / (speed + physics))
+    assert left == pytest.approx(speed / 2 + physics)
+    fraction, _ = progress.fraction_and_left(100.0 + 10 * speed)  # a stage far behind time
+    assert fraction == pytest.approx(0.95 * speed / (speed + physics))
+    progress.done_weight, progress.done_seconds = speed, 2 * speed  # it took twice its weight
+    progress.stage, progress.stage_start = 1, 500.0
+    fraction, left = progress.fraction_and_left(500.0)
+    assert fraction == pytest.approx(speed / (speed + physics))
+    assert left == pytest.approx(2 * physics)
+    assert "stage 2 of 2: physics checks" in progress.line(500.0)

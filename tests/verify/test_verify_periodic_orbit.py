@@ -18,6 +18,7 @@ from hypothesis import strategies as st
 import fastpath
 import verify
 from fastpath.dynamics import approximants, residue_crossing, symmetric_orbit
+from fastpath.dynamics.greene import TARGET
 from verify.dynamics.numbers import Enclosure
 from verify.dynamics.periodic_orbit import classify
 
@@ -124,7 +125,7 @@ def test_greene_orbit_certified_on_both_sides_of_its_crossing():
         guess = symmetric_orbit(crossing.v, eps, a.period, a.winding)
         orbit = verify.periodic_orbit(guess.phi[0], guess.v[0], eps, a.period,
                                       winding=a.winding)
-        assert (orbit.residue.hi < 0.25) if below else (orbit.residue.lo > 0.25)
+        assert (orbit.residue.hi < TARGET) if below else (orbit.residue.lo > TARGET)
         assert orbit.residue.lo - 4 * guess.residue_error <= guess.residue
         assert guess.residue <= orbit.residue.hi + 4 * guess.residue_error
 
@@ -230,3 +231,141 @@ def test_krawczyk_image_leaves_a_box_without_the_zero():
              iv.mpf(a[2] * (centre[0] - z[0]) + a[3] * (centre[1] - z[1])))
         k = _krawczyk(iv, centre, box, c, g, jac)
         assert all(_inside(ctx, k[i], box[i]) for i in range(2)) is inside
+
+
+# --- the minimal period -----------------------------------------------------------------------
+
+def _two_minus_four_eps(eps):
+    return mpmath.mp.make_mpf(mpmath.libmp.mpf_sub(
+        mpmath.libmp.from_int(2), mpmath.libmp.mpf_mul(mpmath.libmp.from_int(4),
+                                                       mpmath.libmp.from_float(eps), 0), 0))
+
+
+@pytest.mark.parametrize("eps,period", [(0.6, 2), (0.6, 3), (0.3, 5), (1.5, 2), (0.45, 4),
+                                        (-0.3, 6), (1.2, 3)])
+def test_a_fixed_point_asked_at_a_longer_period_is_relabelled_period_one(eps, period):
+    orbit = verify.periodic_orbit(0.0, math.pi, eps, period, dps=30)
+    assert (orbit.period, orbit.winding, len(orbit.points)) == (1, 1, 1)
+    assert _two_minus_four_eps(eps) in orbit.trace  # the fixed point's own trace, not F^p's
+    assert orbit.stability == ("elliptic" if 0 < eps < 1 else "hyperbolic")
+
+
+def test_a_fixed_point_with_a_given_winding_is_relabelled_with_its_own_winding():
+    orbit = verify.periodic_orbit(0.0, 2 * math.pi, 0.4, 3, dps=30, winding=6)
+    assert (orbit.period, orbit.winding) == (1, 2)
+
+
+@pytest.mark.parametrize("eps,m,factor", [(1.05, 1, 2), (1.1, 2, 3), (1.3, 1, 2)])
+def test_a_period_two_orbit_asked_at_a_multiple_is_relabelled_period_two(eps, m, factor):
+    s = float(two_start(eps))
+    orbit = verify.periodic_orbit(s, math.pi * m - s, eps, 2 * factor, dps=30)
+    assert (orbit.period, orbit.winding) == (2, 2 * m)
+    assert two_trace(eps, m) in orbit.trace
+
+
+def test_a_genuine_period_two_orbit_keeps_its_period():
+    s = float(two_start(1.1))
+    orbit = verify.periodic_orbit(s, math.pi - s, 1.1, 2, dps=30)
+    assert orbit.period == 2 and len(orbit.points) == 2
+    first, second = orbit.points
+    assert first[0].hi < second[0].lo or second[0].hi < first[0].lo  # two distinct states
+
+
+def test_a_shorter_period_neither_excluded_nor_proved_is_refused_by_name(monkeypatch):
+    import importlib
+
+    module = importlib.import_module("verify.dynamics.periodic_orbit")
+    monkeypatch.setattr(module._Problem, "distinct", lambda self, found, d, turns: False)
+    s = float(two_start(1.3))
+    with pytest.raises(verify.NotCertified, match="may have period 1"):
+        verify.periodic_orbit(s, math.pi - s, 1.3, 2, dps=30)
+
+
+# --- velocity shifts: only accelerator modes of the exact map ------------------------------------
+
+def _mode_phase(eps, shift, branch=1):
+    a = math.asin(math.pi * shift / (2 * eps))
+    return -a if branch > 0 else math.pi + a
+
+
+def test_a_one_off_block_with_a_velocity_shift_is_refused():
+    # the zero of a 2-block with v gaining pi: not repeated by the next block (exact map)
+    with pytest.raises(verify.NotCertified, match="period-1 accelerator mode"):
+        verify.periodic_orbit(3.8980936554827061, 60.422221713212743, 1.05, 2,
+                              velocity_shift=1)
+
+
+@pytest.mark.parametrize("guess", [
+    (0.0, math.pi, 0.6, 2, 2),     # a fixed point asked with a shift: no mode there
+    (3.8980936554827061, 60.422221713212743, 1.05, 2, 2),
+    (0.3, 20.0, 1.2, 3, 3),
+])
+def test_blocks_of_several_collisions_with_a_shift_are_refused(guess):
+    phi, v, eps, period, shift = guess
+    with pytest.raises(verify.NotCertified):
+        verify.periodic_orbit(phi, v, eps, period, velocity_shift=shift, dps=30)
+
+
+@pytest.mark.parametrize("m,eps", [(4, 1.6), (2, 2.5)])
+def test_a_mode_asked_as_several_blocks_is_relabelled_period_one(m, eps):
+    phi = _mode_phase(eps, 1)
+    orbit = verify.periodic_orbit(phi, math.pi * m, eps, 2, velocity_shift=2, dps=30,
+                                  winding=2 * m + 1)  # blocks of 2*pi*m and 2*pi*(m + 1)
+    assert (orbit.period, orbit.winding, orbit.velocity_shift) == (1, m, 1)
+
+
+def test_a_decelerating_shift_is_refused():
+    with pytest.raises(verify.NotCertified, match="time reverse"):
+        verify.periodic_orbit(-_mode_phase(1.6, 1), 4 * math.pi, 1.6, 1, velocity_shift=-1)
+
+
+@pytest.mark.parametrize("eps,shift,m,branch,stability", [
+    (1.6, 1, 4, 1, "elliptic"),
+    (1.7, 1, 10, -1, "hyperbolic"),
+    (10.0, 1, 1, 1, "hyperbolic"),   # blocks at v = 2pi .. 6pi below 2|eps| certified one by one
+    (10.0, 3, 2, 1, "hyperbolic"),
+    (1.571, 1, 1, 1, "undecided"),   # limit elliptic, first block hyperbolic
+])
+def test_accelerator_modes_go_on_and_their_stability_holds_for_every_block(eps, shift, m, branch,
+                                                                          stability):
+    phi = _mode_phase(eps, shift, branch)
+    orbit = verify.periodic_orbit(phi, math.pi * m, eps, 1, velocity_shift=shift, dps=30)
+    assert (orbit.period, orbit.winding, orbit.velocity_shift) == (1, m, shift)
+    assert orbit.stability == stability
+    with mpmath.workdps(50):  # the exact mode's eps*cos(phi*), sin(phi*) = -pi*l/(2*eps)
+        limit = mpmath.mpf(eps) * mpmath.cos(mpmath.asin(mpmath.pi * shift / (2 * eps)))
+        limit = limit if branch > 0 else -limit
+        assert orbit.limit_residue.lo - 1e-25 <= limit <= orbit.limit_residue.hi + 1e-25
+    # every block's normalised residue lies between the first block's and the limit's
+    first = (2 - (orbit.trace.lo / mpmath.sqrt(orbit.determinant.lo))) / 4
+    later = []
+    for k in range(1, 6):
+        v = math.pi * (m + k * shift)
+        b = 2 * v / (v + math.pi * shift / 2)
+        c = 2 * eps * math.cos(phi)
+        later.append((2 - b * (1 - c) / math.sqrt(b - 1)) / 4)
+    lo, hi = sorted((float(first), float(orbit.limit_residue.mid)))
+    assert all(lo - 1e-9 <= r <= hi + 1e-9 for r in later)
+
+
+def test_a_mode_whose_later_flight_is_not_proved_is_refused(monkeypatch):
+    import importlib
+
+    from verify.dynamics.box_flight import Undecided
+
+    module = importlib.import_module("verify.dynamics.accelerator")
+    calls = []
+
+    def refuse(*args):
+        calls.append(args)
+        raise Undecided("refused for the test")
+
+    monkeypatch.setattr(module, "box_flight", refuse)
+    # eps = 10, m = 1: the blocks at v = 2*pi .. 6*pi (<= 2*eps) are certified one by one
+    with pytest.raises(verify.NotCertified, match="not proved to go on"):
+        verify.periodic_orbit(_mode_phase(10.0, 1), math.pi, 10.0, 1, velocity_shift=1, dps=30)
+    assert calls
+    calls.clear()
+    # eps = 1.6, m = 4: every later block is above 2*eps, proved by the bound alone
+    verify.periodic_orbit(_mode_phase(1.6, 1), 4 * math.pi, 1.6, 1, velocity_shift=1, dps=30)
+    assert not calls

@@ -15,7 +15,7 @@ from .loading import load_callable, parse_spec
 from .properties import Checker
 from .report import NO_INPUT, CheckReport, PropertyResult, callable_name
 from .suites import DEFAULT_EXAMPLES, NEEDS_STEP, check_suite, properties_of
-from .worker import Unavailable, Worker, how_to_load
+from .worker import IMPORT_TIMEOUT, Unavailable, Worker, how_to_load
 
 DEFAULT_CALL_TIMEOUT = 5.0  # seconds one call of the user's code may take
 DEFAULT_BUDGET = 120.0  # seconds for the whole check
@@ -49,15 +49,17 @@ def _in_process(fns, specs, why):
                        "worker process)")
 
 
-def _callers(fns, specs, call_timeout, budget):
-    """(the callables the properties call, the worker or None, how they run). ValueError when
-    a ``MODULE:FUNCTION`` spec does not load in the worker (it raises, exits or crashes while
-    importing, or names no callable)."""
+def _callers(fns, specs, call_timeout, budget, import_timeout, workers):
+    """(the callables the properties call, the worker or None, how they run); the worker is
+    appended to ``workers`` before it starts, so that the caller stops it on every way out.
+    ValueError when a ``MODULE:FUNCTION`` spec does not load in the worker (it raises, exits,
+    crashes or hangs while importing, or names no callable)."""
     try:
         how = {name: how_to_load(fn, specs[name]) for name, fn in fns.items()}
     except Unavailable as why:  # a callable that cannot be pickled
         return _in_process(fns, specs, why)
-    worker = Worker(how, call_timeout, budget)
+    worker = Worker(how, call_timeout, budget, import_timeout)
+    workers.append(worker)
     try:
         worker.start()
     except Unavailable as why:
@@ -87,6 +89,7 @@ def check_integrator(
     call_timeout: float = DEFAULT_CALL_TIMEOUT,
     budget: float = DEFAULT_BUDGET,
     progress: Callable[[str, int, int], None] | None = None,
+    import_timeout: float = IMPORT_TIMEOUT,
 ) -> CheckReport:
     """Run the property suite (``verify.check``) against ``flight_time`` (and ``step``).
 
@@ -98,13 +101,16 @@ def check_integrator(
     max_examples: inputs per property (overrides the suite's count). seed: hypothesis seed
     (an int gives the same inputs every run; None draws fresh ones). k: allowed multiple of
     ``kappa*u``. budget: seconds for the whole check (``math.inf``: none); when it runs out
-    the properties not finished are INCONCLUSIVE with the counts reached. progress:
+    the properties not finished are INCONCLUSIVE with the counts reached. import_timeout:
+    seconds the worker may take to import a ``MODULE:FUNCTION`` spec (a module that takes
+    longer, or hangs, is a ``ValueError`` naming it; within the budget). progress:
     ``progress(property, inputs so far, inputs planned)`` after each input. Properties that
     need ``step`` are skipped without it (asking for one of them alone raises
     ``ValueError``). Returns a :class:`CheckReport`; never raises for a misbehaving callable
     (an exception, ``sys.exit()``, a crash or a hang in a call is a failure of its property).
-    Raises ``ValueError`` for bad arguments, including a spec whose module raises, exits or
-    crashes while importing: nothing of it was checked.
+    Raises ``ValueError`` for bad arguments, including a spec whose module raises, exits,
+    crashes or hangs while importing: nothing of it was checked. The worker, and whatever the
+    checked code started, is stopped on every way out (:mod:`verify.check.worker`).
     """
     suite = check_suite(suite)
     flight_time, ft_spec = _target(flight_time, "flight_time")
@@ -123,18 +129,21 @@ def check_integrator(
         raise ValueError(f"seed must be an integer or None, got seed={seed!r}")
     call_timeout = _positive("call_timeout", call_timeout, allow_inf=True)
     budget_s = _positive("budget", budget, allow_inf=True)
+    import_timeout = _positive("import_timeout", import_timeout, allow_inf=True)
 
     start = time.perf_counter()
     clock = Budget(budget_s)
     fns = {"flight_time": flight_time, "step": step} if has_step else \
         {"flight_time": flight_time}
     specs = {"flight_time": ft_spec, "step": step_spec}
-    calls, worker, isolation = _callers(fns, specs, call_timeout, clock)
-    run = Run(seed, clock, (lambda: worker.faults) if worker else (lambda: 0), progress)
-    checker = Checker(calls["flight_time"], calls.get("step"), k)
-    strategies = property_parts()
+    workers: list[Worker] = []
     results = []
     try:
+        calls, worker, isolation = _callers(fns, specs, call_timeout, clock, import_timeout,
+                                            workers)
+        run = Run(seed, clock, (lambda: worker.faults) if worker else (lambda: 0), progress)
+        checker = Checker(calls["flight_time"], calls.get("step"), k)
+        strategies = property_parts()
         for name in properties_of(suite):
             t0 = time.perf_counter()
             if name in NEEDS_STEP and not has_step:
@@ -161,8 +170,8 @@ def check_integrator(
             results.append(PropertyResult(name, status, got.inputs, "; ".join(notes),
                                           got.failure, time.perf_counter() - t0, got.failed))
     finally:
-        if worker is not None:
-            worker.stop()
+        for started in workers:
+            started.stop()
     if worker is not None and worker.faults:
         isolation += f"; {worker.faults} timeouts or crashes, {worker.restarts} restarts"
     return CheckReport(

@@ -5,6 +5,7 @@ which the property that called turns into a failure."""
 from __future__ import annotations
 
 import math
+import numbers
 
 
 class Bad(Exception):
@@ -24,15 +25,35 @@ def one_line(err: BaseException) -> str:
 
 
 def as_float(x, what: str) -> float:
+    """``x`` as a float if it is a real number: a Python or numpy real (not a bool), or a numpy
+    array of one real element. Anything else (a string such as "1.0", None, a complex number, a
+    bool) is :class:`Bad` naming its type: a time given as text is not a time, even where
+    ``float()`` would read it."""
+    if hasattr(x, "shape") and hasattr(x, "dtype"):  # numpy arrays and scalars
+        if x.shape not in ((), (1,)):
+            raise Bad(_shown(x), f"{what} is not a real number (an array of shape {x.shape})")
+        if x.dtype.kind not in "fiu":
+            raise Bad(_shown(x), f"{what} is not a real number (an array of {x.dtype})")
+        x = x.reshape(()).item()
+    if isinstance(x, bool) or not isinstance(x, numbers.Real):
+        kind = getattr(type(x), "description", None) or f"a {type(x).__name__}"
+        raise Bad(_shown(x), f"{what} is not a real number ({kind})")
     try:
-        if hasattr(x, "shape") and getattr(x, "shape", ()) not in ((), (1,)):
-            raise TypeError(f"shape {x.shape}")
-        val = float(x[0] if getattr(x, "shape", ()) == (1,) else x)
-    except (TypeError, ValueError, IndexError) as err:
-        raise Bad(repr(x), f"{what} is not a real number ({one_line(err)})") from None
+        val = float(x)
+    except (TypeError, ValueError, OverflowError) as err:
+        raise Bad(_shown(x), f"{what} is not a real number ({one_line(err)})") from None
     if not math.isfinite(val):
         raise Bad(repr(val), f"{what} is not finite")
     return val
+
+
+def _shown(x, limit: int = 80) -> str:
+    """The repr of what came back, clipped for the report."""
+    try:
+        text = repr(x)
+    except Exception as err:  # noqa: BLE001 - a user's object whose repr fails
+        text = f"<{type(x).__name__} whose repr raised {one_line(err)}>"
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def call_flight(fn, phi, v, eps) -> float:
@@ -57,10 +78,12 @@ def call_step(fn, phi, v, eps) -> tuple[float, float, float]:
         raise
     except (Exception, SystemExit) as err:
         raise Bad(f"exception {one_line(err)}", "step raised on a valid departure") from None
+    if isinstance(out, str | bytes):
+        raise Bad(_shown(out), "step must return (phi1, v1, tau), not a string")
     try:
         phi1, v1, tau = out
-    except (TypeError, ValueError):
-        raise Bad(repr(out), "step must return (phi1, v1, tau)") from None
+    except Exception:  # noqa: BLE001 - whatever the user's object does when unpacked
+        raise Bad(_shown(out), "step must return (phi1, v1, tau)") from None
     phi1 = as_float(phi1, "phi1")
     v1 = as_float(v1, "v1")
     tau = as_float(tau, "tau")

@@ -21,6 +21,15 @@ velocity ``v``)::
   + |eps| <= 0`` proved in ``iv``, or the ``iv`` enclosure of ``d''`` over the box ``[0, T]``
   (:meth:`DragGap.curvature`) ``<= 0``. Then ``d(lo) > 0 > d(hi)`` with ``hi <= T``
   certify the first root as in the elastic ``|eps| <= 1`` case (chord argument).
+* Long flights (:func:`positive_window`). The plate term eps*(cos(phi) - cos(phi+t)) is at
+  least ``-P``, ``P = |eps| - eps*cos(phi)``, so ``d(t) >= Y(t) - P``. ``Y' = V`` is monotone, so
+  ``Y`` is concave, or convex and decreasing (``V`` rises only below the terminal velocity,
+  where ``V < 0``): either way its minimum over ``[a, b]`` is at an end, and ``Y(a) > P``,
+  ``Y(b) > P`` prove ``d > 0`` on ``[a, b]``. A particle thrown high against strong drag (k = 1000
+  from v = 1e4: up to Y = 10, then falling at the terminal speed 1e-3 for 1e4 time units)
+  spends thousands of plate periods there; the search skips them in one window, which ends
+  at most one plate period before the collision (once ``Y < P`` the next minimum of the plate
+  term makes ``d < 0``).
 * A departure at rest relative to the plate, ``w0 = 0`` exactly (:func:`departure_start`):
   ``d(0) = d'(0) = 0`` and ``d(t) = integral_0^t (t-s)*d''(s) ds``, so ``d'' > 0`` on ``(0, h]``
   gives ``d > 0`` there. ``d''`` is proved ``> 0`` on ``(0, h]`` either directly
@@ -36,6 +45,9 @@ from ..numerics.precision import NotDecided, hi, iv, lo, mp
 from .drag import DragFlight
 
 _HALVINGS = 200  # tries for the opening box of a departure at rest
+_DOUBLINGS = 4_000  # of a time, in the search of a long flight's window (2**4000 > any flight)
+_MIN_PERIODS = 8  # a window shorter than this many plate periods is not worth placing
+_PLACE = 0.5  # a window's ends are placed to this (absolute time; a plate period is 2*pi)
 
 
 class DragGap:
@@ -128,6 +140,58 @@ class DragGap:
         return 0  # no conditioning estimate with drag: the precision is doubled
 
 
+def positive_window(ctx: DragGap, start):
+    """``(a, b)`` with ``d > 0`` proved on ``[a, b]`` and ``a >= start`` (module docstring: long
+    flights), or None where it would not span a few plate periods. The ends are placed by
+    bisection on point values (not rigorous) and then proved: ``Y(a) > P`` and ``Y(b) > P`` in
+    ``iv``."""
+    floor = hi(abs(ctx.ieps) - ctx.ieps * iv.cos(ctx.iphi))  # the plate term is >= -floor
+
+    def above(t):  # Y(t) > P, non-rigorous (the midpoint), for the bisections
+        disp = ctx.flight.displacement(t)
+        return (lo(disp) + hi(disp)) / 2 > floor
+
+    try:
+        peak = start
+        for _ in range(_DOUBLINGS):  # a point above P (none once falling), then one below
+            if above(peak):
+                break
+            if hi(ctx.flight.velocity(peak)) < 0:
+                return None
+            peak = 2 * peak
+        else:
+            return None
+        far = 2 * peak
+        for _ in range(_DOUBLINGS):
+            if not above(far):
+                break
+            far = 2 * far
+        else:
+            return None
+        if far - peak < _MIN_PERIODS * 2 * mp.pi:
+            return None  # a short flight: the box-by-box search is as fast
+        a = start if above(start) else _boundary(above, peak, start)
+        b = _boundary(above, peak, far)
+        if not (lo(ctx.flight.displacement(a)) > floor and lo(ctx.flight.displacement(b))
+                > floor):
+            return None
+    except NotDecided:
+        return None
+    return (a, b) if a < b else None
+
+
+def _boundary(above, inside, outside):
+    """A point on the ``inside`` side of where ``above`` changes, within a tenth of a plate
+    period of it (bisection; ``above(inside)`` holds, ``above(outside)`` does not)."""
+    while abs(outside - inside) > _PLACE:
+        mid = (inside + outside) / 2
+        if above(mid):
+            inside = mid
+        else:
+            outside = mid
+    return inside
+
+
 def departure_start(ctx: DragGap):
     """For ``w0 = 0`` exactly: ``h > 0`` with ``d > 0`` proved on ``(0, h]`` (module docstring).
 
@@ -186,5 +250,6 @@ def drag_attempt(phi, v, eps, phys, dps, wdps):
         raise NotDecided(
             f"w0 = v + eps*sin(phi) is within {mp.nstr(hi(w0) - lo(w0), 3)} of 0: departure or not"
         )
-    return search_first_root(ctx, curv, lo(w0) / curv, None, concave_from=ctx.concave_on,
-                             candidate=local_candidate)
+    free = lo(w0) / curv
+    return search_first_root(ctx, curv, free, positive_window(ctx, free),
+                             concave_from=ctx.concave_on, candidate=local_candidate)

@@ -18,9 +18,27 @@ certified: the departure, no collision before the bracket, one transversal root 
 Stability. With T the enclosure of tr DF^p over the final box, the residue is R = (2 - T)/4
 (Greene): ``"elliptic"`` when 0 < R < 1 is proved, ``"hyperbolic"`` when R < 0 or R > 1 is
 proved, ``"undecided"`` otherwise. Over a periodic orbit det DF^p = 1 (the map preserves
-w dphi dv, w = v + eps*sin(phi), and the factors w_k/w_(k+1) telescope); for l != 0 the exact
-map is not periodic in v, det DF^p = w_0/w_p != 1, and the classification uses
-(2 - T/sqrt(det))/4, which lies in (0, 1) exactly when the eigenvalues are complex.
+w dphi dv, w = v + eps*sin(phi), and the factors w_k/w_(k+1) telescope).
+
+Minimal period. A zero of G for period p may be an orbit of a shorter period d (a divisor of p):
+the fixed point (0, pi) is a zero of every F^p - id - (2*pi*p, 0). If F^d(x) = x (mod 2*pi in
+phase), the next d flights repeat the first ones, so the total time of p collisions is p/d times
+that of d: only divisors d with m*d/p an integer are possible. For each such d the enclosure of
+the state after d collisions is compared with that of the first state shifted by 2*pi*m*d/p: if
+they are disjoint (in phase or in v), F^d(x) != x is proved. Otherwise the orbit is certified
+again at period d from the proved state; its proved box lies in this call's Krawczyk box X,
+whose only zero of G is x, so the two are the same orbit: the result is RELABELLED to period d
+(``.period`` = d, its own winding, trace and residue; recursively minimal). Where neither
+proof succeeds, NotCertified names the period that could not be excluded. ``.period`` is thus
+always the proved minimal period.
+
+Velocity shifts (accelerator modes, l != 0): see :mod:`verify.dynamics.accelerator`. The exact
+map is not periodic in v; the shifted relations that repeat block after block are exactly the
+period-1 modes with tau = 2*pi*m (v = pi*m, -2*eps*sin(phi) = pi*l), l > 0. A block with
+p >= 2 and a shift is certified only as p repetitions of such a mode (relabelled to period 1);
+a decelerating shift (l < 0) and every other shifted block raise NotCertified. For a mode the
+flights of later blocks are proved to be first roots too, and the stability is that of every
+block (module :mod:`verify.dynamics.accelerator`), ``limit_residue`` the v -> infinity one.
 
 Cost. Interval widths grow along the orbit like the product of the entrywise absolute
 Jacobians; the working precision is chosen from that growth measured on the point orbit (about
@@ -29,10 +47,12 @@ twice its number of digits, plus guards), so long or strongly unstable orbits co
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import mpmath
 
+from verify.dynamics.accelerator import continuation, limit_residue
 from verify.dynamics.box_flight import Undecided
 from verify.dynamics.errors import NotCertified
 from verify.dynamics.numbers import (
@@ -54,15 +74,18 @@ _RADIUS_TRIES = (0, -6, 6)  # decades around the geometric mean of the two radiu
 
 @dataclass(frozen=True)
 class CertifiedOrbit:
-    """A periodic orbit proved to exist, unique in ``box``.
+    """A periodic orbit proved to exist, unique in ``box``, of proved minimal period ``period``.
 
     ``box``: (phi, v) enclosures of the proved zero of G near the guess (phase in the guess's
     frame); ``points``: enclosures of the p states of the orbit, phases reduced near [0, 2*pi)
     (a phase within its width of 0 keeps an enclosure around 0); ``trace``, ``determinant``:
     enclosures for DF^p over ``box``; ``residue``: (2 - trace)/4; ``stability``: "elliptic",
-    "hyperbolic" or "undecided" (see the module docstring); ``dps_used``: working digits;
-    ``radius``: the half-width r of the Krawczyk box; ``flights``: box flights certified
-    (every collision of every enclosure computed, attempts included).
+    "hyperbolic" or "undecided" (see the module docstring); ``period``: the minimal period
+    (it may be smaller than the period asked for: the module docstring's relabelling);
+    ``limit_residue``: for an accelerator mode, eps*cos(phi) (the residue as v -> infinity),
+    else None; ``dps_used``: working digits; ``radius``: the half-width r of the Krawczyk box;
+    ``flights``: box flights certified (every collision of every enclosure computed, attempts
+    and the mode's later blocks included).
     """
 
     box: tuple
@@ -78,6 +101,7 @@ class CertifiedOrbit:
     dps_used: int
     radius: float
     flights: int
+    limit_residue: Enclosure | None = None
 
 
 def _integer(name, value, minimum=None):
@@ -104,13 +128,17 @@ def periodic_orbit(phi, v, eps, period, dps: int = 50, *, winding=None, velocity
     phi, v, eps: exact real values (floats are taken as exact binary numbers); period p >= 1;
     dps >= 15: the digits of the arithmetic (raised where the orbit needs more, up to
     ``max_dps``, default max(4*dps, 400)); winding m (default: the guess's own p flights /
-    2*pi, rounded); velocity_shift l (an accelerator block, v_p = v + pi*l); tolerance: the orbit
-    must lie within this max-norm distance of the guess.
+    2*pi, rounded); velocity_shift l (an accelerator mode, v_p = v + pi*l: certified only for
+    the exact map's period-1 modes with l > 0, module docstring); tolerance: the orbit must lie
+    within this max-norm distance of the guess.
 
-    Returns a :class:`CertifiedOrbit`. Raises ValueError for bad input (including a guess that
-    does not depart) and :class:`verify.NotCertified` when no orbit is proved near the guess: the
-    point Newton iteration fails or leaves the tolerance, DF^p - I is singular (an orbit that is
-    not isolated), a flight cannot be certified, or Krawczyk's test fails at ``max_dps``.
+    Returns a :class:`CertifiedOrbit` whose ``period`` is the proved minimal period (an orbit of
+    a shorter period is relabelled). Raises ValueError for bad input (including a guess that
+    does not depart) and :class:`verify.NotCertified` when no orbit is proved near the guess:
+    the point Newton iteration fails or leaves the tolerance, DF^p - I is singular (an orbit
+    that is not isolated), a flight cannot be certified, Krawczyk's test fails at ``max_dps``,
+    a shorter period can be neither excluded nor proved, or a velocity shift is not an
+    accelerator mode of the exact map.
     """
     raws = [exact_raw(name, x) for name, x in (("phi", phi), ("v", v), ("eps", eps))]
     period = _integer("period", period, minimum=1)
@@ -131,24 +159,86 @@ def periodic_orbit(phi, v, eps, period, dps: int = 50, *, winding=None, velocity
     if not w0 > 0:
         raise ValueError(f"the guess does not depart: w0 = v + eps*sin(phi) = "
                          f"{mpmath.nstr(w0, 8)} <= 0 at phi={phi!r}, v={v!r}, eps={eps!r}")
+    where = f"near phi={phi!r}, v={v!r} (eps={eps!r})"
+    if shift < 0:
+        raise NotCertified(f"velocity shift {shift} < 0 {where}: v falls by pi*{-shift} per "
+                           f"block and reaches 0 after finitely many: not an accelerator mode "
+                           f"(its time reverse, at phase -phi, is the mode with shift {-shift})")
+    if shift != 0 and period > 1:
+        return _repeated_mode(guess, eps_mp, period, winding, shift, dps, tol, max_dps, where)
     state = _Problem(eps_mp, period, winding, shift, guess, tol)
-    x = state.newton(ctx)
-    needed = state.digits_needed(ctx, x)
-    if needed > max_dps:
-        raise NotCertified(f"the orbit needs about {needed} digits (interval growth along "
-                           f"{period} collisions), more than max_dps={max_dps}")
-    work = max(dps + GUARD_DPS, needed)
-    while True:
-        if work > ctx.dps:
-            ctx = contexts(work)
-            x = state.newton(ctx, start=x)
-        result = state.certify(ctx, x)
-        if result is not None:
-            return result
-        if work >= max_dps:
-            raise NotCertified(f"Krawczyk's test failed up to {work} digits for the orbit of "
-                               f"period {period} near phi={phi!r}, v={v!r} (eps={eps!r})")
-        work = min(max_dps, work + work // 2)
+    found = state.solve(ctx, dps, max_dps, where)
+    if shift != 0:
+        return state.mode(found)
+    return _minimal(state, found, dps, max_dps)
+
+
+def _repeated_mode(guess, eps, period, winding, shift, dps, tol, max_dps, where):
+    """A block of p >= 2 collisions with a shift: certified only as p blocks of a period-1 mode
+    (module :mod:`verify.dynamics.accelerator`, Lemma 2), relabelled to period 1."""
+    refusal = (f"a block of {period} collisions with velocity shift {shift} {where} is an orbit "
+               f"of the exact map only as {period} blocks of a period-1 accelerator mode")
+    if shift % period:
+        raise NotCertified(f"{refusal}, whose shift would be {shift}/{period}: not an integer")
+    step = shift // period
+    one = None
+    if winding is not None:
+        # p blocks of the mode (phi, pi*m1) -> (phi, pi*(m1 + l1)) take 2*pi*(p*m1 +
+        # l1*p*(p - 1)/2)
+        twice = 2 * winding - step * period * (period - 1)
+        if twice % (2 * period):
+            raise NotCertified(f"{refusal}: winding {winding} is not that of {period} blocks "
+                               f"of a mode")
+        one = twice // (2 * period)
+        if one < 1:
+            raise NotCertified(f"{refusal}: winding {winding} is too small for one")
+    try:
+        return periodic_orbit(guess[0], guess[1], eps, 1, dps, winding=one,
+                              velocity_shift=step, tolerance=tol, max_dps=max_dps)
+    except NotCertified as err:
+        raise NotCertified(f"{refusal}, and none was certified: {err}") from None
+
+
+def _divisors(n):
+    return [d for d in range(1, n) if n % d == 0]
+
+
+def _minimal(state, found, dps, max_dps):
+    """The orbit with its proved minimal period (module docstring: relabelled or refused)."""
+    orbit = found.orbit
+    p, m = orbit.period, orbit.winding
+    for d in _divisors(p):
+        if (m * d) % p:
+            continue  # a period-d orbit repeated would take 2*pi*m*d/p per d collisions
+        turns = m * d // p
+        if state.distinct(found, d, turns):
+            continue
+        centre = (orbit.box[0].lo + orbit.box[0].hi) / 2, (orbit.box[1].lo + orbit.box[1].hi) / 2
+        try:
+            shorter = periodic_orbit(centre[0], centre[1], state.eps, d, dps, winding=turns,
+                                     tolerance=state.tolerance, max_dps=max_dps)
+        except NotCertified as err:
+            raise NotCertified(
+                f"the orbit of period {p} may have period {d}: its state after {d} collisions "
+                f"is not proved distinct from the first, and no period-{d} orbit was "
+                f"certified there ({err})") from None
+        if not all(found.krawczyk_box[i].lo <= shorter.box[i].lo
+                   and shorter.box[i].hi <= found.krawczyk_box[i].hi for i in range(2)):
+            raise NotCertified(
+                f"the orbit of period {p} may have period {d}: a period-{d} orbit was certified "
+                f"next to it but not inside its Krawczyk box (not proved the same orbit)")
+        return shorter
+    return orbit
+
+
+class _Found(NamedTuple):
+    """A certified zero of G: the orbit's description, the Krawczyk box X (the zero is the only
+    one in X) and the enclosures B_0..B_p of its states (phases unreduced), in ``ctx``."""
+
+    orbit: CertifiedOrbit
+    krawczyk_box: tuple
+    boxes: list
+    ctx: object
 
 
 class _Problem:
@@ -158,6 +248,55 @@ class _Problem:
         self.eps, self.period, self.winding, self.shift = eps, period, winding, shift
         self.guess, self.tolerance = guess, tolerance
         self.flights = 0  # box flights certified (every enclosure of every attempt)
+
+    def solve(self, ctx, dps, max_dps, where) -> _Found:
+        """Newton in the point context, then Krawczyk's test at rising precision."""
+        x = self.newton(ctx)
+        needed = self.digits_needed(ctx, x)
+        if needed > max_dps:
+            raise NotCertified(f"the orbit needs about {needed} digits (interval growth along "
+                               f"{self.period} collisions), more than max_dps={max_dps}")
+        work = max(dps + GUARD_DPS, needed)
+        while True:
+            if work > ctx.dps:
+                ctx = contexts(work)
+                x = self.newton(ctx, start=x)
+            found = self.certify(ctx, x)
+            if found is not None:
+                return found
+            if work >= max_dps:
+                raise NotCertified(f"Krawczyk's test failed up to {work} digits for the orbit "
+                                   f"of period {self.period} {where}")
+            work = min(max_dps, work + work // 2)
+
+    def distinct(self, found, d, turns) -> bool:
+        """Proved: the state after d collisions differs from the first (mod 2*pi), i.e. its
+        enclosure misses that of the first shifted by 2*pi*turns, in phase or in v."""
+        iv = found.ctx.iv
+        first, later = found.boxes[0], found.boxes[d]
+        dphi = later[0] - first[0] - 2 * iv.pi * turns
+        dv = later[1] - first[1]
+        return not (lo(dphi) <= 0 <= hi(dphi)) or not (lo(dv) <= 0 <= hi(dv))
+
+    def mode(self, found) -> CertifiedOrbit:
+        """A period-1 accelerator mode: its later blocks proved (``accelerator.continuation``)
+        and its stability over all blocks (module :mod:`verify.dynamics.accelerator`)."""
+        orbit, ctx = found.orbit, found.ctx
+        phase = ctx.iv.mpf([orbit.box[0].lo, orbit.box[0].hi])
+        flights = continuation(ctx, self.eps, phase, orbit.winding, self.shift)
+        first = (2 - ctx.iv.mpf([orbit.trace.lo, orbit.trace.hi])
+                 / ctx.iv.sqrt(ctx.iv.mpf([orbit.determinant.lo, orbit.determinant.hi]))) / 4
+        limit = limit_residue(ctx, self.eps, phase)
+        if not orbit.determinant.lo > 0:
+            stability = UNDECIDED
+        elif classify(first) == ELLIPTIC:
+            stability = ELLIPTIC
+        elif classify(ctx.iv.mpf([limit.lo, limit.hi])) == HYPERBOLIC:
+            stability = HYPERBOLIC
+        else:
+            stability = UNDECIDED
+        return replace(orbit, stability=stability, limit_residue=limit,
+                       flights=orbit.flights + flights)
 
     def _enclose_point(self, ctx, x, flights):
         self.flights += self.period
@@ -281,12 +420,12 @@ class _Problem:
                 continue
             kraw = _krawczyk(iv, x, box, c_iv, g, image.jacobian)
             if all(_inside(ctx, kraw[i], box[i]) for i in range(2)):
-                return self._result(ctx, kraw, flights, r)
+                return self._result(ctx, kraw, flights, r, box)
         return None
 
-    def _result(self, ctx, box, flights, r):
+    def _result(self, ctx, box, flights, r, krawczyk_box) -> _Found:
         """Tighten to the Krawczyk image (which contains the orbit) and describe the orbit."""
-        iv, mp = ctx.iv, ctx.mp
+        mp = ctx.mp
         centre = (mp.make_mpf(box[0].mid._mpi_[0]), mp.make_mpf(box[1].mid._mpi_[0]))
         try:
             flights = self._orbit(ctx, centre)
@@ -298,21 +437,15 @@ class _Problem:
         trace = j[0] + j[3]
         det = j[0] * j[3] - j[1] * j[2]
         residue = (2 - trace) / 4
-        decided = residue
-        if self.shift != 0:
-            if not lo(det) > 0:
-                decided = iv.mpf([-mp.inf, mp.inf])
-            else:
-                decided = (2 - trace / iv.sqrt(det)) / 4
         states = tuple((_reduced(ctx, b[0]), Enclosure.of(b[1]))
                        for b in image.boxes[:-1])
-        return CertifiedOrbit(
+        orbit = CertifiedOrbit(
             box=(Enclosure.of(box[0]), Enclosure.of(box[1])),
             points=states,
             trace=Enclosure.of(trace),
             determinant=Enclosure.of(det),
             residue=Enclosure.of(residue),
-            stability=classify(decided),
+            stability=classify(residue),
             eps=mpmath.mp.make_mpf(self.eps._mpf_),
             period=self.period,
             winding=self.winding,
@@ -321,6 +454,7 @@ class _Problem:
             radius=float(r),
             flights=self.flights,
         )
+        return _Found(orbit, tuple(Enclosure.of(b) for b in krawczyk_box), image.boxes, ctx)
 
 
 def _krawczyk(iv, x, box, c, g, jac):

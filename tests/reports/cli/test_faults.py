@@ -9,6 +9,7 @@ injected by replacing a function (a full disk: an OSError ENOSPC from the write 
 """
 
 import errno
+import hashlib
 import json
 import os
 import shutil
@@ -39,12 +40,17 @@ def tree(folder):
             for p in sorted(Path(folder).rglob("*")) if p.is_file()}
 
 
+MAX_LINE = 600  # characters of an error line: the values it echoes are clipped
+
+
 def one_line(capsys):
     captured = capsys.readouterr()
     lines = captured.err.strip().splitlines()
     assert len(lines) == 1, captured.err
     assert lines[0].startswith("bouncer") and ": error: " in lines[0], lines[0]
     assert "Traceback" not in captured.err + captured.out
+    assert len(lines[0]) <= MAX_LINE, lines[0]
+    assert "np.float" not in lines[0] and "[Errno" not in lines[0], lines[0]  # plain words
     return lines[0]
 
 
@@ -85,6 +91,32 @@ def _scene(old, new, name="bad.toml"):
 
 def _set(key, value):
     return _edit_manifest(lambda m: m.__setitem__(key, value))
+
+
+def _rehashed(name, change):
+    """Rewrite run/NAME with ``change(bytes)`` and record its new SHA-256 in the manifest: a
+    forger who knows the format (the hash check alone cannot tell)."""
+    def setup(folder):
+        path = folder / "run" / name
+        path.write_bytes(change(path.read_bytes()))
+        manifest_path = folder / "run" / "manifest.json"
+        manifest = json.loads(manifest_path.read_text())
+        manifest["hashes"][name] = hashlib.sha256(path.read_bytes()).hexdigest()
+        manifest_path.write_text(json.dumps(manifest))
+    return setup
+
+
+def _manifest_text(old, new):
+    def setup(folder):
+        path = folder / "run" / "manifest.json"
+        text = json.dumps(json.loads(path.read_text()), indent=1)
+        assert old in text
+        path.write_text(text.replace(old, new))
+    return setup
+
+
+LONG = "7" * 5000  # an integer of more digits than Python converts (4300)
+DEEP_TOML = 'name = "x"\nkind = "escape"\na = ' + "[" * 100_000 + "]" * 100_000 + "\n"
 
 
 # (id, argv, setup, exit status, text in the error line); the cases run in the folder ``work``
@@ -145,6 +177,31 @@ BAD_INPUT = [
      _scene("particles = 200", "particles = -5"), 2, "bad.toml: particles must be >= 1"),
     ("scene no departure", ["run", "bad.toml", "--out", "o"],
      _scene("v = [2.0, 4.0]", "v = [0.1, 4.0]"), 2, "include non-departures"),
+    ("scene nested 100000 deep", ["run", "deep.toml", "--out", "o"],
+     _write("deep.toml", DEEP_TOML), 2, "deep.toml: not valid TOML: nested too deeply"),
+    ("scene 5000-digit integer", ["run", "bad.toml", "--out", "o"],
+     _scene("particles = 200", f"particles = {LONG}"), 2,
+     "bad.toml: line 5 (particles): an integer of 5000 digits"),
+    ("scene a megabyte long", ["run", "big.toml", "--out", "o"],
+     _write("big.toml", TINY + "# " + "x" * (1 << 20) + "\n"), 2,
+     "scene file big.toml: 1048", ),
+    ("scene a directory", ["run", "adir", "--out", "o"], _write("adir/x", "x"), 2,
+     "scene file adir: a directory, not a regular file"),
+    ("scene long text value", ["run", "bad.toml", "--out", "o"],
+     _scene('eps = 0.6', 'eps = "' + "y" * 100_000 + '"'), 2, "eps must be a number, got"),
+    ("scene widths twice", ["run", "bad.toml", "--out", "o"],
+     _scene("widths = [1.0]", "widths = [1.0, 1.0]"), 2,
+     "bad.toml: holes.widths lists 1.0 twice (the experiments are holes.centres x"
+     " holes.widths"),
+    ("scene widths print alike", ["run", "bad.toml", "--out", "o"],
+     _scene("widths = [1.0]", "widths = [1.0, 1.00001]"), 2,
+     "holes.widths 1.0 and 1.00001 both show as 1 in curve names"),
+    ("scene quadratic drag 1e300", ["run", "bad.toml", "--out", "o"],
+     _write("bad.toml", TINY + '[physics]\ndrag = 1e300\ndrag_law = "quadratic"\n'), 2,
+     "bad.toml: physics.drag = 1e+300 (quadratic) stops a particle of speed 5.2"),
+    ("scene linear drag 1e20", ["run", "bad.toml", "--out", "o"],
+     _write("bad.toml", TINY + "[physics]\ndrag = 1e20\n"), 2,
+     "float64 cannot run these flights; drag must be <= 2.81e+14 here"),
     # bouncer run --resume of a damaged run
     ("resume truncated manifest", ["run", "tiny.toml", "--out", "run", "--resume"],
      _write("run/manifest.json", '{"status": "partial", "scene"'), 2,
@@ -185,6 +242,14 @@ BAD_INPUT = [
      "'git' was unexpected"),
     ("verify truncated manifest", ["verify", "run"], _write("run/manifest.json", "{"), 2,
      "run/manifest.json: not valid JSON"),
+    ("verify manifest 5000-digit integer", ["verify", "run"],
+     _manifest_text('"particles": 200', f'"particles": {LONG}'), 2,
+     "run/manifest.json: field particles: an integer of 5000 digits"),
+    ("verify manifest a directory", ["verify", "run"],
+     lambda w: ((w / "run/manifest.json").unlink(), (w / "run/manifest.json").mkdir()), 2,
+     "run/manifest.json: a directory, not a regular file"),
+    ("verify scene.toml nested deep", ["verify", "run"], _write("run/scene.toml", DEEP_TOML),
+     2, "run/scene.toml: not valid TOML: nested too deeply"),
     # bouncer plot and fit of damaged runs and histograms
     ("plot not a run", ["plot", "."], None, 2, "is not a run directory"),
     ("plot manifest list", ["plot", "run"], _write("run/manifest.json", "[1, 2, 3]"), 2,
@@ -203,6 +268,19 @@ BAD_INPUT = [
      _write("h.csv", "lower,upper,count\n1e300,1.5e300,10\n1.5e300,1.7e300,5\n"), 2,
      "outside [0, 2**53]"),
     ("fit header", ["fit", "h.csv"], _write("h.csv", "a,b\n1,2\n"), 2, "header must be"),
+    ("fit manifest 5000-digit integer", ["fit", "run", "--json"],
+     _manifest_text('"particles_done": 200', f'"particles_done": {LONG}'), 2,
+     "run/manifest.json: field curves.from hole 2: {'particles_done': an integer of 5000"
+     " digits"),
+    ("fit count 5000 digits", ["fit", "h.csv", "--json"],
+     _write("h.csv", f"lower,upper,count\n0,1,{LONG}\n1,2,5\n"), 2,
+     " characters) ...777"),
+    ("fit field over csv's limit", ["fit", "h.csv", "--json"],
+     _write("h.csv", "lower,upper,count\n0,1,\"" + "8" * 200_000 + "\"\n"), 2,
+     "h.csv: not readable as CSV (field larger than field limit"),
+    ("fit counts.csv a directory", ["fit", "run", "--json"],
+     lambda w: ((w / "run/counts.csv").unlink(), (w / "run/counts.csv").mkdir()), 2,
+     "run/counts.csv: a directory, not a regular file"),
     # bouncer check
     ("check spec", ["check", "fastpath"], None, 2, "expected MODULE:FUNCTION"),
     ("check suite", ["check", "fastpath:flight_time", "--suite", "bogus"], None, 2,
@@ -250,6 +328,25 @@ TAMPERED = [  # the audit runs and fails: exit 1, the report on stdout
     ("status", _set("status", "partial"), "the run is not complete (status partial)"),
     ("provenance git", _write("run/provenance.json", "{}"),
      "provenance.json: SHA-256 differs from the manifest's"),
+    ("survival.csv CRLF, rehashed", _rehashed("survival.csv", lambda b: b.replace(b"\n", b"\r\n")),
+     "survival.csv: its lines end in CRLF, the curve from counts.csv's in LF (the comparison is"
+     " byte for byte)"),
+    ("counts.csv CRLF, rehashed", _rehashed("counts.csv", lambda b: b.replace(b"\n", b"\r\n")),
+     "counts.csv: its lines end in CRLF, the checkpoint's in LF"),
+    ("survival.csv with a byte-order mark, rehashed",
+     _rehashed("survival.csv", lambda b: b"\xef\xbb\xbf" + b),
+     "survival.csv:1: the curve from counts.csv has 'curve,clock,x,p,p_lo,p_hi', the file"),
+    ("provenance random bytes, rehashed", _rehashed("provenance.json", lambda b: os.urandom(600)),
+     "provenance.json: not"),
+    ("provenance of another shape, rehashed", _rehashed("provenance.json", lambda b: b"[1, 2]"),
+     "provenance.json: [1, 2] is not of type 'object'"),
+    ("provenance without a field, rehashed",
+     _rehashed("provenance.json", lambda b: json.dumps(
+         {k: v for k, v in json.loads(b).items() if k != "versions"}).encode()),
+     "provenance.json: 'versions' is a required property"),
+    ("survival.csv a directory", lambda w: ((w / "run/survival.csv").unlink(),
+                                            (w / "run/survival.csv").mkdir()),
+     "survival.csv: a directory, not a regular file"),
 ]
 
 
@@ -457,3 +554,90 @@ def test_a_full_disk_taking_the_lock_leaves_nothing(work, monkeypatch, capsys):
     assert not (work / "new").exists()
     monkeypatch.setattr(Path, "write_text", real)
     assert bouncer(["run", "tiny.toml", "--out", "new", "--quiet"]) == 0
+
+
+# ---- files that are not regular files, read-only folders, exports ---------------------------
+
+def bouncer_process(argv, cwd, timeout=120):
+    """``bouncer ARGV`` in a fresh process (a reader that blocks would hang this one)."""
+    return subprocess.run([sys.executable, "-m", "reports.cli", *map(str, argv)], cwd=cwd,
+                          capture_output=True, text=True, timeout=timeout,
+                          env=dict(os.environ, PYTHONPATH=str(ROOT)))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("argv", "fifo", "status", "text"), [
+    (["verify", "run", "--quiet"], "run/survival.csv", 1,
+     "survival.csv: a FIFO (named pipe), not a regular file"),
+    (["verify", "run", "--quiet"], "run/checkpoint.npz", 1,
+     "checkpoint.npz: a FIFO (named pipe), not a regular file"),
+    (["verify", "run"], "run/manifest.json", 2,
+     "run/manifest.json: a FIFO (named pipe), not a regular file"),
+    (["run", "tiny.toml", "--out", "run", "--resume"], "run/scene.toml", 2,
+     "run/scene.toml: a FIFO (named pipe), not a regular file"),
+    (["run", "pipe.toml", "--out", "o"], "pipe.toml", 2,
+     "scene file pipe.toml: a FIFO (named pipe), not a regular file"),
+    (["fit", "pipe.csv", "--json"], "pipe.csv", 2, "pipe.csv: a FIFO (named pipe), not a"
+     " regular file"),
+    (["fit", "run", "--json"], "run/counts.csv", 2, "run/counts.csv: a FIFO (named pipe)"),
+    (["plot", "run", "--out", "p.png"], "run/survival.csv", 2,
+     "run/survival.csv: a FIFO (named pipe)"),
+])
+def test_a_fifo_in_place_of_a_file_is_refused_without_waiting(argv, fifo, status, text, work):
+    """Every file the command reads is opened without blocking and must be a regular file: a
+    FIFO nobody writes to would otherwise hang the reader for good."""
+    path = work / fifo
+    path.unlink(missing_ok=True)
+    os.mkfifo(path)
+    before = tree(work)
+    proc = bouncer_process(argv, work)
+    assert proc.returncode == status, proc.stdout + proc.stderr
+    assert "Traceback" not in proc.stderr
+    assert text in (proc.stderr if status == 2 else proc.stdout), proc.stdout + proc.stderr
+    if status == 2:
+        assert len(proc.stderr.strip().splitlines()) == 1
+    assert tree(work) == before
+
+
+def test_fit_into_a_read_only_folder_is_one_line_and_leaves_nothing(work, monkeypatch, capsys):
+    """The figures are written once every curve is analysed; one that cannot be written (a
+    read-only file system) takes back those written before it and the folders made for them."""
+    from reports.cli import fit
+
+    real, calls = fit.write_atomic, []
+
+    def read_only(path, data):
+        calls.append(path)
+        if len(calls) == 2:
+            raise OSError(errno.EROFS, os.strerror(errno.EROFS), str(path))
+        return real(path, data)
+
+    monkeypatch.setattr(fit, "write_atomic", read_only)
+    before = tree(work)
+    assert bouncer(["fit", "run", "--clock", "collisions", "--jobs", "1", "--out",
+                    "figs/deep"]) == 2
+    line = one_line(capsys)
+    assert line == f"bouncer fit: error: {calls[1]}: Read-only file system"
+    assert tree(work) == before and not (work / "figs").exists()
+
+
+def test_a_histogram_exported_with_a_byte_order_mark_is_read(work, capsys):
+    """A spreadsheet's UTF-8 export starts with a byte-order mark: the header is still read."""
+    rows = "lower,upper,count\n1,2,50\n2,4,30\n4,8,15\n8,inf,5\n"
+    (work / "plain.csv").write_text(rows)
+    (work / "marked.csv").write_bytes(b"\xef\xbb\xbf" + rows.encode())
+    assert bouncer(["fit", "plain.csv", "--json", "--clock", "collisions"]) == 0
+    plain = json.loads(capsys.readouterr().out)
+    assert bouncer(["fit", "marked.csv", "--json", "--clock", "collisions"]) == 0
+    marked = json.loads(capsys.readouterr().out)
+    for result in plain + marked:
+        result.pop("source")
+        result.pop("curve")
+    assert marked == plain
+
+
+def test_a_scene_with_a_byte_order_mark_runs(work, capsys):
+    (work / "marked.toml").write_bytes(b"\xef\xbb\xbf" + TINY.encode())
+    assert bouncer(["run", "marked.toml", "--out", "m", "--quiet"]) == 0
+    assert (work / "m" / "scene.toml").read_text() == TINY  # the scene as parsed
+    assert bouncer(["verify", "m", "--quiet"]) == 0

@@ -132,7 +132,7 @@ def test_figures_of_a_run_go_beside_it_never_into_it(tmp_path):
     assert fit_cli.main(args) == 0
     assert sorted(p.name for p in run.iterdir()) == before
     pngs = sorted(p.name for p in (tmp_path / "run-fit").iterdir())
-    assert pngs == ["fit-exp-A-collisions.png", "fit-exp-B-collisions.png"]
+    assert pngs == ["fit-A-collisions.png", "fit-B-collisions.png"]  # no experiment repeated
 
 
 def test_add_parser_registers_fit():

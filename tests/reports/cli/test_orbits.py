@@ -68,3 +68,20 @@ def test_command_line_entry_point_runs_without_a_traceback():
                            "0.3"], capture_output=True, text=True)
     assert done.returncode == 2
     assert "Traceback" not in done.stderr
+
+
+@pytest.mark.parametrize("eps,period", [("0.6", "2"), ("0.6", "3"), ("1.5", "2")])
+def test_a_fixed_point_asked_at_a_longer_period_prints_its_minimal_period(capsys, eps, period):
+    code, out, err = run_cli(capsys, "0", "3.141592653589793", "--eps", eps, "--period",
+                             period, "--certify")
+    assert code == 0 and err == ""
+    assert "periodic orbit: period 1," in out
+    assert f"asked for period {period}" in out
+    assert "minimal period 1," in out
+
+
+def test_a_one_off_shifted_block_exits_1_with_one_line(capsys):
+    code, out, err = run_cli(capsys, "3.8980936554827061", "60.422221713212743", "--eps", "1.05",
+                             "--period", "2", "--shift", "1", "--certify")
+    assert code == 1 and out == ""
+    assert err.count("\n") == 1 and "accelerator mode" in err

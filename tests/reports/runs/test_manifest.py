@@ -56,9 +56,25 @@ def test_the_schema_names_the_file_and_the_field(run, edit, message):
 
 
 def test_a_long_value_is_cut_in_the_message():
+    """The message keeps its start and its end (what is wrong) and says how much was cut."""
     with pytest.raises(ValueError) as err:
         check(list(range(10_000)), SCHEMA, "m.json")
-    assert len(str(err.value)) < 300 and str(err.value).endswith("...")
+    text = str(err.value)
+    assert len(text) < 300 and " characters) ..." in text
+    assert text.startswith("m.json: [0, 1, 2") and text.endswith("is not of type 'object'")
+
+
+def test_an_integer_of_thousands_of_digits_names_its_file_and_field(run):
+    """Python refuses to convert integers of more than 4300 digits; the reader keeps such a
+    literal as text, so the schema names the field, and the message clips it."""
+    text = (run / "manifest.json").read_text()
+    (run / "manifest.json").write_text(text.replace('"particles": 200', '"particles": '
+                                                    + "7" * 5000))
+    with pytest.raises(ValueError) as err:
+        load_manifest(run)
+    line = str(err.value)
+    assert line.startswith(f"{run / 'manifest.json'}: field particles: an integer of 5000"
+                           " digits") and len(line) < 300
 
 
 def test_differences_compare_type_and_value():

@@ -64,8 +64,8 @@ def test_clean_run_report(run):
         "checked: content hashes, checkpoint invariants, counts.csv and survival.csv"
         " re-derived, sample.csv, the sample replayed from the seed, every field of the"
         " manifest",
-        "not audited: provenance.json (how and when the run was made; only its hash is"
-        " checked)",
+        "not audited: the content of provenance.json (how and when the run was made; its"
+        " hash and its schema are checked)",
         "OK"]
     assert recheck(str(run))[0] is True  # a path given as a string
 

@@ -46,9 +46,10 @@ def test_progress_bar_is_labelled_verify_sample(run, capsys):
 
 
 def test_a_sample_with_cr_line_ends_is_still_checked_by_line(run, capsys):
-    """A sample.csv with CR line ends (its hash updated)
-    is read as csv's own files are, and an edited row is reported by file and line (exit 1),
-    by the comparison with the checkpoint and by verify's recomputation, never a csv traceback."""
+    """A sample.csv with CR line ends (its hash updated) differs from the checkpoint's byte for
+    byte (one discrepancy for the line ends); it is read as csv's own files are, and an edited
+    row is reported by file and line (exit 1), by the comparison with the checkpoint and by
+    verify's recomputation, never a csv traceback."""
     edit_sample(run, {4: {"tau_ref": "1.5"}})
     text = (run / "sample.csv").read_text()
     (run / "sample.csv").write_bytes(text.replace("\n", "\r").encode())
@@ -56,10 +57,12 @@ def test_a_sample_with_cr_line_ends_is_still_checked_by_line(run, capsys):
     assert main(["verify", str(run), "--quiet"]) == 1
     out = capsys.readouterr().out.splitlines()
     found = [x for x in out if x.startswith("sample.csv:")]
-    assert found[0].startswith("sample.csv:4: the checkpoint has ")
-    assert found[1].startswith("sample.csv:4: verify gives tau_ref ")
-    assert found[1].endswith("; the file 1.5, " + repr(float(text.splitlines()[3].split(",")[10])))
-    assert len(found) == 2 and out[-1] == "FAILED: 2 discrepancies"
+    assert found[0] == ("sample.csv: its lines end in CR, the checkpoint's in LF (the comparison"
+                        " is byte for byte)")
+    assert found[1].startswith("sample.csv:4: the checkpoint has ")
+    assert found[2].startswith("sample.csv:4: verify gives tau_ref ")
+    assert found[2].endswith("; the file 1.5, " + repr(float(text.splitlines()[3].split(",")[10])))
+    assert len(found) == 3 and out[-1] == "FAILED: 3 discrepancies"
 
 
 def test_rows_after_a_refused_row_are_still_recomputed(run):

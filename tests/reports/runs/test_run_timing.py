@@ -1,13 +1,16 @@
 """How a run reports its time: the kernels' compilation (or loading from numba's cache) is
-timed apart from the chunks, said on stderr when it takes a while, and recorded in
-provenance.json next to the compute time and the rate, which excludes it."""
+timed apart from the chunks, said on stderr as soon as numba starts to compile (with the time it
+is expected to take), and recorded in provenance.json next to the compute time and the rate,
+which excludes it."""
 
+import json
 import os
 import subprocess
 import sys
 import time
 from pathlib import Path
 
+import numba.core.event as numba_event
 import pytest
 from scene_texts import TINY
 
@@ -19,12 +22,17 @@ ROOT = Path(__file__).resolve().parents[3]
 SLOW_COMPILE_S = 1.5
 
 
-def slow_first_call(monkeypatch):
-    """The compiling call (the first kernel call of the run) takes SLOW_COMPILE_S longer."""
+def slow_first_call(monkeypatch, compiles=False):
+    """The compiling call (the first kernel call of the run) takes SLOW_COMPILE_S longer; with
+    ``compiles``, during a numba compile event (as numba signals a compilation)."""
     real = driver.run_chunk
 
     def compiling(*args):
-        time.sleep(SLOW_COMPILE_S)
+        if compiles:
+            with numba_event.trigger_event("numba:compile", data={"dispatcher": None}):
+                time.sleep(SLOW_COMPILE_S)
+        else:
+            time.sleep(SLOW_COMPILE_S)
         return real(*args)
 
     monkeypatch.setattr(driver, "run_chunk", compiling)
@@ -41,16 +49,28 @@ def test_the_rate_excludes_the_compile_time(tmp_path, monkeypatch):
 
 
 @pytest.mark.slow
-def test_a_slow_compile_is_said_on_stderr(tmp_path, monkeypatch, capsys):
-    slow_first_call(monkeypatch)
-    monkeypatch.setattr(driver, "COMPILE_NOTICE_S", 0.2)
+def test_a_compile_is_said_on_stderr_with_its_expected_time(tmp_path, monkeypatch, capsys):
+    """Said when numba starts to compile, before the progress bar, with the reference time the
+    first time and this machine's last time afterwards; a run that compiles nothing says
+    nothing."""
+    monkeypatch.setattr(driver, "COMPILE_TIMES", tmp_path / "compile_times.json")
+    monkeypatch.setitem(driver.REFERENCE_COMPILE_S, "escape kernel, elastic model", 14.0)
+    real = driver.run_chunk
+    slow_first_call(monkeypatch, compiles=True)
     driver.run(parse_scene(TINY), tmp_path / "r", progress=True)
-    err = capsys.readouterr().err
-    first = err.splitlines()[0]
-    assert first.startswith("tiny: compiling the numba kernels (a first run takes ~30 s;")
+    first = capsys.readouterr().err.splitlines()[0]
+    assert first.startswith("tiny: compiling the numba kernels (escape kernel, elastic model:"
+                            " about 14 s on 2 cores")
     assert first.endswith(" s") and "tiny:   0%|" not in first  # before the bar, not under it
-    driver.run(parse_scene(TINY), tmp_path / "q", progress=False)
-    assert capsys.readouterr().err == ""
+    took = json.loads((tmp_path / "compile_times.json").read_text())["escape kernel, elastic model"]
+    assert took >= SLOW_COMPILE_S
+    driver.run(parse_scene(TINY), tmp_path / "s", progress=True)
+    assert capsys.readouterr().err.startswith(
+        f"tiny: compiling the numba kernels (escape kernel, elastic model: about {took:.0f} s,"
+        " as the last time on this machine")
+    monkeypatch.setattr(driver, "run_chunk", real)  # the kernels are loaded from the cache
+    driver.run(parse_scene(TINY), tmp_path / "q", progress=True)
+    assert "compiling" not in capsys.readouterr().err
 
 
 def test_a_quick_compile_is_not_mentioned(tmp_path, capsys):

@@ -1,16 +1,13 @@
 """Bin grid and clock conventions of ``reports.stats.histogram`` against the run's producer."""
 
-import math
-import shutil
-from pathlib import Path
+import json
 
 import numpy as np
 import pytest
 
 from fastpath.kernels.histogram import bin_index, log_edges
-from reports.stats.histogram import bin_means, grid_index, read_run, run_edges, survival_boundaries
-
-ROOT = Path(__file__).resolve().parents[3]
+from reports.stats.histogram import bin_means, read_run, run_edges, survival_boundaries
+from tests.reports.cli.test_fit_cli import manifest_of
 
 BINS = {"collisions": {"first": 1, "decades": 8, "per_decade": 20, "integer": True},
         "time": {"first": 0.1, "decades": 9, "per_decade": 20, "below_first": [0.0, 0.1]}}
@@ -40,30 +37,30 @@ def test_bin_means_of_one_value_bins_are_the_value():
     assert np.isinf(means[-1])
 
 
-def test_a_recorded_edge_a_few_ulps_off_the_grid_is_that_grid_edge():
-    """numpy's vectorised power can differ in the last bits between machines: a run's counts
-    stay readable on another machine, and an edge truly off the grid is still refused."""
+def _write_time_run(folder, nudge=0):
+    """A run directory in the runner's format, one experiment of three particles on the time
+    clock, its recorded lower edges the grid's edges; ``nudge`` moves the second recorded edge
+    by that many units in the last place."""
     edges = run_edges(BINS, "time")
-    k = 50
-    assert grid_index(edges, edges[k]) == k
-    assert grid_index(edges, float(np.nextafter(np.nextafter(edges[k], 0), 0))) == k
-    assert grid_index(edges, edges[k] * (1 + 1e-9)) is None
-    assert grid_index(edges, 0.0) == 0
+    second = float(edges[40])
+    for _ in range(abs(nudge)):
+        second = float(np.nextafter(second, np.inf if nudge > 0 else -np.inf))
+    rows = ["experiment,clock,outcome,lower_edge,count",
+            f"exp,time,A,{float(edges[20])!r},1", f"exp,time,A,{second!r},1",
+            f"exp,time,censored,{float(edges[60])!r},1"]
+    folder.mkdir()
+    manifest = manifest_of("escape", {"exp": {"particles_done": 3, "censored": 1, "stuck": 0,
+                                              "escaped": {"A": 2}}}, 3)
+    (folder / "manifest.json").write_text(json.dumps(manifest))
+    (folder / "counts.csv").write_text("\n".join(rows) + "\n")
+    return folder
 
 
-def test_a_run_whose_edges_differ_in_the_last_bits_reads_the_same(tmp_path):
-    src = ROOT / "docs" / "report" / "runs" / "escape-island-start-20000"
-    shutil.copytree(src, tmp_path / "run")
-    counts = tmp_path / "run" / "counts.csv"
-    rows = counts.read_text().splitlines()
-    moved = [rows[0]] + [",".join([*r.split(",")[:3], repr(float(np.nextafter(
-        float(r.split(",")[3]), math.inf))), r.split(",")[4]]) for r in rows[1:]]
-    counts.write_text("\n".join(moved) + "\n")
-    before, after = read_run(src), read_run(tmp_path / "run")
-    assert len(before) == len(after)
-    for a, b in zip(before, after, strict=True):
-        assert np.array_equal(a.escapes, b.escapes) and np.array_equal(a.censored, b.censored)
-    rows[1] = ",".join([*rows[1].split(",")[:3], "1.2345", rows[1].split(",")[4]])
-    counts.write_text("\n".join(rows) + "\n")
-    with pytest.raises(ValueError, match="not on the manifest's bin grid"):
-        read_run(tmp_path / "run")
+def test_a_recorded_edge_must_be_the_grids_edge_exactly(tmp_path):
+    """The grid is the correctly rounded one on every machine (``log_edges``), so a recorded
+    edge one unit in the last place off it is not a grid edge: refused, never matched."""
+    (curve,) = read_run(_write_time_run(tmp_path / "exact"), clocks=("time",))
+    assert curve.escapes.sum() == 2 and curve.censored.sum() == 1
+    for nudge in (1, -1):
+        with pytest.raises(ValueError, match="is not on the manifest's bin grid"):
+            read_run(_write_time_run(tmp_path / f"off{nudge}", nudge), clocks=("time",))
