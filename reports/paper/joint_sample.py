@@ -17,8 +17,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
+
+from reports.runs.joint import load_joint
+from reports.runs.joint_file import JOINT_FILE
+from reports.runs.scenes import parse_scene
 
 PER_DECADE = 4     # slopes over quarter decades of the binning variable
 MIN_PER_BIN = 20   # escapes a quarter decade needs to count
@@ -192,25 +197,28 @@ def bootstrap_interval(sample, statistic, reps=BOOTSTRAP, seed=SEED):
 
 
 def run_joint(run_dir, width=None):
-    """The joint (n, t) records of a run as JointSamples, {} when the run has none: of an escape
-    run {hole: JointSample} (experiments "phi_c=<hole>"); of a transport run and a ``width``,
-    {entry hole: JointSample} (experiments "h=<width>/... <entry>").
-
-    The record is read by ``reports.runs.joint.read_joint(run_dir)``, expected to give, per
-    experiment name, (n_edges, t_edges, counts[outcome, k_n, k_t], particles) with the outcomes
-    the experiment's holes then the censored (``from_joint``); a checkout without that reader,
-    or a run without the record, gives {}.
-    """
-    try:
-        from reports.runs.joint import read_joint
-    except ImportError:
+    """The joint (n, t) records of a run as JointSamples, {} when the run has none (no
+    joint.csv): of an escape run {hole: JointSample} (experiments "phi_c=<hole>"); of a
+    transport run and a ``width``, {entry hole: JointSample} (experiments "h=<width>/from hole
+    <entry>", or "from hole <entry>" in a scene of one width). The record is read and checked
+    by ``reports.runs.joint.load_joint`` (a ValueError of one line if it is corrupt); per set of
+    starts its curves in the scene's order, then its
+    censored and stuck particles together (exit -1: they did not escape by the horizon)."""
+    if not (Path(run_dir) / JOINT_FILE).is_file():
         return {}
+    record = load_joint(run_dir)
+    scene = parse_scene((Path(run_dir) / "scene.toml").read_text(encoding="utf-8"))
+    only = f"{scene.hole_widths[0]:g}" if len(scene.hole_widths) == 1 else None
+    curves = {}
+    for curve, name in record.experiment.items():
+        curves.setdefault(name, []).append(record.escapes[curve])
     out = {}
-    for name, (n_edges, t_edges, counts, particles) in (read_joint(run_dir) or {}).items():
-        sample = from_joint(n_edges, t_edges, counts, particles,
-                            f"joint (n, t) record of run {run_dir}")
+    for name, escapes in curves.items():
+        counts = np.stack([*escapes, record.censored[name] + record.stuck[name]])
+        sample = from_joint(record.n_edges, record.t_edges, counts, record.particles,
+                            f"joint (n, t) record of run {Path(run_dir).name}")
         if width is None:
             out[name.split("=", 1)[1] if "=" in name else name] = sample
-        elif name.split("/")[0].split("=", 1)[-1] == width:
+        elif (name.split("/")[0].split("=", 1)[-1] if "/" in name else only) == width:
             out[int(name.rsplit(" ", 1)[1])] = sample
     return out

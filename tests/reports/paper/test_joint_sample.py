@@ -8,6 +8,7 @@ from reports.paper.joint_sample import (
     binned_slope,
     bootstrap_interval,
     from_joint,
+    run_joint,
     weighted_quantile,
 )
 
@@ -45,3 +46,29 @@ def test_a_joint_histogram_gives_the_same_slope_as_its_particles():
     assert abs(slope(s) - particles) < 0.02
     lo, hi = bootstrap_interval(s, slope, reps=40)
     assert lo < slope(s) < hi and math.isfinite(lo)
+
+
+def test_a_runs_joint_record_gives_each_entry_holes_escapes_and_bounds(tmp_path):
+    """run_joint reads a run's joint.csv (through ``reports.runs.joint.load_joint``): per entry
+    hole every start once, the escapes by exit hole as counts.csv has them, the particles
+    still inside at the horizon with exit -1; a run without the record gives {}."""
+    from reports.runs import driver
+    from reports.runs.scenes import parse_scene
+    from reports.stats.histogram import read_run
+    from tests.reports.runs.scene_texts import TINY
+
+    scene = TINY.replace('name = "tiny"', 'name = "tiny-joint"') + "[record]\njoint = true\n"
+    out = tmp_path / "run"
+    driver.run(parse_scene(scene), out, progress=False)
+    samples = run_joint(out, width="1")
+    assert sorted(samples) == [1, 2]
+    curves = {(c.experiment, c.curve): c for c in read_run(out, clocks=("collisions",))}
+    for entry, s in samples.items():
+        assert s.count == s.particles == 200
+        for exit_ in (0, 1):
+            c = curves[(f"from hole {entry}", f"P{entry}{exit_ + 1}")]
+            assert s.weight[s.exit == exit_].sum() == c.escapes.sum()
+        assert s.weight[s.exit == -1].sum() == c.censored.sum()
+    assert run_joint(out, width="0.5") == {}
+    (out / "joint.csv").unlink()
+    assert run_joint(out) == {}
