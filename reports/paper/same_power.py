@@ -6,7 +6,10 @@ Regime. The matched survival levels run from the late tail's start level P(n_tai
 ``escape_regimes``' lowest level (100/N or where a curve's data end), and only where the
 continuous-time curve is the non-accelerating population the sentence speaks of: the matched
 window starts at the first level at or below P(n_tail) where the intermediate stretched law,
-extrapolated, explains at most ``rules.CHAOTIC_GONE`` of the continuous-time survivors.
+extrapolated, explains at most ``rules.CHAOTIC_GONE`` of the continuous-time survivors. Where
+the intermediate continuous-time decay is itself algebraic (its beta in the power-law cell:
+the holes in the chaotic sea) there is no accelerating population to wait out, and the matched
+window starts at P(n_tail).
 
 Family. Windows: the start level moves down by quarter decades (later, never back into the
 accelerating population), every level window holding at least ``rules.MIN_ESCAPES_TAIL``
@@ -53,15 +56,29 @@ def chaotic_share(a, k):
     return predicted / s[k] if s[k] > 0 else math.inf
 
 
+def accelerating(a):
+    """Does the continuous-time intermediate law describe an accelerating population that
+    dies off, a stretched decay? Its stretched exponent beta lies above the power-law cell
+    (``rules.FORM_CELL``); with beta in that cell the intermediate decay is itself algebraic
+    (the holes in the chaotic sea) and there is no such population to wait out."""
+    d = a["details"].get(("time", "intermediate"))
+    if d is None:
+        return True
+    return d["fits"]["stretched_exponential"].params["beta"] >= R.FORM_CELL["power_law"][1]
+
+
 def matched_start_level(a):
     """The first continuous-time survival level at or below P(n_tail) where the intermediate
-    law explains at most CHAOTIC_GONE of the survivors (module docstring), or None."""
+    law explains at most CHAOTIC_GONE of the survivors (module docstring), or None; P(n_tail)
+    itself where the intermediate decay is algebraic (``accelerating``)."""
     w = a["windows"]
     if w.level_tail is None or w.level_end is None:
         return None
     ct = a["curves"]["time"]
     s = all_cause_survival(ct)
     k = first_below(s, w.level_tail)
+    if k is not None and not accelerating(a):
+        return float(s[k]) if s[k] > w.level_end else None
     while k is not None and k < len(s) and s[k] > w.level_end:
         share = chaotic_share(a, k)
         if share is not None and share <= R.CHAOTIC_GONE:
@@ -170,9 +187,12 @@ def same_power_claim(hole, a, run):
         stats[f"{level:.3g}"] = {"alpha_n": a_n, "alpha_n_ci95": list(ci_n), "alpha_t": a_t,
                                  "alpha_t_ci95": list(ci_t), "quantile_slope": slope,
                                  "quantile_slope_ci95": [lo, hi]}
+    why = (f"where the intermediate continuous-time law explains at most "
+           f"{R.pct(R.CHAOTIC_GONE)} of the survivors" if accelerating(a) else
+           "the intermediate continuous-time decay is itself algebraic: no accelerating "
+           "population to wait out")
     evidence = (f"Matched levels from {start:.3g} (the first level at or below P(n_tail) = "
-                f"{w.level_tail:.3g} where the intermediate continuous-time law explains at most"
-                f" {R.pct(R.CHAOTIC_GONE)} of the survivors) down to {w.level_end:.3g}; "
+                f"{w.level_tail:.3g}; {why}) down to {w.level_end:.3g}; "
                 f"'the same' within {R.pct(R.SAME)}, different beyond {R.pct(R.SAME_FAILS)}; "
                 f"family: {F.family_text(members) or 'no level window with enough escapes'}.")
     return make_claim(cid, evidence, analyses=members, particles_per_curve=n, statistical=stats,
