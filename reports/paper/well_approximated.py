@@ -26,6 +26,7 @@ from reports.paper.register import make_claim
 from reports.paper.window_family import late_windows, window_label
 from reports.paper.window_members import escapes_in, goodness_member, window_fit, window_fits
 from reports.stats.analysis import usable_range
+from reports.stats.goodness import pearson
 from reports.stats.hazard import all_cause_survival, first_below
 from reports.stats.regime_fit import residual_excess
 from reports.stats.selection import LEVEL, choose
@@ -46,13 +47,24 @@ def long_lived_windows(tr, clock):
     return c, late_windows(c, a, b0, R.MIN_ESCAPES_TAIL)
 
 
+def goodness_text(fits):
+    """Pearson's chi-squared per dof and its p-value of each fitted law, in words."""
+    out = []
+    for law, fit in fits.items():
+        g = pearson(fit)
+        out.append(f"{law.replace('_', ' ')} chi^2/dof = {g.chi2:.4g}/{g.dof}, p = {g.p:.2g}"
+                   if math.isfinite(g.p) else f"{law.replace('_', ' ')}: too few groups")
+    return "; ".join(out)
+
+
 def selection_member(curve, window, unit, part=""):
     fits = window_fits(curve, window)
     best, tests = choose(fits)
     p = max(tests["lr_stretched_vs_exponential"]["p"], tests["lr_stretched_vs_power_law"]["p"])
     verdict = (CONFIRMED if best == LAW else INCONCLUSIVE if best not in fits else REFUTED)
     variant = (f"{window_label(curve, window, unit)} ({escapes_in(curve, window):,} escapes): "
-               f"the selection picks {best.replace('_', ' ')}")
+               f"the selection picks {best.replace('_', ' ')}; beside it, each law's absolute "
+               f"goodness of fit: {goodness_text(fits)}")
     return F.Analysis(variant, verdict, "larger p of the simple laws", p, p, p,
                       (-math.inf, LEVEL), ((LEVEL, math.inf),),
                       "" if verdict != INCONCLUSIVE else F.STRADDLES, part)

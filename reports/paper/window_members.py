@@ -41,10 +41,15 @@ def escapes_in(curve, window):
 
 
 def beta_member(curve, window, form, unit, close=False, part=""):
-    """The form rule on beta of the window's stretched fit."""
+    """The form rule on beta of the window's stretched fit; its absolute goodness of fit
+    (Pearson's chi-squared, ``reports.stats.goodness``) is said beside it."""
     fit = window_fit(curve, window, "stretched_exponential", intervals=True)
     lo, hi = fit.ci95.get("beta", (math.nan, math.nan))
-    variant = f"{window_label(curve, window, unit)} ({escapes_in(curve, window):,} escapes)"
+    g = pearson(fit)
+    fit_text = (f"chi^2/dof = {g.chi2:.4g}/{g.dof}, p = {g.p:.2g}" if math.isfinite(g.p)
+                else "too few groups for chi^2")
+    variant = (f"{window_label(curve, window, unit)} ({escapes_in(curve, window):,} escapes; "
+               f"the stretched law's {fit_text})")
     return F.in_part(part, [F.form_member(variant, fit.params["beta"], lo, hi, form, close)])[0]
 
 
