@@ -88,6 +88,9 @@ def _runs(out_dir, runs_dir, particles, quick, include_runs, echo):
     for scene, q in EXTRA_QUICK.items():
         size = q if quick else load_scene(scene).particles
         runs[scene] = ensure_run(scene, runs_dir, size, echo)
+    # a run of the other start density is used where one is given or committed, never made here
+    runs["escape-other-density"] = largest_run(
+        "escape-other-density", [*include_runs, *sorted(runs_dir.glob("escape-other-density-*"))])
     runs["transport-width-sweep"] = ensure_run(
         "transport-width-sweep", runs_dir, QUICK_PARTICLES if quick else SWEEP_PARTICLES, echo,
         scene_text=sweep_scene())
@@ -114,8 +117,9 @@ def decide(out_dir, runs, quick, echo):
         echo(f"paper figures: sampled escape study, phi_c = {hole}")
         follow[hole] = studies.escape_sample(_hole_centre(hole), bool(quick), "uniform",
                                              snapshot[hole])
-        smooth[f"phi_c={hole}"] = studies.escape_sample(_hole_centre(hole), bool(quick),
-                                                        "smooth")
+        if runs.get("escape-other-density") is None:
+            smooth[f"phi_c={hole}"] = studies.escape_sample(_hole_centre(hole), bool(quick),
+                                                            "smooth")
     joint = joint_samples(runs["paper-escape"], follow)
     echo("paper figures: transport analysis and the sampled study of h = 1")
     tr = transport_analysis(runs["paper-transport"])
@@ -129,7 +133,8 @@ def decide(out_dir, runs, quick, echo):
     claims += fermi_claims(fermi)
     levels = {f"phi_c={h}": a["windows"].level_tail for h, a in esc.items()}
     claims.append(other_box_claim(runs["paper-escape"], runs["escape-second-box"], levels))
-    claims.append(other_density_claim(runs["paper-escape"], smooth, levels))
+    claims.append(other_density_claim(runs["paper-escape"], smooth, levels,
+                                      runs.get("escape-other-density")))
     island = studies.island_box_sample(0.0, bool(quick))
     box_regular = (int(island[2].regular.sum()), len(island[0]))
     claims.append(island_start_claim(runs["escape-island-start"], box_regular))

@@ -390,8 +390,9 @@ def _escape_entries():
                "a second smooth density on the paper's start box gives the same escape at long "
                "times", Q_OTHER_DENSITY,
                "hazard ratio as sec3-other-box, for starts with density proportional to "
-               "sin(pi (phi - 3.85)/0.3) sin(pi (v - 2)/2) on the paper's box (sampled study, "
-               "reports/paper/follow.py)",
+               "sin(pi (phi - 3.85)/0.3) sin(pi (v - 2)/2) on the paper's box: a run of the "
+               "built-in scene escape-other-density where one is given, else a sampled study "
+               "(reports/paper/follow.py)",
                "long times, as sec3-other-box", "as sec3-other-box",
                f"'the same results': hazards equal within {R.pct(R.SAME)}, different beyond "
                f"{R.pct(R.SAME_FAILS)}", family=FAM_LONG_TIMES),

@@ -124,9 +124,16 @@ def other_box_claim(ref_run, box_run, levels):
                               f"({n:,} per hole)", n, Path(box_run).name)
 
 
-def other_density_claim(ref_run, samples, levels):
-    """``samples``: {hole name: Followed} of the smooth density."""
+def other_density_claim(ref_run, samples, levels, density_run=None):
+    """The run of scene escape-other-density (``density_run``, the same density on the same
+    box) where one is given, else ``samples``: {hole name: Followed} of the smooth density."""
     ref = curves_by_key(ref_run)
+    if density_run is not None:
+        other = curves_by_key(density_run)
+        n = next(iter(other.values())).particles
+        return same_results_claim("sec3-other-density", ref, other, levels,
+                                  f"Run {Path(density_run).name} ({n:,} per hole)", n,
+                                  Path(density_run).name)
     other = {key: followed_curve(samples[key[0]], c) for key, c in ref.items()
              if key[0] in samples}
     n = next(iter(samples.values())).particles
