@@ -148,10 +148,13 @@ def universal_claim(analysis, run):
                       run=run)
 
 
-def escape_claims(analysis, run_dir, studies=None):
+def escape_claims(analysis, run_dir, studies=None, tails=None):
     """Every Fig. 2 / Section 3 claim decided on the run and the joint (n, t) data:
     ``studies`` = {"joint": {hole: JointSample}, "follow": {hole: Followed} (the survivors'
-    snapshots), "snapshot": {hole: (n, ...)}}, each optional."""
+    snapshots), "snapshot": {hole: (n, ...)}}, each optional. ``tails``: {hole: (analysis,
+    run directory)} of runs of one island hole alone with more starts (scenes
+    escape-tail-phi_c=H): its discrete-time tail claim is decided on that run."""
+    tails = tails or {}
     run = Path(run_dir).name
     studies = studies or {}
     joint = studies.get("joint", {})
@@ -169,8 +172,10 @@ def escape_claims(analysis, run_dir, studies=None):
                                      "power_law", R.MIN_ESCAPES_TAIL, run))
     for h in ISLAND_HOLES:
         if h in analysis:
-            claims.append(form_claim(f"fig2-n-tail-phi_c={h}", analysis[h], "collisions",
-                                     "tail", "power_law", R.MIN_ESCAPES_TAIL, run, limit=True))
+            tail, tail_run = tails.get(h, (analysis[h], run_dir))
+            claims.append(form_claim(f"fig2-n-tail-phi_c={h}", tail, "collisions", "tail",
+                                     "power_law", R.MIN_ESCAPES_TAIL, Path(tail_run).name,
+                                     limit=True))
             claims.append(form_claim(f"fig2-t-phi_c={h}", analysis[h], "time", "intermediate",
                                      "sqrt", R.MIN_ESCAPES_INTERMEDIATE, run, close=True))
     for h in SEA_HOLES:

@@ -72,6 +72,7 @@ from reports.paper.transport_claims import transport_analysis, transport_claims
 from reports.runs.scenes import load_scene
 
 EXTRA_QUICK = {"escape-second-box": 2000, "escape-island-start": 500}
+TAIL_SCENES = {hole: f"escape-tail-phi_c={hole}" for hole in ("0", "1")}
 T_DIFFUSIVE = 1 / 3  # <v(t)> ~ t^(1/3)
 
 
@@ -88,9 +89,10 @@ def _runs(out_dir, runs_dir, particles, quick, include_runs, echo):
     for scene, q in EXTRA_QUICK.items():
         size = q if quick else load_scene(scene).particles
         runs[scene] = ensure_run(scene, runs_dir, size, echo)
-    # a run of the other start density is used where one is given or committed, never made here
-    runs["escape-other-density"] = largest_run(
-        "escape-other-density", [*include_runs, *sorted(runs_dir.glob("escape-other-density-*"))])
+    # runs used where one is given or committed, never made here: the other start density, and
+    # the island holes alone with 10^9 starts for their discrete-time tails
+    for scene in ("escape-other-density", *TAIL_SCENES.values()):
+        runs[scene] = largest_run(scene, [*include_runs, *sorted(runs_dir.glob(f"{scene}-*"))])
     runs["transport-width-sweep"] = ensure_run(
         "transport-width-sweep", runs_dir, QUICK_PARTICLES if quick else SWEEP_PARTICLES, echo,
         scene_text=sweep_scene())
@@ -128,8 +130,13 @@ def decide(out_dir, runs, quick, echo):
                 for entry in (1, 2)}
     echo("paper figures: island geometry and the island-start studies")
     claims = escape_hole_claims(quick)
+    tails = {}
+    for hole, scene in TAIL_SCENES.items():
+        if runs.get(scene) is not None:
+            echo(f"paper figures: the discrete-time tail of phi_c = {hole} from {runs[scene]}")
+            tails[hole] = (escape_analysis(runs[scene], t_d)[hole], runs[scene])
     claims += escape_claims(esc, runs["paper-escape"], {"joint": joint, "follow": follow,
-                                                        "snapshot": snapshot})
+                                                        "snapshot": snapshot}, tails)
     claims += fermi_claims(fermi)
     levels = {f"phi_c={h}": a["windows"].level_tail for h, a in esc.items()}
     claims.append(other_box_claim(runs["paper-escape"], runs["escape-second-box"], levels))

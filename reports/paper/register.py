@@ -239,7 +239,9 @@ def _escape_entries():
             f"fig2-n-tail-phi_c={h}", "2",
             f"escape through the hole at phi_c = {h} eventually follows a slow power law in "
             "discrete time", Q_TAIL,
-            "stretched exponent beta of the fit of P(n) in the late tail window", TAIL,
+            "stretched exponent beta of the fit of P(n) in the late tail window, on the run of "
+            f"this hole alone (scene escape-tail-phi_c={h}, 10^9 starts) where one is given, "
+            "else on the paper-scale run", TAIL,
             f"form 'power law' on each member's beta: cell [0, 1/4); {AGREE}", BETA_TOL,
             family=FAM_LIMIT))
         out.append(_entry(
