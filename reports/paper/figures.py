@@ -171,7 +171,9 @@ def joint_samples(run_dir, follow):
     """{hole: JointSample}: the run's joint (n, t) record where it has one
     (``reports.paper.joint_sample.run_joint``), else the sampled study's."""
     recorded = run_joint(run_dir)
-    return {hole: recorded.get(hole) or from_followed(fol) for hole, fol in follow.items()}
+    fallback = f"run {Path(run_dir).name} records no joint (n, t) histogram: sampled study"
+    return {hole: recorded.get(hole) or from_followed(fol, fallback)
+            for hole, fol in follow.items()}
 
 
 def paper_figures_section(out_dir, particles=None, quick=False, echo=None,

@@ -148,7 +148,8 @@ def same_time_members(ij, joint, latest=2):
 def joint_of(samples, joint):
     if joint:
         return joint
-    return {e: from_followed(f) for e, f in (samples or {}).items()}
+    fallback = "the run records no joint (n, t) histogram: sampled study"
+    return {e: from_followed(f, fallback) for e, f in (samples or {}).items()}
 
 
 def fewer_collisions_claims(tr, samples, joint, run):

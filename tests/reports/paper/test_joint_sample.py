@@ -72,3 +72,16 @@ def test_a_runs_joint_record_gives_each_entry_holes_escapes_and_bounds(tmp_path)
     assert run_joint(out, width="0.5") == {}
     (out / "joint.csv").unlink()
     assert run_joint(out) == {}
+
+
+def test_a_run_without_the_joint_record_falls_back_on_the_study_and_says_so(tmp_path):
+    from types import SimpleNamespace
+
+    from reports.paper.figures import joint_samples
+
+    fol = SimpleNamespace(exit=np.array([0, -1]), n=np.array([3, 9]), t=np.array([10.0, 50.0]),
+                          particles=2)
+    (sample,) = joint_samples(tmp_path / "run-without-joint", {"0": fol}).values()
+    assert sample.count == 2
+    assert sample.source == ("run run-without-joint records no joint (n, t) histogram: sampled "
+                             "study of 2 starts")
