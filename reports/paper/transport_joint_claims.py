@@ -26,7 +26,7 @@ import numpy as np
 from reports.paper import family as F
 from reports.paper import rules as R
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
-from reports.paper.joint_sample import bootstrap_interval, from_followed, weighted_quantile
+from reports.paper.joint_sample import from_followed, weighted_quantile
 from reports.paper.register import make_claim
 from reports.runs.survival import wilson
 from reports.stats.hazard import curve_probability, quantile
@@ -106,12 +106,29 @@ def same_level_members(tr, ij, reps=BOOTSTRAP, seed=SEED):
     return out
 
 
+def _median_n(sample):
+    """The median n of a sample, interpolated inside the cells of a joint record."""
+    return weighted_quantile(sample.n, sample.weight, 0.5, sample.widths()[0])
+
+
 def _median_n_ratio(sample_ij, sample_11, lo, hi):
     a = sample_ij.select((sample_ij.t >= lo) & (sample_ij.t < hi))
     b = sample_11.select((sample_11.t >= lo) & (sample_11.t < hi))
     if a.count < MIN_PER_BIN or b.count < MIN_PER_BIN:
         return math.nan
-    return weighted_quantile(a.n, a.weight, 0.5) / weighted_quantile(b.n, b.weight, 0.5)
+    return _median_n(a) / _median_n(b)
+
+
+def _ratio_bootstrap(s_ij, s_11, lo, hi, reps=BOOTSTRAP, seed=SEED):
+    """95% percentile interval of ``_median_n_ratio`` with both samples redrawn (Poisson
+    bootstrap, ``JointSample.resampled``); NaN when fewer than half the draws give a ratio."""
+    rng = np.random.default_rng(seed)
+    got = np.array([_median_n_ratio(s_ij.resampled(rng), s_11.resampled(rng), lo, hi)
+                    for _ in range(reps)])
+    got = got[np.isfinite(got)]
+    if len(got) <= reps // 2:
+        return math.nan, math.nan
+    return float(np.percentile(got, 2.5)), float(np.percentile(got, 97.5))
 
 
 def same_time_members(ij, joint, latest=2):
@@ -131,11 +148,7 @@ def same_time_members(ij, joint, latest=2):
     out = []
     for lo_t, hi_t, _ in bins[-latest:]:
         value = _median_n_ratio(s_ij, s_11, lo_t, hi_t)
-        joint_both = (s_ij, s_11)
-
-        def stat(smp, lo_t=lo_t, hi_t=hi_t, other=joint_both[1]):
-            return _median_n_ratio(smp, other, lo_t, hi_t)
-        lo, hi_ = bootstrap_interval(s_ij, stat)
+        lo, hi_ = _ratio_bootstrap(s_ij, s_11, lo_t, hi_t)
         variant = f"same time, t in [{lo_t:.3g}, {hi_t:.3g})"
         if math.isfinite(lo) and math.isfinite(hi_):
             out.append(F.word_member(variant, "median collisions, ratio", value, lo, hi_,
