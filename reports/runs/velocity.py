@@ -33,8 +33,10 @@ import io
 import math
 from fractions import Fraction
 
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+
 COLUMNS = ("curve", "n", "moving", "stuck", "mean_v", "mean_v2", "se_v")
-MEAN_SLACK = 8.0 * 2.0**-53  # file_problems: rounding of mean_v**2 against mean_v2
+MEAN_SLACK = 8.0 * UNIT_ROUNDOFF  # file_problems: rounding of mean_v**2 against mean_v2
 
 
 def _float(x):
