@@ -2,7 +2,7 @@
 
 A *dotted name* is a match of ``DOTTED``: one of the three packages, ``fastpath``, ``verify`` or
 ``reports``, followed by one or more ``.identifier`` parts (``fastpath.step``,
-``reports.runs.scenes.SCENES``, ``fastpath.FlightStatus.CONVERGED``), not preceded by a letter,
+``reports.runs.scenes.KINDS``, ``fastpath.FlightStatus.CONVERGED``), not preceded by a letter,
 digit, ``_``, ``.``, ``/`` or ``-`` (so ``docs/fastpath.md`` and ``rd.verify.x`` are not names)
 and not ending in a file suffix (``fastpath.md`` is a page). It is looked for
 
