@@ -20,9 +20,11 @@ type-checks for every class. Build descriptions with ``elastic``, ``holmes``, ``
 ``describe`` (which picks the class from the values).
 
 Where a new physics goes: a drag law gets a code here and its formulas in
-``fastpath.dissipative.drag`` (eta and its closed-form motion), ``dissipative.short_flight``
-(the offsets of a short flight) and ``dissipative.drag_sticking`` (riding and detachment);
-every flight solver, orbit loop and kernel then takes it through the description.
+``fastpath.dissipative.drag`` (eta and its closed-form motion),
+``fastpath.dissipative.short_flight`` (the offsets of a short flight),
+``fastpath.dissipative.drag_flight`` (the solver's curvature and error bounds) and
+``fastpath.dissipative.sticking`` (riding and detachment); every flight solver, orbit loop and
+kernel then takes it through the description.
 """
 
 from typing import NamedTuple

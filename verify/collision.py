@@ -13,6 +13,7 @@ from .flight import certify
 from .numerics.inputs import check_state
 from .numerics.phase import reduce_phase
 from .numerics.precision import (
+    DEFAULT_DPS,
     GUARD_DPS,
     NotDecided,
     default_max_dps,
@@ -72,7 +73,7 @@ def impact(phi, v, eps, phys: Physics, dps: int, max_dps: int | None = None) -> 
     return from_certified_flight(phi, v, eps, phys, dps, compute, max_dps)
 
 
-def step(phi, v, eps, dps: int = 50, *, drag=0.0, drag_law: str = "linear",
+def step(phi, v, eps, dps: int = DEFAULT_DPS, *, drag=0.0, drag_law: str = "linear",
          restitution=1.0) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
     """``(phi, v) -> (phi1, v1, tau)`` with the certified flight time ``tau``::
 

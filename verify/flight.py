@@ -18,7 +18,7 @@ from .dissipative.physics import Physics, check_physics
 from .elastic.certificate import elastic_attempt
 from .errors import UndecidableCollision
 from .numerics.inputs import check_dps, check_state, w0_is_zero
-from .numerics.precision import default_max_dps, escalate, to_user, working_dps
+from .numerics.precision import DEFAULT_DPS, default_max_dps, escalate, to_user, working_dps
 
 
 @dataclass(frozen=True)
@@ -72,7 +72,7 @@ def certify(phi, v, eps, phys: Physics, dps: int, max_dps: int | None = None,
     return FlightCertificate(tau, (lo_, hi_), free, wdps, boxes)
 
 
-def certify_flight(phi, v, eps, dps: int = 50, max_dps: int | None = None, *, drag=0.0,
+def certify_flight(phi, v, eps, dps: int = DEFAULT_DPS, max_dps: int | None = None, *, drag=0.0,
                    drag_law: str = "linear") -> FlightCertificate:
     """Certify the smallest positive root of the gap ``d`` (see the module docstrings of
     :mod:`verify.elastic.certificate` and :mod:`verify.dissipative.drag_gap`).
@@ -99,7 +99,8 @@ def certify_flight(phi, v, eps, dps: int = 50, max_dps: int | None = None, *, dr
     return certify(state.phi, state.v, state.eps, phys, dps, max_dps).for_user()
 
 
-def flight_time(phi, v, eps, dps: int = 50, *, drag=0.0, drag_law: str = "linear") -> mpmath.mpf:
+def flight_time(phi, v, eps, dps: int = DEFAULT_DPS, *, drag=0.0,
+                drag_law: str = "linear") -> mpmath.mpf:
     """Certified smallest positive root of ``d`` at ``dps`` digits: ``certify_flight(...).tau``.
 
     Parameters as for :func:`certify_flight`: the departure ``phi``, ``v``, ``eps``, the digits

@@ -8,10 +8,20 @@ from .collision import from_certified_flight
 from .dissipative.physics import check_physics
 from .numerics.inputs import check_state
 from .numerics.phase import reduce_phase
-from .numerics.precision import NotDecided, hi, iv, lo, mid, mp, to_user, working_dps
+from .numerics.precision import (
+    DEFAULT_DPS,
+    NotDecided,
+    hi,
+    iv,
+    lo,
+    mid,
+    mp,
+    to_user,
+    working_dps,
+)
 
 
-def jacobian(phi, v, eps, dps: int = 50) -> mpmath.matrix:
+def jacobian(phi, v, eps, dps: int = DEFAULT_DPS) -> mpmath.matrix:
     """2x2 Jacobian of the elastic map ``(phi, v) -> (phi1, v1)``.
 
     ``d(tau; phi, v) = 0`` defines ``tau``; with ``d' = v - tau + eps*sin(phi+tau)`` and

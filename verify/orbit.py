@@ -11,7 +11,7 @@ from .collision import impact
 from .dissipative.physics import check_physics
 from .dissipative.sticking_model import sticking_model
 from .numerics.inputs import check_state
-from .numerics.precision import GUARD_DPS, mp, to_user, working_dps
+from .numerics.precision import DEFAULT_DPS, GUARD_DPS, mp, to_user, working_dps
 
 
 @dataclass(frozen=True)
@@ -40,10 +40,10 @@ class Orbit:
     eps: mpmath.mpf
     sticking: tuple[tuple[mpmath.mpf, mpmath.mpf], ...] = ()
     stopped: str = "collisions"
-    dps: int = 50
+    dps: int = DEFAULT_DPS
 
 
-def orbit(phi0, v0, eps, n: int, dps: int = 50, *, drag=0.0, drag_law: str = "linear",
+def orbit(phi0, v0, eps, n: int, dps: int = DEFAULT_DPS, *, drag=0.0, drag_law: str = "linear",
           restitution=1.0) -> Orbit:
     """Iterate the map of :func:`verify.step` ``n`` times from ``(phi0, v0)``.
 

@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 
+from fastpath.arithmetic.phase import TWO_PI
 from fastpath.dynamics._checks import integer, model_code
 from fastpath.dynamics._internals import CONVERGED
 from fastpath.dynamics.kernels import EXACT, block_search
@@ -39,7 +40,7 @@ def search(eps, period, *, model="holmes", grid=24, v_base=20 * math.pi):
     grid = integer("grid", grid, minimum=1)
     v_base = real("v_base", v_base)
     code = model_code(model)
-    phases = (np.arange(grid) + 0.5) * 2.0 * math.pi / grid
+    phases = (np.arange(grid) + 0.5) * TWO_PI / grid
     speeds = v_base + (np.arange(grid) + 0.5) * math.pi / grid
     phi0, v0 = (a.ravel() for a in np.meshgrid(phases, speeds))
     out = np.empty((len(phi0), 6))
@@ -69,14 +70,14 @@ def search(eps, period, *, model="holmes", grid=24, v_base=20 * math.pi):
 
 def _canonical(orbit):
     """The orbit's states as (phase mod 2*pi, v mod pi) pairs."""
-    return [(p % (2 * math.pi), v % math.pi) for p, v in zip(orbit.phi, orbit.v, strict=True)]
+    return [(p % TWO_PI, v % math.pi) for p, v in zip(orbit.phi, orbit.v, strict=True)]
 
 
 def _same(a, b):
     if len(a) != len(b):
         return False
     p0, v0 = a[0]
-    return any(_close(p0, p, 2 * math.pi) and _close(v0, v, math.pi) for p, v in b)
+    return any(_close(p0, p, TWO_PI) and _close(v0, v, math.pi) for p, v in b)
 
 
 def _close(x, y, period):

@@ -30,6 +30,7 @@ import math
 import numpy as np
 from numba import prange
 
+from fastpath.arithmetic.phase import PI, TWO_PI
 from fastpath.dynamics._internals import (
     CONVERGED,
     GENERAL,
@@ -43,7 +44,6 @@ from fastpath.dynamics._internals import (
 
 EXACT, HOLMES = 0, 1
 MODELS = {"exact": EXACT, "holmes": HOLMES}
-PI = math.pi
 _NEAR = math.sqrt(UNIT_ROUNDOFF)  # relative step below which Newton is in its quadratic end game
 
 
@@ -150,7 +150,7 @@ def newton_block(phi0, v0, eps, period, winding, shift, model, max_iterations):
     phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
     jac = np.empty((period, 4))
     phi, v = reduce_phase(phi0), v0
-    target_t, target_v = 2.0 * PI * winding, PI * shift
+    target_t, target_v = TWO_PI * winding, PI * shift
     time, v_end, _, m11, m12, m21, m22, status, _ = orbit_monodromy(
         phi, v, eps, period, model, phi_k, v_k, tau_k, jac)
     if status != CONVERGED:
@@ -165,7 +165,7 @@ def newton_block(phi0, v0, eps, period, winding, shift, model, max_iterations):
         d_phi = -(a22 * g1 - a12 * g2) / det
         d_v = -(-a21 * g1 + a11 * g2) / det
         size = abs(g1) + abs(g2)
-        near = _NEAR * max(2.0 * PI, abs(v))
+        near = _NEAR * max(TWO_PI, abs(v))
         end_game = max(abs(d_phi), abs(d_v)) < near  # full steps at rounding noise: no test
         scale = 1.0
         t_phi, t_v, h1, h2 = phi, v, g1, g2
@@ -188,7 +188,7 @@ def newton_block(phi0, v0, eps, period, winding, shift, model, max_iterations):
         step = max(abs(d_phi), abs(d_v))  # the full Newton step measures convergence
         phi, v, g1, g2 = reduce_phase(t_phi), t_v, h1, h2  # G does not depend on phi's lift
         m11, m12, m21, m22 = n11, n12, n21, n22
-        if scale == 1.0 and _converged(step, last, max(2.0 * PI, abs(v))):
+        if scale == 1.0 and _converged(step, last, max(TWO_PI, abs(v))):
             return phi, v, g1, g2, step, it, CONVERGED
         last = step if scale == 1.0 else math.inf
     return phi, v, g1, g2, last, max_iterations, -1
@@ -306,7 +306,7 @@ def tangent_ensemble(phi0, v0, eps, model, checkpoints, log_growth, times, veloc
 @jit
 def _wrapped(x):
     """x reduced to [-pi, pi)."""
-    return x - 2.0 * PI * math.floor(x / (2.0 * PI) + 0.5)
+    return x - TWO_PI * math.floor(x / TWO_PI + 0.5)
 
 
 @jit
@@ -392,7 +392,7 @@ def block_search(phi0, v0, eps, period, model, max_iterations, out):
         out[i, 0], out[i, 1], out[i, 5] = phi0[i], v0[i], status
         if status != CONVERGED:
             continue
-        winding = round(time / (2.0 * PI))
+        winding = round(time / TWO_PI)
         shift = round((v_end - v0[i]) / PI)
         if winding < 1:  # shorter than pi: no block with a positive winding near this start
             out[i, 5] = -1

@@ -41,6 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fastpath.arithmetic.phase import TWO_PI
 from fastpath.dynamics._checks import departing, integer, model_code
 from fastpath.dynamics._internals import (
     CONVERGED,
@@ -151,7 +152,7 @@ def build_orbit(phi, v, eps, period, winding, shift, model, iterations=0, start_
     else:
         error += _residue_change(phi, v, eps, period, code, residue, [start_error])
     decided = residue if shift == 0 else stability_residue(trace, det)
-    residual = max(abs(time - 2.0 * math.pi * winding), abs(v_end - v - math.pi * shift))
+    residual = max(abs(time - TWO_PI * winding), abs(v_end - v - math.pi * shift))
     return PeriodicOrbit(phi_k, v_k, tau_k, eps, period, winding, shift, model, monodromy, trace,
                          det, residue, error, classify(decided, error), residual, iterations)
 
@@ -243,7 +244,7 @@ def _own_winding(phi, v, eps, period, code, where):
     time, *_, status, _ = orbit_monodromy(phi, v, eps, period, code, phi_k, v_k, tau_k, jac)
     if status != CONVERGED:
         _raise_for_status(status, phi, v, eps, "the guess's orbit")
-    winding = round(time / (2.0 * math.pi))
+    winding = round(time / TWO_PI)
     if winding < 1:
         raise OrbitNotFound(f"the guess's {period} flights {where} last {time:.10g} < pi: no "
                             f"orbit with a winding >= 1 near it (give winding= to search one)")
@@ -290,9 +291,9 @@ def _minimal(phi, v, eps, period, winding, shift, code):
         if block is None:
             continue
         time, v_end, _ = block
-        m_d = round(time / (2.0 * math.pi))
+        m_d = round(time / TWO_PI)
         l_d = round((v_end - v) / math.pi)
-        closes = (abs(time - 2.0 * math.pi * m_d) <= SAME
+        closes = (abs(time - TWO_PI * m_d) <= SAME
                   and abs(v_end - v - math.pi * l_d) <= SAME * (1.0 + abs(v)))
         if closes and m_d >= 1 and (l_d == 0) == (shift == 0):
             return d, m_d, l_d

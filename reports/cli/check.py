@@ -70,9 +70,10 @@ def add_parser(subparsers):
 
 
 def _error(message: str) -> int:
+    from reports.cli import MAX_LINE
     from reports.runs.echo import clip, plain_text
 
-    print(clip(plain_text(f"bouncer: error: {message}".replace("\n", " ")), 600),
+    print(clip(plain_text(f"bouncer: error: {message}".replace("\n", " ")), MAX_LINE),
           file=sys.stderr)
     return 2
 

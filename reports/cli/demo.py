@@ -12,11 +12,12 @@ import numpy as np
 
 import fastpath
 import verify
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 
-UNIT_ROUNDOFF = 2.0**-53
+EPS, COLLISIONS, SAMPLE, SEED = 0.6, 100_000, 200, 0  # the demo's defaults
 
 
-def run_demo(eps=0.6, phi0=4.0, v0=3.0, collisions=100_000, sample=200, seed=0, dps=40,
+def run_demo(eps=EPS, phi0=4.0, v0=3.0, collisions=COLLISIONS, sample=SAMPLE, seed=SEED, dps=40,
              echo=print):
     """Run the demo; return a dict of the measured figures."""
     start = time.perf_counter()
@@ -58,12 +59,12 @@ def _demo(args):
 def add_parser(subparsers):
     demo = subparsers.add_parser(
         "demo", help="an orbit with fastpath, a sample of it checked by verify")
-    demo.add_argument("--eps", type=float, default=0.6,
-                      help="the plate's amplitude parameter eps (default 0.6)")
-    demo.add_argument("--collisions", type=int, default=100_000,
-                      help="length of the orbit from (phi, v) = (4, 3) (default 10^5)")
-    demo.add_argument("--sample", type=int, default=200,
-                      help="collisions of the orbit recomputed by verify (default 200)")
-    demo.add_argument("--seed", type=int, default=0,
-                      help="random seed of the sampled collisions (default 0)")
+    demo.add_argument("--eps", type=float, default=EPS,
+                      help="the plate's amplitude parameter eps (default %(default)s)")
+    demo.add_argument("--collisions", type=int, default=COLLISIONS,
+                      help="length of the orbit from (phi, v) = (4, 3) (default %(default)s)")
+    demo.add_argument("--sample", type=int, default=SAMPLE,
+                      help="collisions of the orbit recomputed by verify (default %(default)s)")
+    demo.add_argument("--seed", type=int, default=SEED,
+                      help="random seed of the sampled collisions (default %(default)s)")
     demo.set_defaults(func=_demo)

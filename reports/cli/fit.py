@@ -30,6 +30,7 @@ from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 
+from reports.cli import MAX_LINE
 from reports.runs.echo import clip, plain, plain_text
 from reports.runs.rundir import missing_folders, os_error_text, write_atomic
 from reports.stats.analysis import analyse, best_law_text
@@ -185,9 +186,6 @@ def _analyse_all(curves, plot, jobs):
                 print(f"fit {i}/{len(items)}: {item[0].curve} ({item[0].clock})",
                       file=sys.stderr)
     return done
-
-
-MAX_LINE = 600  # characters of an error line
 
 
 def _error(text):

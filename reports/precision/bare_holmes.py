@@ -20,10 +20,9 @@ import math
 import numpy as np
 
 from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.phase import TWO_PI
 from fastpath.kernels.histogram import censor, escape
 from fastpath.kernels.threads import over_threads
-
-TWO_PI = 2.0 * math.pi
 
 
 @jit

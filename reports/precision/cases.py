@@ -9,13 +9,13 @@ import math
 import numpy as np
 
 import verify
+from fastpath.arithmetic.phase import TWO_PI
 from reports.precision.evaluate import Case, reference
 from verify.hard_cases import HARD_CASES
 
 SEED = 20240604
 
 
-TWO_PI = 2.0 * math.pi
 
 
 def random_states(n: int, seed: int = SEED) -> list[Case]:

@@ -13,10 +13,8 @@ import numpy as np
 from mpmath import mp
 
 import verify
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from reports.precision.methods import Method, Outcome
-
-UNIT_ROUNDOFF = 2.0**-53
-
 
 REFERENCE_DPS = 60
 

@@ -41,6 +41,7 @@ from scipy.optimize import brentq
 
 import fastpath
 import verify
+from fastpath.arithmetic.phase import TWO_PI
 
 FLOAT64 = "float64"
 ARBITRARY = "arbitrary precision"
@@ -51,7 +52,6 @@ SOLVE_IVP_RTOLS = (1e-6, 1e-9, 1e-12)
 FINDROOT_DPS = (20, 30)
 FINDROOT_MAXSTEPS = 400  # mpmath's default (30) stops a wide bracket before it converges
 VERIFY_DPS = (20, 50)
-TWO_PI = 2.0 * math.pi
 
 
 @dataclass(frozen=True)

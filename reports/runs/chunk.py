@@ -12,7 +12,6 @@ from which ``fastpath.carried_step`` repeats the kernel's step in ``bouncer veri
 from __future__ import annotations
 
 import hashlib
-import math
 import threading
 import time
 from dataclasses import dataclass
@@ -22,6 +21,8 @@ import mpmath
 import numpy as np
 
 import verify
+from fastpath.arithmetic.phase import TWO_PI
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.kernels.arrays import (
     NO_LIMIT,
     Bins,
@@ -45,9 +46,6 @@ from fastpath.physics import LAWS, describe
 from reports.runs.counts import Counts, exact_block_sums
 from reports.runs.plan import BLOCKS, PORTRAIT_BLOCKS, chunk_starts, make_plan
 from reports.runs.rundir import CARRIED_COLUMNS, RunFailed
-
-UNIT_ROUNDOFF = 2.0**-53
-
 
 OVERSTEP_TOLERANCE = 16.0  # in units of kappa*u
 
@@ -226,7 +224,7 @@ def simulate_chunk(plan, e, k):
             if sc.kind == "phase-space":
                 lo, hi = sc.v_range
                 if lo <= v1 < hi:
-                    p = min(int(phi1 / (2 * math.pi) * sc.phi_bins), sc.phi_bins - 1)
+                    p = min(int(phi1 / TWO_PI * sc.phi_bins), sc.phi_bins - 1)
                     q = min(int((v1 - lo) / (hi - lo) * sc.v_bins), sc.v_bins - 1)
                     out.portrait[p, q] += 1
                 if n1 >= max_n:

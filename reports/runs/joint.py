@@ -10,6 +10,7 @@ of n or t, the typical n at time t, matched quantiles of n and t.
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -62,12 +63,20 @@ def load_joint(run_dir):
         raise ValueError(f"{run_dir}: the run is not complete (status {manifest['status']})")
     path = run_dir / JOINT_FILE
     recorded = manifest["hashes"].get(JOINT_FILE)
-    if not path.is_file() or rundir.sha256_file(path) != recorded:
-        raise ValueError(f"{path}: missing, or its SHA-256 is not the manifest's")
+    try:
+        data = rundir.read_input(path)  # a regular file of bounded size
+        counts_text = rundir.read_input_text(run_dir / "counts.csv")
+    except (OSError, ValueError) as err:
+        raise ValueError(f"{path.parent}: {err}") from None
+    if hashlib.sha256(data).hexdigest() != recorded:
+        raise ValueError(f"{path}: its SHA-256 is not the manifest's")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{path}: not UTF-8 text (byte {err.start})") from None
     plan = make_plan(scene, manifest["particles"], manifest["seed"])
-    joint, problems = parse_joint(plan, path.read_bytes().decode("utf-8"))
-    counts, _, count_problems, _ = parse_counts(
-        plan, (run_dir / "counts.csv").read_bytes().decode("utf-8"))
+    joint, problems = parse_joint(plan, text)
+    counts, _, count_problems, _ = parse_counts(plan, counts_text)
     problems += count_problems + marginal_problems(plan, joint, counts)
     problems += joint_problems(plan, joint, [plan.particles] * len(plan.experiments))
     if problems:

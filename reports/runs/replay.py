@@ -11,11 +11,11 @@ is replayed from its start:
 * n - 1 collisions from (phi_0, v_0) must land on (phi, v) bit for bit, computed as the run
   computed them: for the elastic model the step ``fastpath.step`` (the kernels' arithmetic),
   with a collision float64 cannot decide settled by ``verify.step`` (``chunk.settle``), as the
-  run settles it; with drag or restitution r < 1 the run's kernel is ``fastpath.advance``
-  (a step with r < 1 reads a carried state beyond (phi, v)), so the replay is ``fastpath.orbit``
-  with the curve's physics, settled and restarted the same way at an undecided flight. The
-  kernels built on ``advance`` (dissipative and velocity scenes) start from the start phase
-  reduced to [0, 2*pi).
+  run settles it; with drag or restitution r < 1 the run's kernel is
+  ``fastpath.kernels.particle.advance`` (a step with r < 1 reads a carried state beyond
+  (phi, v)), so the replay is ``fastpath.orbit`` with the curve's physics, settled and restarted
+  the same way at an undecided flight. The kernels built on ``advance`` (dissipative and
+  velocity scenes) start from the start phase reduced to [0, 2*pi).
 
 The cost is the sum of n over the rows, ~4 us a collision (a scalar ``fastpath.step``).
 
@@ -105,7 +105,7 @@ def replay(scene, phi, v, steps, physics):
 
 
 def _replay_carried(phi, v, eps, steps, physics):
-    phi = reduce_phase(phi)  # the departure state of ``fastpath.advance.begin``
+    phi = reduce_phase(phi)  # the departure state of ``fastpath.kernels.particle.begin``
     while steps > 0:
         orb = fastpath.orbit(phi, v, eps, steps, on_uncertain="stop", **physics)
         done = len(orb.phi) - 1

@@ -47,10 +47,11 @@ from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
+from fastpath.arithmetic.phase import TWO_PI
+from fastpath.physics import LAWS
 from reports.runs.echo import clip
 from reports.runs.rundir import MAX_SCENE_BYTES, InputError, read_input
 
-TWO_PI = 2.0 * math.pi
 KINDS = ("escape", "transport", "phase-space", "velocity")
 CLOCKS = ("collisions", "time")
 MAX_CHUNK = 2**20
@@ -65,7 +66,7 @@ _TABLES = {
                "joint"},
     "physics": {"restitution", "drag", "drag_law"},
 }
-DRAG_LAWS = ("linear", "quadratic")
+DRAG_LAWS = tuple(LAWS)  # the drag_law names fastpath takes
 DENSITIES = ("uniform", "sine")  # [start] density: the law of the starts on their box
 
 

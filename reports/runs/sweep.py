@@ -40,6 +40,7 @@ from reports.runs import cluster, rundir
 from reports.runs.chunk import check_result
 from reports.runs.executor import Executor
 from reports.runs.lock import RunLock
+from reports.runs.manifest import ERROR_UNIT
 from reports.runs.plan import make_plan
 from reports.runs.provenance import git, now, versions
 from reports.runs.rundir import RunFailed
@@ -255,7 +256,7 @@ def _sweep_locked(base, out, axes, values, points, live, *, n_star, particles, t
     manifest["verification"] = {
         "sampled": len(samples), "worst_error": worst[11] if worst else 0.0,
         "uncertain_settled": settled, "overstepped": 0,
-        "error_unit": "condition number x unit roundoff (kappa * 2**-53)"}
+        "error_unit": ERROR_UNIT}
     manifest["collisions"] = sum(collisions.values())
     manifest["wall_time_s"] = round(time.perf_counter() - t0, 3)
     rundir.write_json(out / rundir.MANIFEST, manifest)

@@ -1,7 +1,7 @@
 """Velocity scenes' results: <v_n> against the collision index n, one curve per restitution.
 
 A chunk (``reports.runs.chunk.simulate_velocity_chunk``) runs
-``fastpath.kernels.moments.velocity_chunk`` on its starts with its curve's physics
+``fastpath.kernels.moments.moments_chunk`` on its starts with its curve's physics
 (``Scene.curve_physics``); flagged collisions are settled by ``verify.step`` and the particle
 resumes in the kernel; the sampled collisions are those of escape runs (the same picks, rows and
 carried state), so ``bouncer verify`` re-derives them the same way. This module turns the
@@ -33,8 +33,10 @@ import io
 import math
 from fractions import Fraction
 
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+
 COLUMNS = ("curve", "n", "moving", "stuck", "mean_v", "mean_v2", "se_v")
-MEAN_SLACK = 8.0 * 2.0**-53  # file_problems: rounding of mean_v**2 against mean_v2
+MEAN_SLACK = 8.0 * UNIT_ROUNDOFF  # file_problems: rounding of mean_v**2 against mean_v2
 
 
 def _float(x):

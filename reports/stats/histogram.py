@@ -45,8 +45,8 @@ from fastpath.kernels.histogram import log_edges
 from reports.runs.echo import clip
 from reports.runs.manifest import load_manifest
 from reports.runs.rundir import read_input_text
+from reports.runs.scenes import CLOCKS
 
-CLOCKS = ("collisions", "time")
 # Counts and clock values up to 2**53: float64, in which the fits work, holds every integer up
 # to it exactly (a count or total beyond it, or a bin edge beyond it, where neighbouring
 # integers merge, would be silently rounded).

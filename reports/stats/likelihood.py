@@ -43,6 +43,8 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.stats import chi2
 
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+
 BETA_MAX = 4.0
 Q95 = 0.5 * float(chi2.ppf(0.95, 1))  # log-likelihood drop at the ends of a 95% interval
 LAWS = ("exponential", "power_law", "stretched_exponential")
@@ -210,7 +212,7 @@ def _stretched_mle(log_x, e, log_points, weights, beta_max, golden):
     s, lk = _stretched_profile(beta, log_x, e, log_points, weights)
     # a maximum on the boundary of [0, beta_max], up to the rounding of l (about u |l| per
     # term; 1e3 u |l| covers a sum of up to ~1e3 bins): the golden section cannot resolve more
-    tol = 1e3 * 2.0**-53 * (abs(lk) + 1.0)
+    tol = 1e3 * UNIT_ROUNDOFF * (abs(lk) + 1.0)
     for edge in (0.0, beta_max):
         se, le = _stretched_profile(edge, log_x, e, log_points, weights)
         if le >= lk - tol:

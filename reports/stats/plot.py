@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fastpath.arithmetic.phase import TWO_PI
 from reports.runs import rundir
 from reports.runs.recheck import load_run
 from reports.runs.survival import read_survival
@@ -59,7 +60,7 @@ def plot_run(run_dir, out=None, fit=None, window=None, clock="time", curve=None)
         counts = np.load(run_dir / "portrait.npy")
         fig, ax = plt.subplots(figsize=(7, 5))
         ax.imshow(np.log1p(counts.T), origin="lower", aspect="auto", cmap="Greys",
-                  extent=(0, 2 * np.pi, *scene.v_range))
+                  extent=(0, TWO_PI, *scene.v_range))
         ax.set_xlabel("phi")
         ax.set_ylabel("v")
         ax.set_title(f"{scene.name}: eps = {scene.eps:g}")

@@ -52,7 +52,17 @@ from fractions import Fraction
 import mpmath
 
 from ..numerics.inputs import check_dps, exact_real
-from ..numerics.precision import GUARD_DPS, NotDecided, hi, iv, lo, mp, to_user, working_dps
+from ..numerics.precision import (
+    DEFAULT_DPS,
+    GUARD_DPS,
+    NotDecided,
+    hi,
+    iv,
+    lo,
+    mp,
+    to_user,
+    working_dps,
+)
 
 _SERIES_MAX = 0.5  # series below this |argument|, closed forms above (compared exactly)
 
@@ -369,7 +379,8 @@ class DragFlight:
         return _hull(self.velocity(a), self.velocity(b))
 
 
-def motion(v, t, drag, drag_law: str = "linear", dps: int = 50) -> tuple[mpmath.mpf, mpmath.mpf]:
+def motion(v, t, drag, drag_law: str = "linear",
+           dps: int = DEFAULT_DPS) -> tuple[mpmath.mpf, mpmath.mpf]:
     """Point values ``(Y(t), V(t))`` at ``dps`` digits: midpoints of the enclosures computed at
     ``dps + 10`` digits (inputs taken as exact binary values)."""
     dps = check_dps(dps)

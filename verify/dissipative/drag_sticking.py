@@ -34,7 +34,8 @@ provided T_hi <= H (every flight then lies in the window, by induction). This is
 arithmetic with outward rounding; ``ArithmeticError`` if the model value below falls outside it).
 Its width is O(T0**2).
 
-The value used (the model, derived as in ``fastpath.drag_sticking`` but independently): to first
+The value used (the model, derived as in
+``fastpath.dissipative.sticking.drag_accumulation_tail`` but independently): to first
 order x'' = -a + J*t - c*x' with J = dA/dtheta = c*eps*cos(theta) - eps*sin(theta) (A = -a at
 x' = 0) and c = eta'(u) (k, resp. 2*k*|u|). One flight from w: x = w*t - a*t**2/2 + J*t**3/6 -
 c*(w*t**2/2 - a*t**3/6), so tau = tau0 + J*tau0**2/(3a) - c*tau0**2/6 (tau0 = 2w/a) and

@@ -7,7 +7,8 @@ Accumulation (:func:`accumulation`). After an impact at phase theta with relativ
 w > 0, write a = -A(theta) = 1 - eps*cos(theta) and J = A'(theta) = -eps*sin(theta). With A
 frozen at -a every flight lasts 2*w/a and the impacts accumulate after the geometric sum
 T0 = 2*w/(a*(1 - r)); the first correction from the jerk J gives (the model of
-``fastpath.sticking``, derived independently in the project notes)
+``fastpath.dissipative.sticking.elastic_accumulation_tail``, derived independently in the
+project notes)
 
     T = T0 + J*T0**2/(3*a) + R,     |R| <= C*q*T0,   q = T0**2*(J**2/a**2 + |eps|/a),
 

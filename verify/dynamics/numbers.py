@@ -18,8 +18,6 @@ import mpmath
 from mpmath import ctx_iv
 from mpmath.libmp import dps_to_prec, from_float, from_int
 
-MIN_DPS = 15
-
 
 class Contexts(NamedTuple):
     """A point context ``mp`` and an interval context ``iv`` at the same precision."""
@@ -52,13 +50,6 @@ def exact_raw(name: str, x):
     if raw in (mpmath.libmp.fnan, mpmath.libmp.finf, mpmath.libmp.fninf):
         raise ValueError(f"{name} must be finite, got {name}={x!r}")
     return raw
-
-
-def check_dps(dps, name: str = "dps") -> int:
-    """``dps`` as an int >= MIN_DPS; ValueError otherwise."""
-    if isinstance(dps, bool) or not isinstance(dps, numbers.Integral) or dps < MIN_DPS:
-        raise ValueError(f"{name} must be an integer >= {MIN_DPS}, got {name}={dps!r}")
-    return int(dps)
 
 
 def lo(x):

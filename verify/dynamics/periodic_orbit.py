@@ -55,18 +55,11 @@ import mpmath
 from verify.dynamics.accelerator import continuation, limit_residue
 from verify.dynamics.box_flight import Undecided
 from verify.dynamics.errors import NotCertified
-from verify.dynamics.numbers import (
-    Enclosure,
-    check_dps,
-    contexts,
-    exact_raw,
-    hi,
-    lo,
-    mat_vec,
-)
+from verify.dynamics.numbers import Enclosure, contexts, exact_raw, hi, lo, mat_vec
 from verify.dynamics.orbit_enclosure import enclose, enclose_point, point_orbit
+from verify.numerics.inputs import check_dps
+from verify.numerics.precision import DEFAULT_DPS, GUARD_DPS
 
-GUARD_DPS = 10
 MAX_NEWTON = 40
 ELLIPTIC, HYPERBOLIC, UNDECIDED = "elliptic", "hyperbolic", "undecided"
 _RADIUS_TRIES = (0, -6, 6)  # decades around the geometric mean of the two radius limits
@@ -121,7 +114,7 @@ def classify(residue) -> str:
     return UNDECIDED
 
 
-def periodic_orbit(phi, v, eps, period, dps: int = 50, *, winding=None, velocity_shift=0,
+def periodic_orbit(phi, v, eps, period, dps: int = DEFAULT_DPS, *, winding=None, velocity_shift=0,
                    tolerance=1e-3, max_dps=None) -> CertifiedOrbit:
     """Prove that a periodic orbit of the exact map exists near the guess (phi, v).
 

@@ -45,7 +45,7 @@ from ..numerics.first_root import (
 )
 from ..numerics.inputs import check_state, exact_real
 from ..numerics.phase import reduce_phase
-from ..numerics.precision import GUARD_DPS, NotDecided, hi, iv, lo, mp, working_dps
+from ..numerics.precision import DEFAULT_DPS, GUARD_DPS, NotDecided, hi, iv, lo, mp, working_dps
 from .conditioning import kappa
 from .gap import iv_gap, iv_gap_prime, iv_gap_second, mp_gap, mp_gap_prime
 
@@ -209,7 +209,7 @@ def _newton_from_right(ctx: ElasticGap, t):
     return t
 
 
-def certify_candidate(phi, v, eps, lo_, hi_, dps: int = 50) -> bool:
+def certify_candidate(phi, v, eps, lo_, hi_, dps: int = DEFAULT_DPS) -> bool:
     """The proof step alone: is ``(lo_, hi_)`` a proved enclosure of the FIRST positive root?
 
     True iff, at ``dps + 10`` digits, ``d > 0`` is proved on ``(0, lo_]`` (``|eps| <= 1``:

@@ -19,6 +19,7 @@ from ..errors import UndecidableCollision
 from ..numerics.inputs import check_state
 from ..numerics.phase import reduce_phase
 from ..numerics.precision import (
+    DEFAULT_DPS,
     NotDecided,
     default_max_dps,
     escalate,
@@ -89,7 +90,7 @@ def departure_speed(phi, v, eps, prec: int):
     return iw
 
 
-def gap(phi, v, eps, tau, dps: int = 50) -> mpmath.mpf:
+def gap(phi, v, eps, tau, dps: int = DEFAULT_DPS) -> mpmath.mpf:
     """The gap ``d(tau)`` of the elastic flight from ``(phi, v)``, to ``dps`` digits.
 
     Parameters: the departure ``phi``, ``v``, ``eps`` and the time ``tau > 0`` (exact binary

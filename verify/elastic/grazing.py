@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import mpmath
 
 from ..numerics.inputs import check_dps, exact_real
-from ..numerics.precision import mp, to_user, working_dps
+from ..numerics.precision import DEFAULT_DPS, mp, to_user, working_dps
 
 
 @dataclass(frozen=True)
@@ -42,7 +42,7 @@ class GrazingContact:
     w0: mpmath.mpf
 
 
-def grazing_contact(eps, psi, T, clearance, dps: int = 50) -> GrazingContact:
+def grazing_contact(eps, psi, T, clearance, dps: int = DEFAULT_DPS) -> GrazingContact:
     """Solve ``D(T) = clearance`` for ``T`` near the given guess (see module docstring).
 
     Parameters: ``eps`` the amplitude (``eps*cos(psi) > 1`` required), ``psi`` the plate phase
@@ -81,7 +81,8 @@ def grazing_contact(eps, psi, T, clearance, dps: int = 50) -> GrazingContact:
         return GrazingContact(*to_user((+phi, +v, +t, +psi, +c, +w0)))
 
 
-def grazing_departure(eps, psi, T, clearance, dps: int = 50) -> tuple[mpmath.mpf, mpmath.mpf]:
+def grazing_departure(eps, psi, T, clearance,
+                      dps: int = DEFAULT_DPS) -> tuple[mpmath.mpf, mpmath.mpf]:
     """``(phi, v)`` of :func:`grazing_contact` (the same parameters; the solved contact time
     is its ``.T``)."""
     g = grazing_contact(eps, psi, T, clearance, dps)

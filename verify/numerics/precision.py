@@ -27,6 +27,7 @@ import mpmath
 from mpmath import ctx_iv
 from mpmath.libmp import dps_to_prec
 
+DEFAULT_DPS = 50  # digits promised by a public function called without ``dps``
 GUARD_DPS = 10  # digits worked beyond those promised (a first attempt at dps + GUARD_DPS)
 
 T = TypeVar("T")
