@@ -104,11 +104,45 @@ def from_joint(n_edges, t_edges, counts, particles, source):
 
 def weighted_quantile(values, weights, q, widths=None):
     """The q-quantile of weighted values: the first value whose cumulative weight reaches q of
-    the total; where values stand for cells of log width ``widths``, the weight of each is
-    spread uniformly in log over its cell and the quantile interpolated inside it."""
+    the total; where values stand for cells of log width ``widths``, the quantile of the
+    mixture that spreads each weight uniformly in log over its cell (``CellQuantile``)."""
+    if widths is not None:
+        return CellQuantile(values, widths).quantile(np.asarray(weights, dtype=float), q)
     order = np.argsort(values, kind="stable")
-    return _sorted_quantile(np.asarray(values)[order], np.asarray(weights)[order], q,
-                            None if widths is None else np.asarray(widths)[order])
+    return _sorted_quantile(np.asarray(values)[order], np.asarray(weights)[order], q)
+
+
+class CellQuantile:
+    """Quantiles of weighted cells: cell i spreads its weight w_i uniformly in log y over
+    [log c_i - d_i/2, log c_i + d_i/2] (c_i its centre, d_i its log width; d_i = 0: a point).
+    Cells may overlap; the mixture's distribution function is continuous and piecewise linear
+    in log y between the cells' ends (a jump at a point), so its quantile moves continuously
+    with the weights. The ends are sorted once; ``quantile`` takes any weights of the cells
+    (a bootstrap redraws only the weights)."""
+
+    def __init__(self, centres, widths):
+        log_c = np.log(np.asarray(centres, dtype=float))
+        self.width = np.asarray(widths, dtype=float)
+        ends = np.concatenate([log_c - self.width / 2, log_c + self.width / 2])
+        self.order = np.argsort(ends, kind="stable")
+        self.at = ends[self.order]
+        m = len(log_c)
+        self.cell = np.concatenate([np.arange(m), np.arange(m)])[self.order]
+        self.start = np.concatenate([np.ones(m, bool), np.zeros(m, bool)])[self.order]
+
+    def quantile(self, weights, q):
+        spread = self.width > 0
+        density = np.where(spread, weights / np.where(spread, self.width, 1.0), 0.0)
+        change = np.where(self.start, 1.0, -1.0) * density[self.cell]
+        jump = np.where(self.start & ~spread[self.cell], weights[self.cell], 0.0)
+        slope = np.cumsum(change)  # density of the mixture after each end
+        area = np.concatenate([[0.0], np.cumsum(slope[:-1] * np.diff(self.at))])
+        after = np.cumsum(jump) + area  # distribution function just after each end
+        target = q * float(np.sum(weights))
+        j = min(int(np.searchsorted(after, target)), len(after) - 1)
+        if j == 0 or after[j] - jump[j] < target or slope[j - 1] <= 0:
+            return float(math.exp(self.at[j]))  # reached at an end (or in a point's jump)
+        return float(math.exp(self.at[j - 1] + (target - after[j - 1]) / slope[j - 1]))
 
 
 def weighted_mean(values, weights):
@@ -139,32 +173,30 @@ class BinnedSlope:
         for b in range(k):
             members = where[idx == b]
             order = members[np.argsort(y[members], kind="stable")]
+            cells = None if widths is None else CellQuantile(y[order], widths[order])
             self.bins.append((math.log(math.sqrt(edges[b] * edges[b + 1])), order, y[order],
-                              None if widths is None else widths[order]))
+                              cells))
 
     def slope(self, w, q=0.5):
         """(slope, bins used) for the weights ``w`` of all points."""
         pts = []
-        for log_x, order, ys, widths in self.bins:
+        for log_x, order, ys, cells in self.bins:
             ww = w[order]
             if ww.sum() < self.min_per_bin:
                 continue
             stat = (weighted_mean(ys, ww) if q is None else
-                    _sorted_quantile(ys, ww, q, widths))
+                    _sorted_quantile(ys, ww, q) if cells is None else cells.quantile(ww, q))
             pts.append((log_x, math.log(stat)))
         if len(pts) < 2:
             return math.nan, len(pts)
         return float(np.polyfit([p[0] for p in pts], [p[1] for p in pts], 1)[0]), len(pts)
 
 
-def _sorted_quantile(v, w, q, widths=None):
-    """``weighted_quantile`` of values already sorted."""
+def _sorted_quantile(v, w, q):
+    """``weighted_quantile`` of values already sorted (points)."""
     cum = np.cumsum(w)
     k = min(int(np.searchsorted(cum, q * cum[-1])), len(v) - 1)
-    if widths is None or not widths[k] > 0:
-        return float(v[k])
-    before = cum[k - 1] if k else 0.0
-    return float(v[k] * math.exp(widths[k] * ((q * cum[-1] - before) / w[k] - 0.5)))
+    return float(v[k])
 
 
 def binned_slope(x, y, w, x_lo, x_hi, q=0.5, per_decade=PER_DECADE, min_per_bin=MIN_PER_BIN,

@@ -85,3 +85,22 @@ def test_a_run_without_the_joint_record_falls_back_on_the_study_and_says_so(tmp_
     assert sample.count == 2
     assert sample.source == ("run run-without-joint records no joint (n, t) histogram: sampled "
                              "study of 2 starts")
+
+
+def test_cell_quantiles_are_those_of_the_cells_spread_uniformly_in_log():
+    """Overlapping cells and a point: each quantile is the mixture's (sampled here), and the
+    quantile moves continuously as a weight changes (no jump from cell to cell)."""
+    from reports.paper.joint_sample import CellQuantile
+
+    rng = np.random.default_rng(0)
+    centres, widths = np.array([1.0, 3.0, 10.0, 2.0]), np.array([0.5, 1.0, 0.3, 0.0])
+    weights = np.array([1.0, 2.0, 3.0, 0.5])
+    cells = CellQuantile(centres, widths)
+    m = 2_000_000
+    i = rng.choice(4, size=m, p=weights / weights.sum())
+    x = np.log(centres[i]) + widths[i] * (rng.random(m) - 0.5)
+    for q in (0.1, 0.25, 0.5, 0.75, 0.9):
+        assert abs(math.log(cells.quantile(weights, q)) - np.quantile(x, q)) < 2e-3, q
+    steps = [cells.quantile(weights * np.array([1.0, 1.0 + e, 1.0, 1.0]), 0.5)
+             for e in np.linspace(0, 0.2, 41)]
+    assert np.max(np.abs(np.diff(np.log(steps)))) < 0.01
