@@ -102,8 +102,9 @@ def _draw_group(ax, members, title):
 
 
 def specification_figure(claim, out_dir):
-    """The specification plot of one claim (JSON form) as ``out_dir/specification/<stem>.png``;
-    returns its path relative to ``out_dir``."""
+    """The specification plot of one claim (JSON form) as ``out_dir/specification/<stem>.png``
+    and ``.pdf`` (like every figure of the report); returns the PNG's path relative to
+    ``out_dir``."""
     plt = pyplot()
     groups = _groups(claim)
     heights = [0.8 + 0.28 * len(m) for m in groups.values()]
@@ -118,6 +119,7 @@ def specification_figure(claim, out_dir):
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / f"{file_stem(claim['id'])}.png"
     fig.savefig(path, dpi=110)
+    fig.savefig(path.with_suffix(".pdf"))
     plt.close(fig)
     return f"{FOLDER}/{path.name}"
 
