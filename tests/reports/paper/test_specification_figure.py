@@ -21,12 +21,12 @@ def test_only_claims_not_confirmed_by_every_member_are_contested():
     assert contested(claim("d", ["confirmed", "inconclusive"]))
 
 
-def test_a_png_per_contested_claim_and_markdown_that_shows_each(tmp_path):
+def test_a_figure_per_contested_claim_and_markdown_that_shows_each(tmp_path):
     claims = [claim("fig2-n-phi_c=2", ["refuted", "confirmed", "confirmed"]),
               claim("fig2-t-phi_c=1", ["confirmed", "confirmed"])]
     md = specification_markdown(claims, tmp_path)
-    pngs = sorted(p.name for p in (tmp_path / "specification").iterdir())
-    assert pngs == ["spec_fig2-n-phi_c_2.png"]
+    files = sorted(p.name for p in (tmp_path / "specification").iterdir())
+    assert files == ["spec_fig2-n-phi_c_2.pdf", "spec_fig2-n-phi_c_2.png"]
     assert "![family of fig2-n-phi_c=2](specification/spec_fig2-n-phi_c_2.png)" in md
     assert "inconclusive (analysis), 3 analyses" in md and "fig2-t-phi_c=1" not in md
     assert specification_markdown(claims[1:], tmp_path) == ""
