@@ -113,9 +113,15 @@ def record_end(counts, bins, b, row_n, row_t, outcome, n, t):
     holes + 1) at index n and time t: counted into the rows row_n, row_t (``record``) and, if
     ``counts`` is ``arrays.JointCounts`` (a scene that records the joint histogram), appended
     to the joint record with the same two bins."""
-    if not isinstance(counts, JointCounts):
+    if isinstance(counts, JointCounts):
+        record_with_joint(counts, bins, b, row_n, row_t, outcome, n, t)
+    else:
         record(bins, row_n, row_t, n, t)
-        return
+
+
+def record_with_joint(counts, bins, b, row_n, row_t, outcome, n, t):
+    """``record_end`` with ``arrays.JointCounts``: each bin index found once for the rows and
+    the joint record (Python, and the compiled implementation of ``record_end``)."""
     k_n, k_t = bin_index(bins.n_edges, n), bin_index(bins.t_edges, t)
     if bins.record_n:
         row_n[k_n] += 1
@@ -132,15 +138,7 @@ def _record_end_compiled(counts, bins, b, row_n, row_t, outcome, n, t):
     if counts.instance_class is not JointCounts:
         return lambda counts, bins, b, row_n, row_t, outcome, n, t: record(bins, row_n, row_t,
                                                                            n, t)
-
-    def impl(counts, bins, b, row_n, row_t, outcome, n, t):
-        k_n, k_t = bin_index(bins.n_edges, n), bin_index(bins.t_edges, t)
-        if bins.record_n:
-            row_n[k_n] += 1
-        if bins.record_t:
-            row_t[k_t] += 1
-        append_joint(counts, b, joint_code(bins, outcome, k_n, k_t))
-    return impl
+    return record_with_joint
 
 
 @jit
