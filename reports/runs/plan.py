@@ -121,11 +121,6 @@ def make_plan(scene, particles=None, seed=None):
         raise ValueError(f"--particles must be >= 1, got {particles}")
     if seed < 0:
         raise ValueError(f"--seed must be >= 0, got {seed}")
-    if scene.kind == "phase-space" and not scene.elastic:
-        raise ValueError(f"scene {scene.name!r}: a phase-space run with [physics] (restitution="
-                         f"{scene.restitution!r}, drag={scene.drag!r}) needs a dissipative"
-                         " portrait kernel, which fastpath does not have; escape and transport"
-                         " scenes take [physics]")
     experiments = scene.experiments()
     per_exp = math.ceil(particles / scene.chunk_size)
     total_chunks = per_exp * len(experiments)

@@ -15,8 +15,8 @@ to record. Four kinds:
                  at collision n, on a log grid of n up to ``horizon.collisions`` (collisions
                  only); one curve per restitution: ``physics.restitution`` may be a list there.
 
-An optional ``[physics]`` table, for every kind, sets the dissipation: air drag
-``drag`` = k >= 0 with ``drag_law`` "linear" (eta(v) = k*v) or "quadratic" (eta(v) = k*v*|v|),
+An optional ``[physics]`` table sets the dissipation (phase-space scenes are elastic only): air
+drag ``drag`` = k >= 0 with ``drag_law`` "linear" (eta(v) = k*v) or "quadratic" (eta(v) = k*v*|v|),
 and the coefficient of restitution ``restitution`` = r in (0, 1] (impacts v1 - u = -r*(v_in - u)).
 Left out, it is the elastic, drag-free model (drag = 0, "linear", r = 1), and ``Scene.elastic``
 is True: the scene runs the elastic kernels unchanged.
@@ -342,6 +342,10 @@ def _validate(data, text):
         verify_samples=samples, chunk_size=chunk, description=description, source=text,
         **physics, **portrait, **_records(start, record, kind, clocks),
     )
+    if kind == "phase-space" and not scene.elastic:
+        raise ValueError(f"a phase-space scene with [physics] (restitution={scene.restitution!r},"
+                         f" drag={scene.drag!r}) needs a dissipative portrait kernel, which"
+                         " fastpath does not have; escape and transport scenes take [physics]")
     _check_distinct(scene)
     _check_drag(scene)
     for exp in scene.experiments():

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from scene_texts import ESCAPE_300, PORTRAIT, PORTRAIT_300, STICK_200, TINY
+from scene_texts import ESCAPE_300, PORTRAIT_300, STICK_200, TINY
 
 from reports.runs.plan import SAMPLE_DEPTH, chunk_starts, make_plan
 from reports.runs.scenes import parse_scene
@@ -23,16 +23,6 @@ def test_seed_override_and_its_bounds():
         make_plan(scene, seed=-1)
     with pytest.raises(ValueError, match=r"--particles must be >= 1, got 0"):
         make_plan(scene, particles=0)
-
-
-def test_phase_space_with_physics_is_refused_with_its_reason():
-    text = (ESCAPE_300.replace('kind = "escape"', 'kind = "phase-space"')
-            .replace("[holes]\ncentres = [2.0]\nwidths = [0.3]\n", "")
-            .replace("time = 60.0", "").replace("[record]", "[record]\nv_range = [0.0, 10.0]")
-            + "[physics]\nrestitution = 0.9\n")
-    with pytest.raises(ValueError, match=r"phase-space run with \[physics\].*dissipative"
-                                          r" portrait kernel"):
-        make_plan(parse_scene(text))
 
 
 def test_picks_are_distinct_particles():
@@ -79,13 +69,6 @@ def test_more_chunks_than_sampled_chunks_gives_a_stride():
     plan = make_plan(scene, particles=16 * MAX_SAMPLED_CHUNKS // 2 + 16)
     assert plan.n_chunks == MAX_SAMPLED_CHUNKS + 2 and plan.sample_stride == 2
     assert plan.sampled_chunks == MAX_SAMPLED_CHUNKS // 2 + 1 and plan.samples_per_chunk == 1
-
-
-def test_phase_space_physics_refusal_names_what_does_take_physics():
-    with pytest.raises(ValueError) as err:
-        make_plan(parse_scene(PORTRAIT + "[physics]\nrestitution = 0.9\n"))
-    assert str(err.value).endswith("needs a dissipative portrait kernel, which fastpath does not"
-                                   " have; escape and transport scenes take [physics]")
 
 
 ONE = STICK_200.replace("[physics]\nrestitution = 0.5\n", "").replace(

@@ -52,13 +52,25 @@ v = [2.0, 4.0]
 collisions = 100
 """
 
-@pytest.mark.parametrize("text", [ESCAPE, TRANSPORT, PORTRAIT])
-def test_physics_table_parses_for_every_kind(text):
+@pytest.mark.parametrize("text", [ESCAPE, TRANSPORT])
+def test_physics_table_parses_for_escape_and_transport(text):
     physics = '[physics]\nrestitution = 0.9\ndrag = 0.01\ndrag_law = "quadratic"\n'
     scene = parse_scene(text + physics)
     assert (scene.restitution, scene.drag, scene.drag_law) == (0.9, 0.01, "quadratic")
     assert not scene.elastic
     assert scene.physics() == {"drag": 0.01, "drag_law": "quadratic", "restitution": 0.9}
+
+
+@pytest.mark.parametrize("physics", ["restitution = 0.9", "drag = 0.01",
+                                     'drag = 0.0\nrestitution = 0.5'])
+def test_a_phase_space_scene_refuses_dissipation_when_parsed(physics):
+    """The portrait kernel is elastic: a dissipative phase-space scene is refused by the scene
+    check, before a run starts, not accepted and refused later by the run."""
+    with pytest.raises(ValueError, match=r"^s: a phase-space scene with \[physics\]") as err:
+        parse_scene(PORTRAIT + f"[physics]\n{physics}\n", "s")
+    assert str(err.value).endswith("needs a dissipative portrait kernel, which fastpath does not"
+                                   " have; escape and transport scenes take [physics]")
+    assert parse_scene(PORTRAIT + '[physics]\nrestitution = 1.0\ndrag = 0.0\n').elastic
 
 
 @pytest.mark.parametrize("text", [ESCAPE, TRANSPORT, PORTRAIT])
