@@ -188,14 +188,19 @@ class ReportProgress:
         return self.done_seconds / self.done_weight if self.done_weight > 0 else 1.0
 
     def fraction_and_left(self, now=None):
-        """(fraction of the report done, estimated seconds left)."""
+        """(fraction of the report done, estimated seconds left). The time left is the weight
+        left times the pace counted with the running stage (its elapsed time over the weight it
+        is credited with): equal to ``pace()`` while the stage keeps to time, and growing while it
+        overruns, so that a stage far behind its weight never shows a constant time left."""
         now = time.perf_counter() if now is None else now
-        done = self.done_weight
+        done, seconds = self.done_weight, self.done_seconds
         if 0 <= self.stage < len(self.weights):
-            weight = self.weights[self.stage]
-            done += min((now - self.stage_start) / self.pace(), 0.95 * weight)
+            elapsed = now - self.stage_start
+            done += min(elapsed / self.pace(), 0.95 * self.weights[self.stage])
+            seconds += elapsed
+        pace = seconds / done if done > 0 else self.pace()
         total = sum(self.weights)
-        return (done / total if total else 1.0), (total - done) * self.pace()
+        return (done / total if total else 1.0), (total - done) * pace
 
     def line(self, now=None):
         now = time.perf_counter() if now is None else now

@@ -106,7 +106,7 @@ def test_the_rebuild_note_follows_the_build_line_and_is_not_repeated():
 def test_report_progress_weighs_the_stages_and_scales_the_time_left_by_the_pace():
     """The overall fraction and the time left follow the stage weights (``STAGE_S``), grow
     within a stage with its elapsed time but stop short of its end, and the time left scales
-    with the pace of the finished stages."""
+    with the pace of the finished stages and grows while a stage overruns its weight."""
     from reports.report import STAGE_S, ReportProgress
 
     labels = ["speed", "physics checks"]
@@ -117,8 +117,11 @@ def test_report_progress_weighs_the_stages_and_scales_the_time_left_by_the_pace(
     fraction, left = progress.fraction_and_left(100.0 + speed / 2)
     assert fraction == pytest.approx(speed / 2 / (speed + physics))
     assert left == pytest.approx(speed / 2 + physics)
-    fraction, _ = progress.fraction_and_left(100.0 + 10 * speed)  # a stage far behind time
+    fraction, late = progress.fraction_and_left(100.0 + 10 * speed)  # a stage far behind time
     assert fraction == pytest.approx(0.95 * speed / (speed + physics))
+    # its pace, 10 s per 0.95 s of weight, scales what is left; later still, more is left
+    assert late == pytest.approx((0.05 * speed + physics) * 10 / 0.95)
+    assert progress.fraction_and_left(100.0 + 20 * speed)[1] == pytest.approx(2 * late)
     progress.done_weight, progress.done_seconds = speed, 2 * speed  # it took twice its weight
     progress.stage, progress.stage_start = 1, 500.0
     fraction, left = progress.fraction_and_left(500.0)
