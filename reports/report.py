@@ -122,6 +122,11 @@ def _precision_sections(out_dir, quick, compare, echo):
     ])
 
 
+def _threads_text(threads):
+    """provenance.json's ``threads`` in words: None is numba's default (every CPU)."""
+    return "numba's default threads" if threads is None else f"{threads} threads"
+
+
 def _included_run(out_dir, run_dir, echo):
     manifest, scene = load_run(run_dir)
     record = load_provenance(run_dir)
@@ -135,7 +140,7 @@ def _included_run(out_dir, run_dir, echo):
         f"## Included run: {scene.name}, {manifest['particles']:,} particles per curve", "",
         f"Run directory `{name}` (status {manifest['status']}, seed {manifest['seed']}, "
         f"{manifest['collisions']:,} collisions, started {record.get('started', '?')}, "
-        f"finished {record.get('finished') or '?'}, {record.get('threads')} threads: "
+        f"finished {record.get('finished') or '?'}, {_threads_text(record.get('threads'))}: "
         f"{compute:.0f} s of computation, "
         f"{record.get('collisions_per_s') or math.nan:.3g} collisions/s, "
         f"{compute / len(manifest['curves']):.0f} s per curve on average). Verification: "

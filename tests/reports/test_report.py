@@ -128,3 +128,12 @@ def test_report_progress_weighs_the_stages_and_scales_the_time_left_by_the_pace(
     assert fraction == pytest.approx(speed / (speed + physics))
     assert left == pytest.approx(2 * physics)
     assert "stage 2 of 2: physics checks" in progress.line(500.0)
+
+
+def test_included_run_says_threads_in_words():
+    """A run made with numba's default threads (provenance ``threads``: null) is described as
+    such, never as "None threads"."""
+    from reports.report import _threads_text
+
+    assert _threads_text(None) == "numba's default threads"
+    assert _threads_text(2) == "2 threads"
