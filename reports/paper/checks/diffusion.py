@@ -9,10 +9,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import jv
 
+from fastpath.arithmetic.phase import TWO_PI
 from fastpath.kernels.moments import moments
 from reports.paper.checks.physics_table import Check, agree
 from reports.paper.studies.paper_runs import say_nothing
-from reports.paper.studies.sampling import SEED, verified_text, verify_sample
+from reports.paper.studies.sampling import verified_text, verify_sample
+from reports.paper.studies.seeds import SAMPLING_SEED
 
 DIFFUSION_EPS = {False: (2.5, 3.0, 3.5), True: (2.5,)}
 
@@ -31,8 +33,8 @@ def accelerator_distance(k):
     """Distance of K from the nearest period-1 accelerator-mode window of the standard map,
     2 pi m <= K <= sqrt((2 pi m)**2 + 16), m >= 1 (0 inside a window)."""
     best = math.inf
-    for m in range(1, int(k / (2 * math.pi)) + 3):
-        lo, hi = 2 * math.pi * m, math.sqrt((2 * math.pi * m) ** 2 + 16)
+    for m in range(1, int(k / TWO_PI) + 3):
+        lo, hi = TWO_PI * m, math.sqrt((TWO_PI * m) ** 2 + 16)
         best = min(best, 0.0 if lo <= k <= hi else min(abs(k - lo), abs(k - hi)))
     return best
 
@@ -56,8 +58,8 @@ class Diffusion:
 def diffusion(eps, model, quick=False):
     cfg = DIFFUSION[bool(quick)]
     m, n = cfg[model], cfg["n"]
-    rng = np.random.default_rng(SEED + int(eps * 1000))
-    phi0 = rng.uniform(0, 2 * math.pi, m)
+    rng = np.random.default_rng(SAMPLING_SEED + int(eps * 1000))
+    phi0 = rng.uniform(0, TWO_PI, m)
     v0 = DIFFUSION_V0 + rng.uniform(0, math.pi, m)
     grid = np.array([0, n // 4, n], np.int64)
     mom = moments(phi0, v0, eps, grid, model=model, blocks=64)

@@ -8,8 +8,9 @@ import math
 import numpy as np
 
 import fastpath
+from fastpath.arithmetic.phase import TWO_PI
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from reports.paper.checks.physics_table import Check, agree
-from reports.paper.studies.sampling import UNIT_ROUNDOFF
 
 ROTATION_EPS = (0.1, 0.3, 0.45, 0.6, 0.85, 0.95)
 
@@ -23,7 +24,7 @@ ROTATION_COLLISIONS = 2000
 def rotation_angle(eps, offset=ROTATION_OFFSET, collisions=ROTATION_COLLISIONS):
     """(cos theta, det M) from the orbit started at (0, pi + offset); see the docstring."""
     orb = fastpath.orbit(0.0, math.pi + offset, eps, collisions)
-    dphi = (orb.phi + math.pi) % (2 * math.pi) - math.pi
+    dphi = (orb.phi + math.pi) % TWO_PI - math.pi
     x = np.vstack([dphi, orb.v - math.pi])
     a, b = x[:, :-1], x[:, 1:]
     m = b @ a.T @ np.linalg.inv(a @ a.T)

@@ -20,12 +20,14 @@ import math
 
 import numpy as np
 
+from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.register import make_claim
 from reports.paper.studies.follow import follow
-from reports.paper.studies.followed_samples import EPS, SEED, SIZES, _rng, hole_lo
+from reports.paper.studies.followed_samples import EPS, SIZES, _rng, hole_lo
 from reports.paper.studies.islands import classify
+from reports.paper.studies.seeds import FOLLOWED_SEED
 from reports.runs.scenes import load_scene
 from reports.runs.survival import wilson
 from reports.stats.hazard import all_cause_survival, first_below
@@ -62,11 +64,11 @@ def island_lifetimes(width, t_end, order, quick=False):
     m = SIZES[bool(quick)]["island"]
     rng = _rng("island-lifetime", f"{width:g}", order)
     shift = math.pi * (order - 1)
-    phi = np.mod(rng.uniform(*scene.start_phi, m), 2 * math.pi)
+    phi = np.mod(rng.uniform(*scene.start_phi, m), TWO_PI)
     v = rng.uniform(*scene.start_v, m) + shift
     large = classify(phi, v, EPS, m=order).large
     fol = follow(phi[large], v[large], EPS, [hole_lo(0.0, width), hole_lo(math.pi, width)],
-                 [width, width], MAX_COLLISIONS, t_end, seed=SEED)
+                 [width, width], MAX_COLLISIONS, t_end, seed=FOLLOWED_SEED)
     return int(large.sum()), int((fol.exit < 0).sum())
 
 

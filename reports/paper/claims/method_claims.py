@@ -28,10 +28,11 @@ import numpy as np
 from mpmath import mp
 
 import fastpath
+from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.register import make_claim
-from reports.paper.studies.sampling import SEED
+from reports.paper.studies.seeds import SAMPLING_SEED
 
 EPS = 0.6
 BOX = ((3.85, 4.15), (2.0, 4.0))
@@ -51,20 +52,20 @@ BOOTSTRAP = 200
 def samples(quick=False):
     """{name: (phi, v)} of the two samples (module docstring)."""
     size = SIZES[bool(quick)]
-    rng = np.random.default_rng(SEED)
+    rng = np.random.default_rng(SAMPLING_SEED)
     phi0 = rng.uniform(*BOX[0], size["orbits"])
     v0 = rng.uniform(*BOX[1], size["orbits"])
     orbits = [fastpath.orbit(float(p), float(w), EPS, size["collisions"])
               for p, w in zip(phi0, v0, strict=True)]
     phi = np.concatenate([o.phi[:-1] for o in orbits])
     v = np.concatenate([o.v[:-1] for o in orbits])
-    ph = rng.uniform(0.0, 2 * math.pi, size["phase"])
+    ph = rng.uniform(0.0, TWO_PI, size["phase"])
     vv = rng.uniform(0.5 * math.pi, 2.5 * math.pi, size["phase"])
     leaves = vv + EPS * np.sin(ph) > 0
     return {"paper orbits": (phi, v), "phase space": (ph[leaves], vv[leaves])}
 
 
-def _bootstrap_mean(x, seed=SEED):
+def _bootstrap_mean(x, seed=SAMPLING_SEED):
     rng = np.random.default_rng(seed)
     means = [float(np.mean(rng.choice(x, len(x)))) for _ in range(BOOTSTRAP)]
     return float(np.percentile(means, 2.5)), float(np.percentile(means, 97.5))
@@ -134,13 +135,14 @@ def quadratic_claim(quick=False):
     fails = R.relative_band(QUADRATIC, R.SAME_FAILS)
     members = []
     for name, (phi, v) in samples(quick).items():
-        pick = np.random.default_rng(SEED).choice(len(phi), min(n, len(phi)), replace=False)
+        pick = np.random.default_rng(SAMPLING_SEED).choice(len(phi), min(n, len(phi)),
+                                                           replace=False)
         orders = np.array([convergence_order(float(phi[i]), float(v[i]), EPS) for i in pick])
         orders = orders[np.isfinite(orders)]
         if len(orders) < 10:
             members.append(F.too_few(name, "order of convergence"))
             continue
-        rng = np.random.default_rng(SEED)
+        rng = np.random.default_rng(SAMPLING_SEED)
         boot = [float(np.median(rng.choice(orders, len(orders)))) for _ in range(BOOTSTRAP)]
         members.append(F.band_member(
             f"{name}: {len(orders)} flights, median order {np.median(orders):.3f} (5-95% "
@@ -175,7 +177,8 @@ def never_overstepped_claim(quick=False):
     n = SIZES[bool(quick)]["overstep"]
     sets = {}
     for name, (phi, v) in samples(quick).items():
-        pick = np.random.default_rng(SEED).choice(len(phi), min(n, len(phi)), replace=False)
+        pick = np.random.default_rng(SAMPLING_SEED).choice(len(phi), min(n, len(phi)),
+                                                           replace=False)
         sets[name] = [Case(float(phi[i]), float(v[i]), EPS, name, "random") for i in pick]
     sets["close root pairs"] = grazing_cases(n // 4 if quick else 60)
     sets["hard cases"] = [c for c in hard_cases(quick) if c.v + c.eps * math.sin(c.phi) > 0]

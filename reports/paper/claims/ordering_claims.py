@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.register import ISLAND_HOLES, SEA_HOLES, make_claim
@@ -116,8 +117,8 @@ def locked_share(snapshot):
     if not len(t):
         return 0, 0
     flight = (t[:, -1] - t[:, 0]) / (t.shape[1] - 1)
-    m = np.maximum(np.round(flight / (2 * math.pi)), 1)
-    locked = (np.abs(flight - 2 * math.pi * m) < LOCK_TOLERANCE * 2 * math.pi * m) & (
+    m = np.maximum(np.round(flight / TWO_PI), 1)
+    locked = (np.abs(flight - TWO_PI * m) < LOCK_TOLERANCE * TWO_PI * m) & (
         v.max(axis=1) - v.min(axis=1) < REGULAR_BAND)
     return int(locked.sum()), int(len(t))
 

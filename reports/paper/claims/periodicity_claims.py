@@ -24,10 +24,11 @@ from mpmath import mp
 
 import fastpath
 import verify
+from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.claims import family as F
 from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.claims.register import make_claim
-from reports.paper.studies.sampling import SEED
+from reports.paper.studies.seeds import SAMPLING_SEED
 
 STABILITY_EPS = (0.3, 0.6, 1.5)
 ORDERS = 4
@@ -77,7 +78,7 @@ def deviations(eps, v, phases):
     p = phases[ok]
     phi1, v1, _ = fastpath.step(p, np.full(len(p), v), eps)
     phi2, v2, _ = fastpath.step(p, np.full(len(p), v + math.pi), eps)
-    dphi = np.abs((phi2 - phi1 + math.pi) % (2 * math.pi) - math.pi)
+    dphi = np.abs((phi2 - phi1 + math.pi) % TWO_PI - math.pi)
     return dphi, np.abs(v2 - (v1 + math.pi))
 
 
@@ -90,8 +91,8 @@ def _slope(v_levels, values):
 
 
 def less_significant_claim(quick=False):
-    rng = np.random.default_rng(SEED)
-    phases = rng.uniform(0.0, 2 * math.pi, PHASES[bool(quick)])
+    rng = np.random.default_rng(SAMPLING_SEED)
+    phases = rng.uniform(0.0, TWO_PI, PHASES[bool(quick)])
     levels = np.array([math.pi * (m + 0.5) for m in ORDERS_V])
     table = [deviations(EPS, v, phases) for v in levels]
     members = []

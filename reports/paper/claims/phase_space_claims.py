@@ -24,13 +24,15 @@ import math
 
 import numpy as np
 
+from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.fermi_claims import inside_windows
 from reports.paper.claims.register import make_claim
 from reports.paper.studies.fermi_ensemble import _window_slope
 from reports.paper.studies.islands import classify, velocity_period
-from reports.paper.studies.sampling import SEED, bootstrap_blocks
+from reports.paper.studies.sampling import bootstrap_blocks
+from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.runs.survival import wilson
 
 LARGE_EPS = (2.0, 4.0)
@@ -47,11 +49,11 @@ def _share_member(variant, count, m, holds, fails, part=""):
 
 def large_eps_claim(quick=False):
     m = SAMPLES[bool(quick)]
-    rng = np.random.default_rng(SEED)
+    rng = np.random.default_rng(SAMPLING_SEED)
     members = []
     for eps in LARGE_EPS:
         for band in LARGE_EPS_BANDS:
-            phi = rng.uniform(0.0, 2 * math.pi, m)
+            phi = rng.uniform(0.0, TWO_PI, m)
             v = rng.uniform(*band, m)
             regular = int(classify(phi, v, eps).regular.sum())
             members.append(_share_member(f"eps = {eps:g}, {band[0]:g} < v < {band[1]:.4g}",
@@ -63,10 +65,10 @@ def large_eps_claim(quick=False):
 
 def coexist_claim(fermi, quick=False, eps=0.6):
     m = SAMPLES[bool(quick)]
-    rng = np.random.default_rng(SEED + 1)
+    rng = np.random.default_rng(SAMPLING_SEED + 1)
     members = []
     for order in (1, 2):
-        phi = np.mod(rng.uniform(-ISLAND_BOX_PHASE, ISLAND_BOX_PHASE, m), 2 * math.pi)
+        phi = np.mod(rng.uniform(-ISLAND_BOX_PHASE, ISLAND_BOX_PHASE, m), TWO_PI)
         v = rng.uniform(*velocity_period(order), m)
         large = int(classify(phi, v, eps, m=order).large.sum())
         members.append(_share_member(

@@ -31,7 +31,7 @@ from reports.paper.claims.register import make_claim
 from reports.paper.claims.window_family import inside_windows, window_label
 from reports.paper.claims.window_members import window_fit
 from reports.paper.studies.follow import _step_all
-from reports.paper.studies.sampling import SEED
+from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.stats.likelihood import fit_stretched_fixed, window_of
 
 EPS = 0.6
@@ -49,7 +49,7 @@ KAPPA_RANGE = (0.25, 8.0)
 def closed_times(quick=False):
     """{n: t_n of every orbit} of the closed system (module docstring)."""
     m = SIZES[bool(quick)]
-    rng = np.random.default_rng(SEED)
+    rng = np.random.default_rng(SAMPLING_SEED)
     phi, v = rng.uniform(*BOX[0], m), rng.uniform(*BOX[1], m)
     t = np.zeros(m)
     out = {}
@@ -104,7 +104,7 @@ def gaussian_c1(x, level_hi=C1_RANGE[0], level_lo=C1_RANGE[1]):
     return float(-np.polyfit(xs ** 2, np.log(s), 1)[0])
 
 
-def _bootstrap(x, statistic, seed=SEED):
+def _bootstrap(x, statistic, seed=SAMPLING_SEED):
     rng = np.random.default_rng(seed)
     got = np.array([statistic(rng.choice(x, len(x))) for _ in range(BOOTSTRAP)])
     got = got[np.isfinite(got)]

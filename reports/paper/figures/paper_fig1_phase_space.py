@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.figures.style import caption, pyplot, save_figure
 from reports.paper.studies.paper_runs import read_manifest, run_summary
 from reports.runs.scenes import load_scene
@@ -25,13 +26,13 @@ def centred_portrait(counts):
 
 
 def _centred(x):
-    return (x + math.pi) % (2 * math.pi) - math.pi
+    return (x + math.pi) % TWO_PI - math.pi
 
 
 def _box(ax, plt, phi, v, colour, label):
     """A start box in centred phases (split where it crosses +-pi)."""
     lo, hi = _centred(phi[0]), _centred(phi[0]) + (phi[1] - phi[0])
-    pieces = [(lo, min(hi, math.pi))] + ([(-math.pi, hi - 2 * math.pi)] if hi > math.pi else [])
+    pieces = [(lo, min(hi, math.pi))] + ([(-math.pi, hi - TWO_PI)] if hi > math.pi else [])
     for i, (a, b) in enumerate(pieces):
         ax.add_patch(plt.Rectangle((a, v[0]), b - a, v[1] - v[0], fill=False, ec=colour, lw=1.3,
                                    label=label if i == 0 else None))

@@ -64,13 +64,13 @@ import numpy as np
 
 import fastpath
 from fastpath.kernels.moments import moments
-from reports.paper.studies.sampling import SEED, bootstrap_blocks, slope_fit
-from reports.runs.chunk import check_sample
+from reports.paper.studies.sampling import bootstrap_blocks, slope_fit, verify_sample
+from reports.paper.studies.seeds import SAMPLING_SEED
+from reports.stats.analysis import SHIFT_DECADES
 
 BOX = ((3.85, 4.15), (2.0, 4.0))  # the paper's escape start box
 BLOCKS = 64
 RANDOM_PHASE_BETA = -0.5  # our estimate (module docstring), not a published value
-WINDOW_SHIFT_DECADES = 0.25
 
 STUDY = {
     "eps": 2.0,
@@ -166,7 +166,7 @@ def log_slope(x, y, lo=-math.inf, hi=math.inf):
 
 
 def _window_starts(window):
-    f = 10 ** WINDOW_SHIFT_DECADES
+    f = 10 ** SHIFT_DECADES
     return [window[0] / f, window[0], window[0] * f]
 
 
@@ -215,41 +215,13 @@ def _beta_systematic(n, x, curves, window):
     return 0.5 * (max(betas) - min(betas)) if betas else math.nan
 
 
-def verify_dissipative(starts, eps, physics_list, n_max, samples, seed=SEED):
-    """Spot-check collisions of dissipative orbits by ``verify``: for each physics, orbits from
-    ``starts``, collisions at log-uniform indices <= n_max recomputed from the same float64
-    state (``reports.runs.chunk.check_sample`` with the physics). Departures from the plate
-    (w0 = 0 after a sticking episode) are skipped: verify takes only w0 > 0."""
-    rng = np.random.default_rng(seed)
-    worst, over, done = 0.0, 0, 0
-    per = max(1, math.ceil(samples / (len(starts) * len(physics_list))))
-    for physics in physics_list:
-        full = {"drag": 0.0, "drag_law": "linear", "restitution": 1.0, **physics}
-        for phi0, v0 in starts:
-            orb = fastpath.orbit(phi0, v0, eps, n_max, on_uncertain="stop", **physics)
-            last = len(orb.v) - 2
-            if last < 0:
-                continue
-            idx = np.unique(np.floor((last + 1) ** rng.random(per)).astype(np.int64) - 1)
-            for k in idx:
-                phi, v = float(orb.phi[k]), float(orb.v[k])
-                if not v + eps * math.sin(phi) > 0.0:
-                    continue
-                tau = float(fastpath.step(phi, v, eps, **physics)[2])
-                _, error, overstep = check_sample(phi, v, tau, eps, full)
-                worst = max(worst, error)
-                over += bool(overstep)
-                done += 1
-    return {"sampled": done, "worst_error": worst, "overstepped": over}
-
-
 @functools.lru_cache(maxsize=2)
 def dissipation_study(quick=False):
     """Run the study (cached: figure and claims share it); see the module docstring."""
     cfg = STUDY[bool(quick)]
     eps = STUDY["eps"]
     t0 = time.perf_counter()
-    rng = np.random.default_rng(SEED)
+    rng = np.random.default_rng(SAMPLING_SEED)
     m = cfg["particles"]
     phi0 = rng.uniform(*BOX[0], m)
     v0 = rng.uniform(*BOX[1], m)
@@ -276,7 +248,8 @@ def dissipation_study(quick=False):
     physics_list = [{"restitution": 1.0 - omr[0]}, {"restitution": 1.0 - omr[-1]},
                     {"drag": STUDY["drag"]["linear"][-1], "drag_law": "linear"},
                     {"drag": STUDY["drag"]["quadratic"][-1], "drag_law": "quadratic"}]
-    ver = verify_dissipative(starts, eps, physics_list, min(cfg["n_max"], 3000), cfg["verify"])
+    ver = verify_sample(starts, eps, min(cfg["n_max"], 3000), cfg["verify"],
+                        physics_list=physics_list)
     k = STRIP_ORBITS[bool(quick)]
     halves = strip_maxima(phi0[:k], v0[:k], eps, omr, cfg["n_max"])
     return Dissipation(eps, m, nf, window, elastic, rest, drag, omr, beta, beta_err, beta_sys,

@@ -48,12 +48,12 @@ from fastpath.dynamics.greene import (
     noble,
     tail_uncertainty,
 )
+from reports.paper.studies.seeds import DYNAMICS_SEED
 from verify.dynamics import residue as precise
 
 K_C_QUARTER = STANDARD_MAP_K_C / 4.0  # the standard map's K_c in the bouncer's eps (K = 4 eps)
 PAPER_EPS = 0.6
 PAPER_BOX = ((3.85, 4.15), (2.0, 4.0))
-SEED = 20240607
 NOBLES = ((), (2,), (3,), (4,), (5,), (1, 2), (2, 2), (1, 3), (3, 2), (1, 4))
 GOLDEN_PAIR = ((), (2,))
 PRECISE_DPS = 40  # digits of the multiprecision crossings (their error is measured at +20)
@@ -402,7 +402,7 @@ def certified_crossings(sizes: Sizes, critical: dict) -> list:
 def crossing_simulation(sizes: Sizes, critical: dict) -> list:
     """Orbits from near the hyperbolic point (pi, pi*j): do they reach v >= pi*(j + 1) within
     ``sim_collisions``, at 0.95 and 1.10 times the band's largest eps_c?"""
-    rng = np.random.default_rng(SEED)
+    rng = np.random.default_rng(DYNAMICS_SEED)
     best = {b["band"]: b for b in critical["band_max"]}
     out = []
     for band in sizes.sim_bands:
@@ -445,7 +445,7 @@ def _bootstrap_slope(x, y, window, rng, draws=400):
 
 def lyapunov_study(sizes: Sizes) -> dict:
     """lambda per collision and per unit time at eps = 0.6, with cross-checks."""
-    rng = np.random.default_rng(SEED)
+    rng = np.random.default_rng(DYNAMICS_SEED)
     phi, v = _paper_starts(sizes.lyap_orbits, rng)
     start = time.perf_counter()
     lyap = fd.lyapunov(phi, v, PAPER_EPS, sizes.lyap_collisions, checkpoints=48)
@@ -512,7 +512,7 @@ def lyapunov_study(sizes: Sizes) -> dict:
         if len(diff) > 1 else math.nan,
         "separation_collisions": sizes.separation_collisions,
         "seconds": seconds, "total_collisions": int(sizes.lyap_orbits * sizes.lyap_collisions),
-        "seed": SEED,
+        "seed": DYNAMICS_SEED,
         "median_velocity": np.median(np.abs(speeds), axis=0).tolist(),
         "final_velocity_quartiles": np.percentile(np.abs(speeds[:, -1]), [25, 50, 75]).tolist(),
         "bands": {"edges": list(BAND_EDGES), "per_collision": bands.per_collision.tolist(),
@@ -571,7 +571,7 @@ def accelerator_study(sizes: Sizes) -> dict:
 
 
 def _diffusion(eps, sizes):
-    rng = np.random.default_rng(SEED)
+    rng = np.random.default_rng(DYNAMICS_SEED)
     phi, v = _paper_starts(sizes.diffusion_particles, rng)
     n = np.unique(np.round(np.geomspace(1, sizes.diffusion_collisions, 40)).astype(np.int64))
     start = time.perf_counter()

@@ -15,11 +15,11 @@ import numpy as np
 
 from fastpath.kernels.moments import moments
 from reports.paper.studies.sampling import (
-    SEED,
     bootstrap_blocks,
     slope_fit,
     verify_sample,
 )
+from reports.paper.studies.seeds import SAMPLING_SEED
 
 # Fermi acceleration ensemble (eps = 0.6, the paper's escape start box)
 FERMI_EPS = 0.6
@@ -73,7 +73,7 @@ def fermi_ensemble(quick=False, particles=None):
     if particles is not None:
         cfg["particles"] = int(particles)
     t0 = time.perf_counter()
-    rng = np.random.default_rng(SEED)
+    rng = np.random.default_rng(SAMPLING_SEED)
     m = cfg["particles"]
     phi0 = rng.uniform(*FERMI_BOX[0], m)
     v0 = rng.uniform(*FERMI_BOX[1], m)

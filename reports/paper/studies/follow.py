@@ -35,9 +35,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 import fastpath
+from fastpath.arithmetic.phase import TWO_PI
 from reports.runs.chunk import check_sample, settle
-
-TWO_PI = 2.0 * math.pi
 
 
 @dataclass

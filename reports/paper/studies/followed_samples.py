@@ -22,8 +22,10 @@ import zlib
 
 import numpy as np
 
+from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.studies.follow import follow
 from reports.paper.studies.islands import classify
+from reports.paper.studies.seeds import FOLLOWED_SEED
 from reports.runs.scenes import load_scene
 
 EPS = 0.6
@@ -32,7 +34,6 @@ HOLE_WIDTH = 0.3
 TRANSPORT_V = (2.0, 4.0)
 MAX_COLLISIONS = 100_000
 MAX_TIME = 1e7
-SEED = 20120905
 SIZES = {False: {"escape": 1_000_000, "transport": 1_000_000, "island": 4000},
          True: {"escape": 4000, "transport": 4000, "island": 200}}
 ISLAND_COLLISIONS = 3000
@@ -42,7 +43,7 @@ SNAPSHOT_LENGTH = 200
 def _rng(*key):
     """A generator for one study, keyed by its name and parameters (crc32: stable across runs)."""
     return np.random.default_rng(np.random.SeedSequence(
-        SEED, spawn_key=[zlib.crc32(str(k).encode()) for k in key]))
+        FOLLOWED_SEED, spawn_key=[zlib.crc32(str(k).encode()) for k in key]))
 
 
 def smooth_box(rng, box, m):
@@ -59,7 +60,7 @@ def uniform_box(rng, box, m):
 
 
 def hole_lo(centre, width):
-    return math.fmod(centre - width / 2 + 2 * math.pi, 2 * math.pi)
+    return math.fmod(centre - width / 2 + TWO_PI, TWO_PI)
 
 
 @functools.lru_cache(maxsize=16)
@@ -71,7 +72,7 @@ def escape_sample(centre, quick=False, density="uniform", snapshot_at=()):
     phi, v = draw(rng, ESCAPE_BOX, m)
     return follow(phi, v, EPS, [hole_lo(centre, HOLE_WIDTH)], [HOLE_WIDTH], MAX_COLLISIONS,
                   MAX_TIME, snapshot_at=tuple(snapshot_at), snapshot_length=SNAPSHOT_LENGTH,
-                  seed=SEED)
+                  seed=FOLLOWED_SEED)
 
 
 @functools.lru_cache(maxsize=8)
@@ -82,10 +83,10 @@ def transport_sample(width, entry, quick=False, replica=0):
     m = SIZES[bool(quick)]["transport"]
     rng = _rng("transport", f"{width:g}", entry, *((replica,) if replica else ()))
     centre = 0.0 if entry == 1 else math.pi
-    phi = np.mod(centre + width * (rng.random(m) - 0.5), 2 * math.pi)
+    phi = np.mod(centre + width * (rng.random(m) - 0.5), TWO_PI)
     v = rng.uniform(*TRANSPORT_V, m)
     los = [hole_lo(0.0, width), hole_lo(math.pi, width)]
-    return follow(phi, v, EPS, los, [width, width], MAX_COLLISIONS, MAX_TIME, seed=SEED)
+    return follow(phi, v, EPS, los, [width, width], MAX_COLLISIONS, MAX_TIME, seed=FOLLOWED_SEED)
 
 
 @functools.lru_cache(maxsize=4)
@@ -96,8 +97,8 @@ def island_box_sample(centre, quick=False):
     m = SIZES[bool(quick)]["island"]
     rng = _rng("island", f"{centre:g}")
     phi, v = uniform_box(rng, (scene.start_phi, scene.start_v), m)
-    phi = np.mod(phi, 2 * math.pi)
+    phi = np.mod(phi, TWO_PI)
     cls = classify(phi, v, EPS)
     fol = follow(phi, v, EPS, [hole_lo(centre, HOLE_WIDTH)], [HOLE_WIDTH], ISLAND_COLLISIONS,
-                 seed=SEED)
+                 seed=FOLLOWED_SEED)
     return phi, v, cls, fol

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.studies.follow import _step_all
 from reports.runs.survival import wilson
 
@@ -43,7 +44,7 @@ LOCK_TOLERANCE = 0.01
 
 def centred(phi):
     """Phase in (-pi, pi]."""
-    return np.pi - np.mod(np.pi - np.asarray(phi, dtype=np.float64), 2 * np.pi)
+    return np.pi - np.mod(np.pi - np.asarray(phi, dtype=np.float64), TWO_PI)
 
 
 @dataclass
@@ -84,7 +85,7 @@ def classify(phi, v, eps, collisions=CLASSIFY_COLLISIONS, m=1):
     large = np.zeros(len(phi), bool)
     reg = v_hi - v_lo < REGULAR_BAND
     regular[ok] = reg
-    large[ok] = reg & (np.abs(t / collisions - 2 * math.pi * m) < LOCK_TOLERANCE * 2 * math.pi * m)
+    large[ok] = reg & (np.abs(t / collisions - TWO_PI * m) < LOCK_TOLERANCE * TWO_PI * m)
     lo, hi = np.full(len(phi), math.nan), np.full(len(phi), math.nan)
     lo[ok], hi[ok] = c_lo, c_hi
     return Classified(regular, large, lo, hi)
@@ -122,7 +123,7 @@ def strip_fractions(lo, hi, eps, samples=2000, seed=0, m=1):
     """``Strip`` of the phases [lo, hi] (taken mod 2 pi) x velocity_period(m) from uniform random
     starts."""
     rng = np.random.default_rng(seed)
-    phi = np.mod(rng.uniform(lo, hi, samples), 2 * math.pi)
+    phi = np.mod(rng.uniform(lo, hi, samples), TWO_PI)
     v = rng.uniform(*velocity_period(m), samples)
     cls = classify(phi, v, eps, m=m)
     return Strip(float(lo), float(hi), samples, int(cls.regular.sum()), int(cls.large.sum()), m)
@@ -131,7 +132,7 @@ def strip_fractions(lo, hi, eps, samples=2000, seed=0, m=1):
 def box_starts(phi_box, v_box, samples, seed=0):
     """Uniform random starts (phi mod 2 pi, v) in a box."""
     rng = np.random.default_rng(seed)
-    return np.mod(rng.uniform(*phi_box, samples), 2 * math.pi), rng.uniform(*v_box, samples)
+    return np.mod(rng.uniform(*phi_box, samples), TWO_PI), rng.uniform(*v_box, samples)
 
 
 __all__ = ["box_starts", "centred", "classify", "strip_fractions"]

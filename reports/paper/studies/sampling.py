@@ -8,15 +8,12 @@ import math
 import numpy as np
 
 import fastpath
+from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.runs.chunk import check_sample
-
-SEED = 20240605
-
 
 BOOTSTRAP = 400
 
 
-UNIT_ROUNDOFF = 2.0**-53
 
 
 
@@ -41,7 +38,7 @@ def slope_fit(x, y):
     return float(slope), float(intercept)
 
 
-def bootstrap_blocks(blocks_num, blocks_den, stat, reps=BOOTSTRAP, seed=SEED):
+def bootstrap_blocks(blocks_num, blocks_den, stat, reps=BOOTSTRAP, seed=SAMPLING_SEED):
     """Standard deviation of ``stat(mean curve)`` over resamplings of the particle blocks.
 
     ``blocks_num`` (blocks, k) sums, ``blocks_den`` (blocks, k) counts; ``stat`` maps the mean
@@ -60,26 +57,34 @@ def bootstrap_blocks(blocks_num, blocks_den, stat, reps=BOOTSTRAP, seed=SEED):
     return float(values.std(ddof=1)) if len(values) > 1 else math.nan
 
 
-def verify_sample(starts, eps, n_max, samples, seed=SEED, model_steps=None):
-    """Spot-check fast collisions by ``verify``: orbits from the first few ``starts`` (list of
+def verify_sample(starts, eps, n_max, samples, seed=SAMPLING_SEED, physics_list=({},)):
+    """Spot-check fast collisions by ``verify``: for each physics of ``physics_list`` (keywords of
+    ``fastpath.orbit``; ``{}``, the default, is the elastic model), orbits from ``starts`` (list of
     (phi0, v0)), collisions at log-uniform indices <= n_max, each recomputed from the same float64
-    state (``fastpath.step`` vs ``verify.step``). Returns {sampled, worst_error, overstepped}."""
+    state (``reports.runs.chunk.check_sample``: ``fastpath.step`` against ``verify``). Departures
+    from the plate (w0 = v + eps*sin(phi) = 0 after a sticking episode) are skipped: verify takes
+    only w0 > 0. Returns {sampled, worst_error, overstepped}."""
     rng = np.random.default_rng(seed)
-    per = max(1, math.ceil(samples / len(starts)))
     worst, over, done = 0.0, 0, 0
-    for phi0, v0 in starts:
-        orb = fastpath.orbit(phi0, v0, eps, n_max, on_uncertain="stop")
-        last = len(orb.v) - 2
-        if last < 0:
-            continue
-        idx = np.unique(np.floor((last + 1) ** rng.random(per)).astype(np.int64) - 1)
-        for k in idx:
-            phi, v = float(orb.phi[k]), float(orb.v[k])
-            tau = float(fastpath.step(phi, v, eps)[2])
-            _, error, overstep = check_sample(phi, v, tau, eps)
-            worst = max(worst, error)
-            over += bool(overstep)
-            done += 1
+    per = max(1, math.ceil(samples / (len(starts) * len(physics_list))))
+    for physics in physics_list:
+        full = ({"drag": 0.0, "drag_law": "linear", "restitution": 1.0, **physics} if physics
+                else None)
+        for phi0, v0 in starts:
+            orb = fastpath.orbit(phi0, v0, eps, n_max, on_uncertain="stop", **physics)
+            last = len(orb.v) - 2
+            if last < 0:
+                continue
+            idx = np.unique(np.floor((last + 1) ** rng.random(per)).astype(np.int64) - 1)
+            for k in idx:
+                phi, v = float(orb.phi[k]), float(orb.v[k])
+                if not v + eps * math.sin(phi) > 0.0:
+                    continue
+                tau = float(fastpath.step(phi, v, eps, **physics)[2])
+                _, error, overstep = check_sample(phi, v, tau, eps, full)
+                worst = max(worst, error)
+                over += bool(overstep)
+                done += 1
     return {"sampled": done, "worst_error": worst, "overstepped": over}
 
 
