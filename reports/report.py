@@ -271,7 +271,7 @@ def claims_heading_text(stored, families=""):
             "every analysis its words allow gives it; an inconclusive one says why: too few "
             "data (`data`), precise but between the word's two bounds (`between-bounds`), or "
             "analyses that disagree (`analysis`). Rules and tolerances: "
-            "`reports/paper/rules.py`; the register: `reports/paper/register.py`.\n\n"
+            "`reports/paper/claims/rules.py`; the register: `reports/paper/claims/register.py`.\n\n"
             + claims_markdown(stored) + ("\n" + families if families else ""))
 
 

@@ -153,7 +153,8 @@ def dissipation_claims(d):
             beta, id="dissipation-exponent", figure="dissipation",
             statement="V_sat ~ (1 - r)^(-1/2), our random-phase estimate (no published value "
                       "found: Livorati, Ladeira, Leonel, PRE 78, 056205 (2008) and the other "
-                      "sources in reports/paper/dissipation.py give none in their abstracts)",
+                      "sources in reports/paper/studies/dissipation_study.py give none in their "
+                      "abstracts)",
             quote="",
             observable="least-squares slope of log V_sat against log(1 - r), eps = 2",
             regime="the plateau of each r",
@@ -170,7 +171,7 @@ def dissipation_claims(d):
             strip, id="dissipation-velocity-strip", figure="dissipation",
             statement="inelastic impacts confine the chaotic orbits to a velocity strip of width"
                       " ~ 1/(1 - r); in our units its edge is V*(r) ~ 2 abs(eps)/(1 - r), "
-                      "derived in reports/paper/dissipation.py",
+                      "derived in reports/paper/studies/dissipation_study.py",
             quote="bounded by a velocity strip v = +-Gamma/(1 - r)",
             observable="max |v_n| of the study's orbits against V*(r)",
             regime="every collision of 10,000 per orbit",

@@ -203,7 +203,7 @@ def _escape_entries():
             ("share of the strip widened by one hole width (phi_c +- 0.45) on the large island "
              "around (0, pi)" if island else "share of the strip phi_c +- 0.15 on any island")
             + ", from 2000 random starts per velocity period classified by their orbits "
-              "(reports/paper/islands.py)",
+              "(reports/paper/studies/islands.py)",
             "phase space at eps = 0.6 (no holes)",
             ("each member: confirmed if the Wilson interval of the share lies at or above "
              f"{R.pct(R.OVER_OR_NEAR)}, refuted if it lies at or below "
@@ -280,9 +280,9 @@ def _escape_entries():
             "their velocity stays bounded", Q_BOUNDED,
             "time per collision t/n (twice the mean velocity) of each escape after n_half, from "
             "joint (n, t) data (the run's joint record where it has one, else a sampled study, "
-            "reports/paper/joint_sample.py): slope of log (statistic of t/n) against log n over "
-            "quarter decades of n (the variable the escapes are selected on); Poisson-bootstrap "
-            "interval",
+            "reports/paper/studies/joint_sample.py): slope of log (statistic of t/n) against log "
+            "n over quarter decades of n (the variable the escapes are selected on); "
+            "Poisson-bootstrap interval",
             "the slow decay: escapes after n_half, where the slow population holds half the "
             f"escapes; at least {R.MIN_ESCAPES_TAIL} escapes",
             f"each member: confirmed if the slope's interval lies within [{R.BOUNDED[0]}, "
@@ -321,7 +321,7 @@ def _escape_entries():
             "survivors stick to the large island around (0, pi m) and it decays more slowly "
             "than through the island holes", Q_SEA_SLOWED,
             "share of the survivors after n collisions (sampled study, "
-            "reports/paper/follow.py) whose next 200 collisions are locked to a period-1 "
+            "reports/paper/studies/follow.py) whose next 200 collisions are locked to a period-1 "
             "resonance of the large islands (mean flight time 2 pi m within 1%, velocity within "
             "a band of 5); P(n) against the island holes' P(n) there",
             "late tail: survivors at n_tail, where the slow population holds 90% of the "
@@ -343,7 +343,8 @@ def _escape_entries():
             "regime made n ~ t^(1/2) collisions", Q_N_SQRT_T,
             "slope of log (statistic of n of the escapes at time t) against log t over quarter "
             "decades of t, from joint (n, t) data (the run's joint record where it has one, "
-            "else a sampled study, reports/paper/joint_sample.py); Poisson-bootstrap interval",
+            "else a sampled study, reports/paper/studies/joint_sample.py); Poisson-bootstrap "
+            "interval",
             INTERMEDIATE + " (continuous time); the saddle-point argument is a large-t "
             "statement",
             "band rule on each member's slope: confirmed if its interval lies in [0.4, 0.6], "
@@ -394,7 +395,7 @@ def _escape_entries():
                "hazard ratio as sec3-other-box, for starts with density proportional to "
                "sin(pi (phi - 3.85)/0.3) sin(pi (v - 2)/2) on the paper's box: a run of the "
                "built-in scene escape-other-density where one is given, else a sampled study "
-               "(reports/paper/follow.py)",
+               "(reports/paper/studies/follow.py)",
                "long times, as sec3-other-box", "as sec3-other-box",
                f"'the same results': hazards equal within {R.pct(R.SAME)}, different beyond "
                f"{R.pct(R.SAME_FAILS)}", family=FAM_LONG_TIMES),
@@ -403,7 +404,7 @@ def _escape_entries():
                "tends to a constant, the share of starts on the island", Q_PLATEAU,
                "survival P(t) of the scene escape-island-start (hole at pi) over the last two "
                "decades before the horizon t = 10^5; the share of the start box on regular "
-               "orbits (reports/paper/islands.py, 4000 random starts)",
+               "orbits (reports/paper/studies/islands.py, 4000 random starts)",
                "t -> infinity: the trend of the last two spans before the horizon",
                "two parts: 'tends to a constant', each member confirmed if the fall decelerates "
                "(the last span holds significantly fewer than half of the two spans' escapes), "
@@ -492,7 +493,7 @@ def _escape_entries():
         "collisions has a Gaussian upper tail in t/t_0, t_0 its average", Q_GAUSSIAN,
         "the exponent kappa of log S(x) = a - c x^kappa, x = t_n/<t_n>, fitted on the upper "
         "tail of the closed system's orbits (eps = 0.6, the paper's start box, no hole; "
-        "reports/paper/saddle_claims.py); intervals by resampling orbits",
+        "reports/paper/claims/saddle_claims.py); intervals by resampling orbits",
         "n = 50, 100, 200 collisions: the n the intermediate regime's orbits make",
         f"'the same' exponent as 2 for each member: confirmed within {R.pct(R.SAME)}, refuted "
         f"beyond {R.pct(R.SAME_FAILS)}; {AGREE}", SAME_TOL,
@@ -520,7 +521,8 @@ def _transport_entries():
     out = [
         _entry("sec4-holes", "3", "the hole at 0 covers both islands and chaotic sea, the hole at"
                " pi mostly chaotic sea (every width)", Q_HOLES_4,
-               "shares of the strips 0 +- h/2 and pi +- h/2 on islands (reports/paper/islands.py)",
+               "shares of the strips 0 +- h/2 and pi +- h/2 on islands "
+               "(reports/paper/studies/islands.py)",
                "phase space at eps = 0.6",
                f"{width_parts} (hole 1 islands, hole 1 sea, hole 2 mostly sea): a member is "
                f"confirmed if the Wilson interval shows at least {R.pct(R.BOTH)} islands (sea) "
@@ -625,7 +627,7 @@ def _transport_entries():
             f"collisions per unit time of {ij} against {reflected}: at the same survival level "
             "q (relative to each curve's P(0)), (n_q/t_q) of the one over the other's, from the "
             "run; at the same escape time, the ratio of their median collision counts, from "
-            "joint (n, t) data (reports/paper/joint_sample.py)",
+            "joint (n, t) data (reports/paper/studies/joint_sample.py)",
             "the top decades and the tail of the curves; the escape times holding most of "
             f"{ij}'s escapes and its latest with at least 100 escapes of each",
             f"each member: confirmed if the ratio's interval lies at or below {R.FEWER}, "
@@ -696,7 +698,7 @@ def _transport_entries():
             "share of starts on the large island (orbits locked to its resonance) still inside "
             "at the long-lived time of the transport run (the entrants of hole 1 fall to "
             f"{R.LONG_LIVED_LEVEL:g}), with holes of width h at 0 and pi (sampled study, "
-            "reports/paper/lifetime_claims.py); without a hole they never leave",
+            "reports/paper/claims/lifetime_claims.py); without a hole they never leave",
             "the long-lived time of the transport run",
             f"each member: confirmed if the Wilson interval lies at or below "
             f"{R.pct(R.DESTROYED)}, refuted if at or above {R.pct(R.DESTROYED_FAILS)}; {AGREE}",

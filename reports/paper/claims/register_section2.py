@@ -40,7 +40,8 @@ Q_LYAPUNOV = ("The largest Lyapunov exponent as calculated for typical points in
               "are likely to be positive for the discrete dynamics but zero in the continuous "
               "dynamics, as the chaos-inducing collisions are rare when the particle has high "
               "velocity.")
-STUDY = "the dynamics study (reports/paper/dynamics_study.py, docs/report/dynamics/study.json)"
+STUDY = ("the dynamics study (reports/paper/studies/dynamics_study.py, "
+         "docs/report/dynamics/study.json)")
 PROOF = "none: interval proofs"
 SAMPLES = ("two samples at eps = 0.6: the departures along orbits from the paper's escape box "
            "(the flights of its simulations) and uniform departures over the first two velocity "
@@ -218,7 +219,7 @@ def section2_entries():
             "sec2-large-eps-chaotic", "sec2", "for large eps nearly all of phase space is "
             "chaotic sea", Q_LARGE_EPS,
             "share of random starts on islands (regular: velocity within a band of 5 for 2000 "
-            "collisions; reports/paper/islands.py)",
+            "collisions; reports/paper/studies/islands.py)",
             "eps = 2 and 4 (the fixed points are hyperbolic beyond eps = 1)",
             f"each member: confirmed if the Wilson interval lies at or below "
             f"{R.pct(R.ALMOST_ENTIRELY)}, refuted if at or above "

@@ -80,7 +80,7 @@ def dissipation_markdown(d, image):
         "for inelastic impacts, but we could not read their exponents; the only text we read "
         "is the abstract of de Souza, Simoes, da Silva, Leonel, Math. Probl. Eng. 2009, 409857 "
         "(linear drag: <v> grows, then bends to a constant). The comparison value -1/2 is our "
-        "own random-phase estimate (`reports/paper/dissipation.py`), not a citation.",
+        "own random-phase estimate (`reports/paper/studies/dissipation_study.py`), not a citation.",
         "",
         *_strip_lines(d),
         f"Stuck for good by n = {int(d.n[-1]):,} at eps = {STUDY['sticking_eps']:g} "
@@ -102,7 +102,7 @@ def _strip_lines(d):
         "inelastic bouncer \"bounded by a velocity strip v = +-Gamma/(1 - r)\" (abstract). In "
         "our units the strip's edge is V*(r) = (|eps| + r sqrt(eps^2 + 4|eps|(1 - r)/(1 + r)))"
         "/(1 - r) ~ 2|eps|/(1 - r), derived from energy conservation in flight and the impact "
-        "rule (`reports/paper/dissipation.py`). Over "
+        "rule (`reports/paper/studies/dissipation_study.py`). Over "
         f"{d.strip_orbits} orbits of {int(d.n[-1]):,} collisions per r, max |v_n| / V*(r) "
         f"by 1 - r = {ratios}: every orbit stays inside, and ever deeper inside as r -> 1 "
         "(the plateau grows as (1 - r)^beta, the strip as (1 - r)^-1).",

@@ -83,4 +83,4 @@ def phase_space_markdown(run_dir, image):
         "Elliptic islands around the fixed points (0, pi m) coexist with a chaotic sea that "
         "carries Fermi acceleration. Where each hole lies is measured, not read off the picture"
         " (claims fig2-hole-*, sec4-holes, sec4-hole-2: shares of the strips on islands, "
-        "`reports/paper/islands.py`).", ""])
+        "`reports/paper/studies/islands.py`).", ""])

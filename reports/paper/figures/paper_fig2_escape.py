@@ -118,7 +118,7 @@ def escape_markdown(run_dir, image, analysis):
         "### Fig. 2: escape (the paper's Section 3)", "",
         f"![Fig. 2: escape survival]({image})", "",
         f"Run: {run_summary(run_dir)}.", "",
-        "Regime windows (placed by the physics, `reports/paper/escape_regimes.py`; escapes in "
-        "brackets):", "", windows_table(analysis), "",
+        "Regime windows (placed by the physics, `reports/paper/studies/escape_regimes.py`; "
+        "escapes in brackets):", "", windows_table(analysis), "",
         f"Holes over or near the islands: {', '.join(ISLAND_HOLES)}; in the chaotic sea: "
         f"{', '.join(SEA_HOLES)}.", ""])

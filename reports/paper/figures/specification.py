@@ -138,4 +138,4 @@ def specification_markdown(claims, out_dir):
     return "\n".join(["### The families of the contested claims", "",
                       "Every claim that is not confirmed by all of its analyses, with each "
                       "analysis's figure and interval over the word's bounds "
-                      "(`reports/paper/specification_figure.py`).", "", *lines])
+                      "(`reports/paper/figures/specification.py`).", "", *lines])

@@ -224,8 +224,8 @@ def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
         h1_markdown("paper_fig4_h1.png"),
         "### Late survivors: the mechanism", "",
         "![Late survivors](paper_survivors.png)", "",
-        "Sampled studies (`reports/paper/studies.py`) record each particle's collisions n and "
-        "time t together and the states of the survivors (claims sec3-n-sqrt-t-*, "
+        "Sampled studies (`reports/paper/studies/followed_samples.py`) record each particle's "
+        "collisions n and time t together and the states of the survivors (claims sec3-n-sqrt-t-*, "
         "fig2-bounded-velocity-*, fig2-sea-slowed-*).", "",
         "### The other start sets", "",
         f"Second start box: {run_summary(runs['escape-second-box'])}. Island start box: "
