@@ -11,9 +11,9 @@ Sections, each computed in this run (nothing is copied in by hand):
    dissipative hard cases (drag, departures at rest, chattering grazes: fastpath and verify
    only) in a sub-table of their own;
 3. the paper's figures from trusted ensemble runs, with every claim of the paper decided
-   (``reports.paper.figures``; the sections that contribute claims are listed in
-   ``claim_sections``);
-4. physics checks against published results (``reports.paper.physics_checks``);
+   (``reports.paper.sections.paper_figures_section``; the sections that contribute claims are
+   listed in ``claim_sections``);
+4. physics checks against published results (``reports.paper.sections.physics_checks_section``);
 5. optionally, finished runs given with ``--include-run`` (e.g. the paper-scale escape run).
 
 Figures are written as PNG and PDF next to ``report.md``, the claims with their verdicts to
@@ -37,11 +37,11 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
-from reports.paper.claims import claims_markdown, write_report_json
-from reports.paper.dynamics import dynamics_section
-from reports.paper.figures import paper_figures_section
-from reports.paper.physics_checks import physics_checks_section
-from reports.paper.specification_figure import specification_markdown
+from reports.paper.claims.claim import claims_markdown, write_report_json
+from reports.paper.figures.specification import specification_markdown
+from reports.paper.sections.dynamics_section import dynamics_section
+from reports.paper.sections.paper_figures_section import paper_figures_section
+from reports.paper.sections.physics_checks_section import physics_checks_section
 from reports.precision.bench import (
     ensemble_table,
     headline_ratios,
@@ -261,7 +261,7 @@ PHYSICS_HEADING = "## Physics checks against published results"
 
 def claim_sections(out_dir, particles, quick, echo, include_runs):
     """(label, make) of every section that contributes claims; make() -> (markdown, claims),
-    the claims as ``Claim``s or as dicts with the keys of ``reports.paper.claims.FIELDS``. A
+    the claims as ``Claim``s or as dicts with the keys of ``reports.paper.claims.claim.FIELDS``. A
     section of more claims is one more entry here."""
     return [
         ("paper's figures and claims", lambda: paper_figures_section(
@@ -281,7 +281,7 @@ def claims_heading_text(stored, families=""):
             "every analysis its words allow gives it; an inconclusive one says why: too few "
             "data (`data`), precise but between the word's two bounds (`between-bounds`), or "
             "analyses that disagree (`analysis`). Rules and tolerances: "
-            "`reports/paper/rules.py`; the register: `reports/paper/register.py`.\n\n"
+            "`reports/paper/claims/rules.py`; the register: `reports/paper/claims/register.py`.\n\n"
             + claims_markdown(stored) + ("\n" + families if families else ""))
 
 

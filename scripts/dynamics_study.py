@@ -1,4 +1,4 @@
-"""Compute the full dynamics study (``reports.paper.dynamics_study.FULL``) and write it to
+"""Compute the full dynamics study (``reports.paper.studies.dynamics_study.FULL``) and write it to
 ``docs/report/dynamics/study.json`` (atomically), which the report's dynamics section reads and
 re-checks a sample of.
 
@@ -18,7 +18,7 @@ import json
 import sys
 from pathlib import Path
 
-from reports.paper.dynamics_study import FULL, QUICK, run
+from reports.paper.studies.dynamics_study import FULL, QUICK, run
 from reports.runs.rundir import write_atomic
 
 DEFAULT = Path(__file__).resolve().parent.parent / "docs" / "report" / "dynamics" / "study.json"

@@ -8,10 +8,11 @@ import json
 
 import pytest
 
-from reports.paper import dynamics, dynamics_claims
-from reports.paper import register_section2 as register
-from reports.paper.claims import FIELDS, claims_json
-from reports.paper.dynamics_study import QUICK, run
+from reports.paper.claims import dynamics_claims
+from reports.paper.claims import register_section2 as register
+from reports.paper.claims.claim import FIELDS, claims_json
+from reports.paper.sections import dynamics_section as dynamics
+from reports.paper.studies.dynamics_study import QUICK, run
 
 
 @pytest.fixture(scope="module")

@@ -5,8 +5,8 @@ import math
 
 import pytest
 
-from reports.paper import family as F
-from reports.paper.claims import (
+from reports.paper.claims import family as F
+from reports.paper.claims.claim import (
     FIELDS,
     Claim,
     agreement,

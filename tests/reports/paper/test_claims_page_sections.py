@@ -1,9 +1,9 @@
-"""The generated sections of docs/claims.md (``reports.paper.claims_page``)."""
+"""The generated sections of docs/claims.md (``reports.paper.claims.page``)."""
 
 import pytest
 
-from reports.paper import claims_page as P
-from reports.paper.register import entries
+from reports.paper.claims import page as P
+from reports.paper.claims.register import entries
 
 
 def _claim(cid, verdict, kind=None, members=("confirmed", "confirmed")):

@@ -6,23 +6,25 @@ import math
 import numpy as np
 import pytest
 
-from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, VERDICTS
-from reports.paper.dissipation import (
+from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED, VERDICTS
+from reports.paper.claims.dissipation_claims import (
+    dissipation_claims,
+    exponent_verdict,
+    saturation_member,
+    strip_members,
+)
+from reports.paper.figures.paper_dissipation import dissipation_markdown
+from reports.paper.studies.dissipation_study import (
     STUDY,
     Curve,
     Dissipation,
     _beta_systematic,
     _curve,
-    dissipation_claims,
     exponent,
-    exponent_verdict,
     log_slope,
     plateau,
-    saturation_member,
-    strip_members,
     velocity_strip,
 )
-from reports.paper.dissipation_figure import dissipation_markdown
 from reports.precision.bench import DISSIPATIVE_MODELS, dissipative_table, time_dissipative_orbits
 
 U = 2.0**-53

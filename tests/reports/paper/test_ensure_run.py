@@ -1,6 +1,6 @@
 """The report reuses a stored run only when ``bouncer verify`` passes on it with this code."""
 
-from reports.paper.runs import ensure_run
+from reports.paper.studies.paper_runs import ensure_run
 from reports.runs.recheck import recheck
 
 

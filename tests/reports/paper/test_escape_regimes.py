@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from reports.paper.escape_regimes import diffusive_onset, escape_windows
+from reports.paper.studies.escape_regimes import diffusive_onset, escape_windows
 from reports.stats.histogram import Curve, bin_means, survival_boundaries
 
 

@@ -4,9 +4,9 @@ import math
 
 import pytest
 
-from reports.paper import family as F
-from reports.paper import rules as R
-from reports.paper.claims import (
+from reports.paper.claims import family as F
+from reports.paper.claims import rules as R
+from reports.paper.claims.claim import (
     ANALYSIS,
     BETWEEN_BOUNDS,
     CONFIRMED,

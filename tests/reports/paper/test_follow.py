@@ -1,4 +1,5 @@
-"""Particles followed collision by collision (``reports.paper.follow``) against single orbits."""
+"""Particles followed collision by collision (``reports.paper.studies.follow``) against single
+orbits."""
 
 import math
 
@@ -6,8 +7,8 @@ import numpy as np
 import pytest
 
 import fastpath
-from reports.paper.follow import follow, in_holes
-from reports.paper.islands import classify
+from reports.paper.studies.follow import follow, in_holes
+from reports.paper.studies.islands import classify
 
 
 def test_a_followed_particle_escapes_at_its_orbits_first_collision_in_the_hole():

@@ -4,8 +4,8 @@ import re
 
 import numpy as np
 
-from reports.paper.well_approximated import selection_member
-from reports.paper.window_members import beta_member
+from reports.paper.claims.well_approximated_claims import selection_member
+from reports.paper.claims.window_members import beta_member
 from reports.stats.calibration import draw
 from reports.stats.goodness import pearson
 from reports.stats.likelihood import fit_law, window_of

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from reports.paper.joint_sample import (
+from reports.paper.studies.joint_sample import (
     binned_slope,
     bootstrap_interval,
     from_joint,
@@ -77,7 +77,7 @@ def test_a_runs_joint_record_gives_each_entry_holes_escapes_and_bounds(tmp_path)
 def test_a_run_without_the_joint_record_falls_back_on_the_study_and_says_so(tmp_path):
     from types import SimpleNamespace
 
-    from reports.paper.figures import joint_samples
+    from reports.paper.sections.paper_figures_section import joint_samples
 
     fol = SimpleNamespace(exit=np.array([0, -1]), n=np.array([3, 9]), t=np.array([10.0, 50.0]),
                           particles=2)
@@ -90,7 +90,7 @@ def test_a_run_without_the_joint_record_falls_back_on_the_study_and_says_so(tmp_
 def test_cell_quantiles_are_those_of_the_cells_spread_uniformly_in_log():
     """Overlapping cells and a point: each quantile is the mixture's (sampled here), and the
     quantile moves continuously as a weight changes (no jump from cell to cell)."""
-    from reports.paper.joint_sample import CellQuantile
+    from reports.paper.studies.joint_sample import CellQuantile
 
     rng = np.random.default_rng(0)
     centres, widths = np.array([1.0, 3.0, 10.0, 2.0]), np.array([0.5, 1.0, 0.3, 0.0])

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from mpmath import mp
 
-from reports.paper import lifetime_claims, method_claims, saddle_claims
-from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
+from reports.paper.claims import lifetime_claims, method_claims, saddle_claims
+from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.runs.scenes import parse_scene
 
 
@@ -50,9 +50,8 @@ def test_the_sweep_scene_is_the_papers_transport_scene_with_other_widths():
 @pytest.mark.parametrize(("share", "verdict"), [(4 / 6, CONFIRMED), (2 / 6, INCONCLUSIVE),
                                                 (1 / 6, REFUTED)])
 def test_many_is_half_the_widths_and_not_many_is_one_in_six(share, verdict):
-    from reports.paper import family as F
-    from reports.paper import rules as R
-
+    from reports.paper.claims import family as F
+    from reports.paper.claims import rules as R
     del R
     a = F.word_member("w", "share", share, share, share, lifetime_claims.MANY,
                       lifetime_claims.MANY_FAILS)

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from reports.paper.start_claims import curves_by_key, other_density_claim
+from reports.paper.claims.start_claims import curves_by_key, other_density_claim
 from reports.runs import driver
 from reports.runs.scenes import parse_scene
 
@@ -57,7 +57,7 @@ def test_a_run_of_the_other_density_is_compared_hole_by_hole_and_clock_by_clock(
 def test_the_island_holes_tail_is_decided_on_the_run_of_that_hole_alone(runs, tmp_path):
     """fig2-n-tail-phi_c=H reads the run of the hole alone (scene escape-tail-phi_c=H) where
     one is given; the other claims stay on the paper-scale run."""
-    from reports.paper.escape_claims import escape_analysis, escape_claims
+    from reports.paper.claims.escape_claims import escape_analysis, escape_claims
 
     ref, _ = runs
     alone = Path(tmp_path) / "alone"

@@ -4,11 +4,11 @@ checks only which runs it asks for)."""
 
 import pytest
 
-from reports.paper import figures
-from reports.paper.claims import FIELDS, claims_json
-from reports.paper.figures import paper_figures_section
-from reports.paper.register import entries
-from reports.paper.register_section2 import dynamics_entries
+from reports.paper.claims.claim import FIELDS, claims_json
+from reports.paper.claims.register import entries
+from reports.paper.claims.register_section2 import dynamics_entries
+from reports.paper.sections import paper_figures_section as figures
+from reports.paper.sections.paper_figures_section import paper_figures_section
 
 QUICK_RUNS = ["paper-phase-space-200", "paper-escape-2000", "paper-transport-2000",
               "escape-second-box-2000", "escape-island-start-500", "transport-width-sweep-2000"]

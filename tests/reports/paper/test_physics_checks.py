@@ -5,9 +5,9 @@ import math
 import pytest
 from scipy.special import jv
 
-from reports.paper.diffusion import accelerator_distance, rechester_white
-from reports.paper.physics_checks import physics_checks_section
-from reports.paper.rotation import rotation_angle
+from reports.paper.checks.diffusion import accelerator_distance, rechester_white
+from reports.paper.checks.rotation import rotation_angle
+from reports.paper.sections.physics_checks_section import physics_checks_section
 
 ROWS = ("<v> ~ n^beta", "<v> ~ t^beta", "cos(theta) at (0, pi), eps = 0.6",
         "exact map, eps = 2.5", "holmes map, eps = 2.5")

@@ -5,9 +5,9 @@ from pathlib import Path
 
 import pytest
 
-from reports.paper import family as F
-from reports.paper.claims import FIELDS, PAPER, Claim
-from reports.paper.register import entries, make_claim, quote_found
+from reports.paper.claims import family as F
+from reports.paper.claims.claim import FIELDS, PAPER, Claim
+from reports.paper.claims.register import entries, make_claim, quote_found
 
 PAPER_TEXT = os.environ.get("BOUNCER_PAPER_TEXT")
 

@@ -12,10 +12,10 @@ import math
 import numpy as np
 import pytest
 
-from reports.paper import rules as R
-from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
-from reports.paper.start_claims import HR_BAND, HR_FAILS_BAND
-from reports.paper.transport_claims import finite_time_verdict
+from reports.paper.claims import rules as R
+from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED
+from reports.paper.claims.start_claims import HR_BAND, HR_FAILS_BAND
+from reports.paper.claims.transport_claims import finite_time_verdict
 from reports.stats.analysis import usable_range
 from reports.stats.calibration import draw
 from reports.stats.hazard import hazard_ratio

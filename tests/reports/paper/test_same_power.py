@@ -1,10 +1,11 @@
-"""Where "the same power" is read: the matched survival levels of ``reports.paper.same_power``."""
+"""Where "the same power" is read: the matched survival levels of
+``reports.paper.claims.same_power_claims``."""
 
 from types import SimpleNamespace
 
 import numpy as np
 
-from reports.paper import same_power
+from reports.paper.claims import same_power_claims as same_power
 from reports.stats.hazard import all_cause_survival
 from reports.stats.histogram import Curve
 

@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from reports.paper.joint_sample import from_joint
-from reports.paper.transport_joint_claims import same_time_members
+from reports.paper.claims.transport_joint_claims import same_time_members
+from reports.paper.studies.joint_sample import from_joint
 
 
 def _record(n_scale, rng, m=20_000):

@@ -1,8 +1,8 @@
 """Specification plots: every contested claim drawn with its family, nothing else."""
 
-from reports.paper import family as F
-from reports.paper.claims import agreement
-from reports.paper.specification_figure import contested, specification_markdown
+from reports.paper.claims import family as F
+from reports.paper.claims.claim import agreement
+from reports.paper.figures.specification import contested, specification_markdown
 
 
 def claim(cid, verdicts):

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED
-from reports.paper.transport_claims import eventual_claim, strong_claim, trap_claim
-from reports.paper.well_approximated import form_members
+from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED
+from reports.paper.claims.transport_claims import eventual_claim, strong_claim, trap_claim
+from reports.paper.claims.well_approximated_claims import form_members
 from reports.stats.histogram import Curve, bin_means, survival_boundaries
 
 EDGES = np.concatenate([[0.0], np.geomspace(0.1, 1e7, 161)])

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from reports.paper.window_family import (
+from reports.paper.claims.window_family import (
     LATE_MEMBERS,
     inside_windows,
     late_windows,

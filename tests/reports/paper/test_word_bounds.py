@@ -1,8 +1,8 @@
 """The two bounds of the paper's qualitative words, on synthetic numbers whose verdict is known.
 
-Each rule of ``reports.paper.rules`` that reads a vague word ("the same", "many fewer", "large",
-"effectively traps", "almost entirely", "well approximated", ...) is applied by its claim module
-to a measurement placed inside the word's holds zone (confirmed), inside its fails zone
+Each rule of ``reports.paper.claims.rules`` that reads a vague word ("the same", "many fewer",
+"large", "effectively traps", "almost entirely", "well approximated", ...) is applied by its claim
+module to a measurement placed inside the word's holds zone (confirmed), inside its fails zone
 (refuted), wholly between the two bounds (inconclusive, the evidence saying so) and straddling a
 bound (inconclusive). No runs: every input is built here, and each test takes well under a second.
 """
@@ -13,19 +13,20 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from reports.paper import (
+from reports.paper.claims import (
     escape_claims,
-    fermi,
+    fermi_claims,
     geometry_claims,
     start_claims,
     transport_claims,
     transport_joint_claims,
 )
-from reports.paper import family as F
-from reports.paper import rules as R
-from reports.paper.claims import BETWEEN_BOUNDS, CONFIRMED, INCONCLUSIVE, REFUTED
-from reports.paper.islands import Strip
-from reports.paper.joint_sample import JointSample
+from reports.paper.claims import family as F
+from reports.paper.claims import rules as R
+from reports.paper.claims.claim import BETWEEN_BOUNDS, CONFIRMED, INCONCLUSIVE, REFUTED
+from reports.paper.studies.fermi_ensemble import Fermi
+from reports.paper.studies.islands import Strip
+from reports.paper.studies.joint_sample import JointSample
 from reports.runs.survival import wilson
 from reports.stats.calibration import draw
 from reports.stats.histogram import Curve, bin_means, survival_boundaries
@@ -111,7 +112,7 @@ def fermi_of(beta_n, beta_t):
         tilt = 0.002 * np.repeat([1.0, -1.0], 8)[:, None]
         v = x ** beta * (1 + 0.01 * rng.standard_normal((16, 1))) * (x / x[30]) ** tilt
         return v, np.ones_like(v)
-    return fermi.Fermi(8000, n, n ** beta_n, t, t ** beta_t, np.full(61, 8000), beta_n, 0.002,
+    return Fermi(8000, n, n ** beta_n, t, t ** beta_t, np.full(61, 8000), beta_n, 0.002,
                        1.0, beta_t, 0.002, 1.0, (1000.0, 3e4), (1e4, 3e6), 0, 0,
                        {"sampled": 1, "worst_error": 0.1, "overstepped": 0}, 0.0,
                        blocks(n, beta_n), blocks(t, beta_t))
@@ -124,7 +125,7 @@ def fermi_of(beta_n, beta_t):
 ])
 def test_fermi_exponents_are_the_paper_s_within_ten_percent_not_beyond_twenty_five(
         beta_n, beta_t, verdict, kind):
-    claims = fermi.fermi_claims(fermi_of(beta_n, beta_t))
+    claims = fermi_claims.fermi_claims(fermi_of(beta_n, beta_t))
     assert [(c.verdict, c.inconclusive) for c in claims] == [(verdict, kind)] * 2
     assert all(len(c.analyses) == 4 for c in claims)  # the windows inside the regime
 

@@ -46,7 +46,7 @@ def small_run(tmp_path_factory):
 
 
 def test_builtin_scene_is_the_studys_eps_and_a_velocity_kind():
-    from reports.paper.dissipation import STUDY
+    from reports.paper.studies.dissipation_study import STUDY
 
     scene = load_scene("dissipation-saturation")
     assert scene.kind == "velocity" and scene.eps == STUDY["eps"]
