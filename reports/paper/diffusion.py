@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import jv
 
-from fastpath.kernels.moments import moments
+from fastpath import moments
 from reports.paper.check import Check, agree
 from reports.paper.runs import say_nothing
 from reports.paper.sampling import SEED, verified_text, verify_sample

@@ -63,7 +63,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import fastpath
-from fastpath.kernels.moments import moments
+from fastpath import moments
 from reports.paper import family as F
 from reports.paper.claims import CONFIRMED, INCONCLUSIVE, REFUTED, Claim, agreement
 from reports.paper.sampling import SEED, bootstrap_blocks, slope_fit
