@@ -14,7 +14,8 @@ from fastpath.elastic.flight import METHODS, departure_of, solve_flight
 from fastpath.elastic.gap import departure_verdict
 from fastpath.elastic.holmes import holmes_collide
 from fastpath.inputs import count, float_inputs, physics_options, scalar_inputs
-from fastpath.kernels.arrays import OrbitArrays
+from fastpath.kernels.arrays import Flags, MomentGrid, MomentSums, OrbitArrays, Sample, Starts
+from fastpath.kernels.moments import Moments, moments_chunk
 from fastpath.kernels.orbit import orbit_loop
 from fastpath.kernels.particle import flight as flight_of
 from fastpath.kernels.particle import step as step_of
@@ -29,13 +30,19 @@ from fastpath.status import (
     UncertainCollision,
 )
 
-# The defaults of the physics keywords: the elastic call passes these very objects, which
-# ``_elastic`` recognises by identity before any validation (the elastic path pays ~50 ns).
-NO_DRAG, LINEAR, ELASTIC = 0.0, "linear", 1.0
+# The public model names (``orbit``, ``moments``) and the defaults of the physics keywords
+# (the elastic bouncer of the paper); ``_elastic`` recognises the defaults by value before any
+# validation, so the elastic call skips ``physics_options``.
+MODELS = ("exact", "holmes")
+DEFAULT_DRAG, DEFAULT_DRAG_LAW, DEFAULT_RESTITUTION = 0.0, "linear", 1.0
 
 
 def _elastic(drag, drag_law, restitution):
-    return drag is NO_DRAG and drag_law is LINEAR and restitution is ELASTIC
+    """True for the elastic defaults given as a float 0, the str "linear" and a float 1 (any
+    other type, e.g. an array, goes through ``physics_options``)."""
+    return (type(drag) is float and type(drag_law) is str and type(restitution) is float
+            and drag == DEFAULT_DRAG and drag_law == DEFAULT_DRAG_LAW
+            and restitution == DEFAULT_RESTITUTION)
 
 
 @dataclass(frozen=True)
@@ -184,7 +191,8 @@ def _flight_physics(drag, drag_law, restitution):
     return None if drag == 0.0 else dissipative(0.0, drag, law, 1.0)
 
 
-def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
+def flight(phi, v, eps, *, method="auto", drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW,
+           restitution=DEFAULT_RESTITUTION):
     """Flight times with their iteration counts and statuses: a ``FlightResult``; never raises
     for a status (non-departures come back as NOT_DEPARTING with tau NaN).
 
@@ -194,7 +202,7 @@ def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitu
         eps: the plate's amplitude (position eps*cos(t)).
         method: "auto" (bracketed Halley where the gap is concave, |eps| <= 1; the paper's
             lower-bound steps otherwise) or "lower_bound" (the paper's lower-bound steps
-            everywhere; "seed" is an alias of "lower_bound", kept for backward compatibility).
+            everywhere).
         drag, drag_law: air drag eta(V) = drag*V ("linear") or drag*V*|V| ("quadratic") during
             the flight (``fastpath.dissipative.drag``).
         restitution: only 1 (the default): restitution acts at impacts, not on a flight
@@ -213,7 +221,8 @@ def flight(phi, v, eps, method="auto", *, drag=NO_DRAG, drag_law=LINEAR, restitu
     return FlightResult(*_shaped(shape, scalar, tau, iterations, status))
 
 
-def flight_time(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
+def flight_time(phi, v, eps, *, drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW,
+                restitution=DEFAULT_RESTITUTION):
     """Smallest positive root tau of d(tau) = eps*(cos(phi) - cos(phi+tau)) + tau*(v - tau/2).
 
     Parameters as for ``flight`` (phi, v, eps broadcast; scalars give a float; method "auto"):
@@ -237,7 +246,8 @@ def flight_time(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELAST
     return _shaped(shape, scalar, tau)[0]
 
 
-def step(phi, v, eps, *, drag=NO_DRAG, drag_law=LINEAR, restitution=ELASTIC):
+def step(phi, v, eps, *, drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW,
+         restitution=DEFAULT_RESTITUTION):
     """One collision of the exact map: (phi1, v1, tau), phi1 = (phi + tau) mod 2*pi in [0, 2*pi),
     v1 = tau - v - 2*eps*sin(phi + tau).
 
@@ -300,8 +310,8 @@ def _check_carried(phi, v, eps, carried):
                          f" sin={sin!r}, eps={eps!r})")
 
 
-def carried_step(phi, v, eps, carried, *, drag=NO_DRAG, drag_law=LINEAR,
-                 restitution=ELASTIC):
+def carried_step(phi, v, eps, carried, *, drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW,
+                 restitution=DEFAULT_RESTITUTION):
     """One collision of a chattering orbit (r < 1, any drag) from its carried state: (phi1, v1,
     tau), the step an orbit or ensemble kernel made (``fastpath.dissipative.carried``), bit for
     bit.
@@ -357,11 +367,11 @@ def holmes_step(phi, v, eps):
     return _shaped(shape, scalar, *out[:2])
 
 
-def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", *,
-          drag=0.0, drag_law="linear", restitution=1.0):
+def orbit(phi0, v0, eps, n, *, model="exact", on_uncertain="raise", method="auto",
+          drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW, restitution=DEFAULT_RESTITUTION):
     """n collisions from (phi0, v0): an Orbit with arrays .phi .v .t of length n+1.
 
-    Parameters:
+    Parameters (everything after n keyword-only):
         phi0, v0, eps: the start and the plate's amplitude (scalars).
         n: the number of collisions (an integer >= 0).
         model: "exact" (the transcendental map) or "holmes".
@@ -381,15 +391,11 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
     defaults run the elastic kernel unchanged.
     """
     code = _method(method)
-    drag, law, restitution = physics_options(drag, drag_law, restitution)
-    if (drag != 0.0 or restitution != 1.0) and model != "exact":
-        raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
+    physics = _model_physics(model, drag, drag_law, restitution)
     (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)
     if not scalar:
         raise ValueError("orbit takes scalar phi0, v0 and eps; use step() for arrays of states")
     n = count("n", n)
-    if model not in ("exact", "holmes"):
-        raise ValueError(f"model must be 'exact' or 'holmes', got {model!r}")
     if on_uncertain not in ("raise", "stop"):
         raise ValueError(f"on_uncertain must be 'raise' or 'stop', got {on_uncertain!r}")
     phi0, v0, eps = float(phi_a[0]), float(v_a[0]), float(eps_a[0])
@@ -397,16 +403,30 @@ def orbit(phi0, v0, eps, n, model="exact", on_uncertain="raise", method="auto", 
         status = departure_status(phi0, v0, eps)
         if status != CONVERGED:
             _raise_on_status(np.array([status]), [phi0], [v0], [eps])
-        described = holmes(eps)
-    else:
-        described = describe(eps, drag, law, restitution)
     out = OrbitArrays.empty(n)
-    done, episodes, status, stuck = orbit_loop(described, phi0, v0, code, out)
+    done, episodes, status, stuck = orbit_loop(_described(model, eps, physics), phi0, v0, code,
+                                               out)
     _raise_for_orbit(status, done, out.phi, out.v, eps, on_uncertain)
     iterations = None if model == "holmes" else out.iterations[:done]
     return Orbit(out.phi[: done + 1], out.v[: done + 1], out.t[: done + 1], iterations,
                  FlightStatus(status), model, eps, out.sticking[:episodes].copy(),
                  "stuck" if stuck else "collisions")
+
+
+def _model_physics(model, drag, drag_law, restitution):
+    """The checked physics keywords (``physics_options``: drag, law code, restitution) of a model
+    in MODELS; drag or restitution < 1 need the exact map."""
+    drag, law, restitution = physics_options(drag, drag_law, restitution)
+    if not (isinstance(model, str) and model in MODELS):
+        raise ValueError(f"model must be one of {list(MODELS)}, got model={model!r}")
+    if (drag != 0.0 or restitution != 1.0) and model != "exact":
+        raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
+    return drag, law, restitution
+
+
+def _described(model, eps, physics):
+    """The description (``fastpath.physics``) of the model at eps with the checked physics."""
+    return holmes(eps) if model == "holmes" else describe(eps, *physics)
 
 
 def _raise_for_orbit(status, done, phi, v, eps, on_uncertain):
@@ -419,3 +439,61 @@ def _raise_for_orbit(status, done, phi, v, eps, on_uncertain):
                          np.array([eps]))
     except (ValueError, UncertainCollision) as err:
         raise type(err)(f"collision {done} of the orbit: {err}") from None
+
+
+def moments(phi0, v0, eps, n_grid, *, t_grid=(), model="exact", blocks=64, max_collisions=None,
+            drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW, restitution=DEFAULT_RESTITUTION):
+    """Velocity moments of the orbits from (phi0[i], v0[i]) at collision indices ``n_grid`` and
+    times ``t_grid``: a ``Moments`` (``fastpath.kernels.moments``: the sums and their means).
+
+    Parameters (everything after n_grid keyword-only):
+        phi0, v0: the starts (arrays of the same shape, or broadcast); eps: the plate's
+            amplitude (a scalar).
+        n_grid: collision indices, sorted, >= 0 (may be empty when t_grid is given).
+        t_grid: times, sorted, >= 0.
+        model: "exact" or "holmes", as for ``orbit``.
+        blocks: the partition of the particles into blocks of consecutive indices (at most this
+            many; fewer if some would be empty), each with its own row of sums; not the threads:
+            any thread count gives the same numbers.
+        max_collisions: caps each orbit (default: 100 * n_grid[-1] + 10**6 when a time grid is
+            given, else n_grid[-1]).
+        drag, drag_law, restitution: as for ``orbit`` (model "exact" only); with restitution < 1
+            ``stuck_n``, ``stuck_t`` count the particles stuck for good.
+
+    Raises ValueError for non-finite inputs, non-departing starts (v0 + eps*sin(phi0) <= 0),
+    unsorted or negative grids, an unknown model, bad physics keywords.
+    """
+    physics = _model_physics(model, drag, drag_law, restitution)
+    (phi_a, v_a), _, _ = float_inputs(phi0=phi0, v0=v0)
+    (eps_a,), _, scalar = float_inputs(eps=eps)
+    if not scalar:
+        raise ValueError(f"eps must be a scalar, got shape {np.shape(eps)}")
+    eps = float(eps_a[0])
+    bad = np.flatnonzero(~(v_a + eps * np.sin(phi_a) > 0.0))
+    if len(bad):
+        i = int(bad[0])
+        raise ValueError(f"start {i} (phi0={phi_a[i]!r}, v0={v_a[i]!r}) does not depart:"
+                         f" v0 + eps*sin(phi0) <= 0 at eps={eps!r}")
+    n_grid = np.asarray(n_grid, dtype=np.int64).ravel()
+    t_grid = np.asarray(t_grid, dtype=np.float64).ravel()
+    for name, grid in (("n_grid", n_grid), ("t_grid", t_grid)):
+        if len(grid) and (np.any(np.diff(grid) < 0) or grid[0] < 0
+                          or not np.all(np.isfinite(grid))):
+            raise ValueError(f"{name} must be finite, >= 0 and sorted, got {grid!r}")
+    if not len(n_grid) and not len(t_grid):
+        raise ValueError("give n_grid and/or t_grid")
+    blocks = max(1, min(count("blocks", blocks, 1), len(phi_a)))
+    per_block = -(-len(phi_a) // blocks)
+    blocks = -(-len(phi_a) // per_block)  # no empty block
+    if max_collisions is None:
+        n_last = int(n_grid[-1]) if len(n_grid) else 0
+        max_collisions = 100 * n_last + 10**6 if len(t_grid) else n_last
+    max_collisions = count("max_collisions", max_collisions)
+    m = len(phi_a)
+    sums = MomentSums.zeros(blocks, len(n_grid), len(t_grid))
+    flags = Flags.zeros(m)
+    moments_chunk(_described(model, eps, physics),
+                  Starts(phi=phi_a, v=v_a, t=np.zeros(m), n=np.zeros(m, np.int64)),
+                  MomentGrid(n=n_grid, t=t_grid, max_collisions=max_collisions), False,
+                  Sample.none(m), sums, flags)
+    return Moments(n_grid, t_grid, sums, int(np.count_nonzero(flags.status)), model, eps)

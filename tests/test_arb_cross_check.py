@@ -135,7 +135,7 @@ def _hold_verify(certified, drag_every=1):
     for j, ((phi, v, eps, k, law), (lo, hi)) in enumerate(certified):
         if k > 0 and j % drag_every:
             continue
-        cert = verify.certify_flight(phi, v, eps, DPS, drag=k, drag_law=law)
+        cert = verify.certify_flight(phi, v, eps, dps=DPS, drag=k, drag_law=law)
         v_lo, v_hi = (_exact(x) for x in cert.enclosure)
         assert v_lo < hi and lo < v_hi, ((phi, v, eps, k, law), "a different root")
         tau = _exact(cert.tau)

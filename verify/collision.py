@@ -73,7 +73,7 @@ def impact(phi, v, eps, phys: Physics, dps: int, max_dps: int | None = None) -> 
     return from_certified_flight(phi, v, eps, phys, dps, compute, max_dps)
 
 
-def step(phi, v, eps, dps: int = DEFAULT_DPS, *, drag=0.0, drag_law: str = "linear",
+def step(phi, v, eps, *, dps: int = DEFAULT_DPS, drag=0.0, drag_law: str = "linear",
          restitution=1.0) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
     """``(phi, v) -> (phi1, v1, tau)`` with the certified flight time ``tau``::
 
@@ -84,9 +84,9 @@ def step(phi, v, eps, dps: int = DEFAULT_DPS, *, drag=0.0, drag_law: str = "line
     elastic map): ``v_in = V(tau)`` the velocity of the drag flight
     (:mod:`verify.dissipative.drag`) and ``v1 = u - r*(v_in - u)``, ``r = restitution``.
 
-    Parameters: the departure ``phi``, ``v``, ``eps`` (exact binary values); ``dps`` the digits
-    of the results; ``drag`` k >= 0, ``drag_law`` "linear" or "quadratic", ``restitution`` r in
-    ``(0, 1]``.
+    Parameters: the departure ``phi``, ``v``, ``eps`` (exact binary values); keyword-only:
+    ``dps`` the digits of the results; ``drag`` k >= 0, ``drag_law`` "linear" or "quadratic",
+    ``restitution`` r in ``(0, 1]``.
 
     Accuracy (proved: every value is the midpoint of an interval enclosure of the exact one,
     rounded to ``dps`` digits): ``|tau - exact| <= 10**-dps * tau``; ``|phi1 - exact| <=

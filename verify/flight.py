@@ -72,8 +72,8 @@ def certify(phi, v, eps, phys: Physics, dps: int, max_dps: int | None = None,
     return FlightCertificate(tau, (lo_, hi_), free, wdps, boxes)
 
 
-def certify_flight(phi, v, eps, dps: int = DEFAULT_DPS, max_dps: int | None = None, *, drag=0.0,
-                   drag_law: str = "linear") -> FlightCertificate:
+def certify_flight(phi, v, eps, *, dps: int = DEFAULT_DPS, max_dps: int | None = None, drag=0.0,
+                   drag_law: str = "linear", restitution=1.0) -> FlightCertificate:
     """Certify the smallest positive root of the gap ``d`` (see the module docstrings of
     :mod:`verify.elastic.certificate` and :mod:`verify.dissipative.drag_gap`).
 
@@ -82,15 +82,22 @@ def certify_flight(phi, v, eps, dps: int = DEFAULT_DPS, max_dps: int | None = No
     digits of ``tau`` (relative error below ``1.2*10**-dps``: the enclosure's half-width plus
     the rounding); ``max_dps`` the largest working
     precision tried (default ``max(4*dps, 400)``); ``drag`` k >= 0 and ``drag_law`` "linear" or
-    "quadratic" (:mod:`verify.dissipative.drag`). A flight does not depend on the restitution.
+    "quadratic" (:mod:`verify.dissipative.drag`); ``restitution`` only 1 (the default): it acts
+    at the impact, not on a flight (:func:`verify.step` and :func:`verify.orbit` take it).
+    Everything after ``eps`` is keyword-only.
 
-    ``ValueError`` for NaN/inf/non-real inputs, a bad ``dps`` or ``max_dps``, or
+    ``ValueError`` for NaN/inf/non-real inputs, a bad ``dps`` or ``max_dps``, a restitution
+    other than 1, or
     ``w0 = v + eps*sin(phi) <= 0`` (no departure); :class:`verify.UndecidableCollision` when
     the first root cannot be decided at ``max_dps`` digits. Without drag the elastic
     certificate runs, except for a departure at rest, ``w0 = 0`` exactly, which goes to the
     drag certificate with ``k = 0``. Safe to call from any thread.
     """
-    phys = check_physics(drag, drag_law)
+    phys = check_physics(drag, drag_law, restitution)
+    if phys.restitution != 1:
+        raise ValueError(f"restitution={restitution!r} does not act on a flight (only at its"
+                         " impact): certify_flight and flight_time take restitution 1; step and"
+                         " orbit apply it")
     state = check_state(phi, v, eps, dps=dps, w0_zero_ok=True)
     dps = state.dps
     max_dps = default_max_dps(dps) if max_dps is None else check_dps(max_dps, "max_dps")
@@ -99,11 +106,13 @@ def certify_flight(phi, v, eps, dps: int = DEFAULT_DPS, max_dps: int | None = No
     return certify(state.phi, state.v, state.eps, phys, dps, max_dps).for_user()
 
 
-def flight_time(phi, v, eps, dps: int = DEFAULT_DPS, *, drag=0.0,
-                drag_law: str = "linear") -> mpmath.mpf:
+def flight_time(phi, v, eps, *, dps: int = DEFAULT_DPS, drag=0.0, drag_law: str = "linear",
+                restitution=1.0) -> mpmath.mpf:
     """Certified smallest positive root of ``d`` at ``dps`` digits: ``certify_flight(...).tau``.
 
     Parameters as for :func:`certify_flight`: the departure ``phi``, ``v``, ``eps``, the digits
-    ``dps`` (relative error of the result below ``1.2*10**-dps``), ``drag`` and ``drag_law``.
+    ``dps`` (relative error of the result below ``1.2*10**-dps``), ``drag``, ``drag_law`` and
+    ``restitution`` (only 1), all keyword-only.
     """
-    return certify_flight(phi, v, eps, dps, drag=drag, drag_law=drag_law).tau
+    return certify_flight(phi, v, eps, dps=dps, drag=drag, drag_law=drag_law,
+                          restitution=restitution).tau

@@ -21,7 +21,7 @@ from .numerics.precision import (
 )
 
 
-def jacobian(phi, v, eps, dps: int = DEFAULT_DPS) -> mpmath.matrix:
+def jacobian(phi, v, eps, *, dps: int = DEFAULT_DPS) -> mpmath.matrix:
     """2x2 Jacobian of the elastic map ``(phi, v) -> (phi1, v1)``.
 
     ``d(tau; phi, v) = 0`` defines ``tau``; with ``d' = v - tau + eps*sin(phi+tau)`` and

@@ -43,7 +43,7 @@ class Orbit:
     dps: int = DEFAULT_DPS
 
 
-def orbit(phi0, v0, eps, n: int, dps: int = DEFAULT_DPS, *, drag=0.0, drag_law: str = "linear",
+def orbit(phi0, v0, eps, n: int, *, dps: int = DEFAULT_DPS, drag=0.0, drag_law: str = "linear",
           restitution=1.0) -> Orbit:
     """Iterate the map of :func:`verify.step` ``n`` times from ``(phi0, v0)``.
 

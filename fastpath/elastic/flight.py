@@ -29,8 +29,7 @@ from fastpath.status import CONVERGED
 AUTO = 0  # bracketed Halley for |eps| <= 1 (fastpath.elastic.concave), lower-bound steps otherwise
 LOWER_BOUND = 1  # the paper's lower-bound steps for every eps
 GENERAL = 2  # AUTO without the lockstep attempt: for a flight the lockstep did not answer
-# the public names of the methods; "seed" is an alias of "lower_bound", kept for old callers
-METHODS = {"auto": AUTO, "lower_bound": LOWER_BOUND, "seed": LOWER_BOUND}
+METHODS = {"auto": AUTO, "lower_bound": LOWER_BOUND}  # the public names of the methods
 
 
 @jit

@@ -32,15 +32,11 @@ import numpy as np
 
 from fastpath.arithmetic.jit import jit
 from fastpath.dissipative.carried import EPISODE, STUCK, VK, T, V
-from fastpath.inputs import count, float_inputs, physics_options
-from fastpath.kernels.arrays import Flags, MomentGrid, MomentSums, Sample, Starts
+from fastpath.kernels.arrays import MomentSums
 from fastpath.kernels.particle import detachment_of
 from fastpath.kernels.records import particle_buffers, sampled_collision, start_particle
 from fastpath.kernels.threads import over_threads
-from fastpath.physics import describe, holmes
 from fastpath.status import CONVERGED
-
-MODELS = ("exact", "holmes")
 
 
 def moments_chunk(physics, starts, grid, as_step, sample, sums, flags):
@@ -134,7 +130,7 @@ def _moments_block(physics, span, starts, grid, sample, sums, flags, detach):
 
 
 class Moments:
-    """Block sums of ``moments`` with the grids; means and block-level views.
+    """Block sums of ``fastpath.moments`` with the grids; means and block-level views.
 
     Attributes: ``n_grid``, ``t_grid``; ``sums`` (``arrays.MomentSums``) and its block arrays
     ``count_n``, ``sum_v_n``, ``sum_v2_n``, ``sum_dv2_n``, ``count_t``, ``sum_v_t``, ``stuck_n``,
@@ -186,59 +182,4 @@ def _ratio(num, den):
         return np.where(den > 0, num / np.maximum(den, 1), np.nan)
 
 
-def moments(phi0, v0, eps, n_grid, t_grid=(), model="exact", blocks=64, max_collisions=None,
-            *, drag=0.0, drag_law="linear", restitution=1.0):
-    """Velocity moments of the orbits from (phi0[i], v0[i]) at collision indices ``n_grid`` and
-    times ``t_grid``: a ``Moments``. ``blocks`` (at most; fewer if some would be empty) fixes
-    the partition of the particles (not the threads: any thread count gives the same numbers).
-    ``max_collisions`` caps each orbit (default: 100 * n_grid[-1] + 10**6 when a time grid is
-    given, else n_grid[-1]).
-
-    drag, drag_law, restitution: as for ``fastpath.orbit`` (model "exact" only); with
-    restitution < 1 ``stuck_n``, ``stuck_t`` count the particles stuck for good.
-
-    Raises ValueError for non-finite inputs, non-departing starts (v0 + eps*sin(phi0) <= 0),
-    unsorted or negative grids, an unknown model, bad physics keywords.
-    """
-    drag, law, restitution = physics_options(drag, drag_law, restitution)
-    dissipative = drag != 0.0 or restitution != 1.0
-    if dissipative and model != "exact":
-        raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
-    (phi_a, v_a), _, _ = float_inputs(phi0=phi0, v0=v0)
-    (eps_a,), _, scalar = float_inputs(eps=eps)
-    if not scalar:
-        raise ValueError(f"eps must be a scalar, got shape {np.shape(eps)}")
-    eps = float(eps_a[0])
-    if model not in MODELS:
-        raise ValueError(f"model must be 'exact' or 'holmes', got {model!r}")
-    bad = np.flatnonzero(~(v_a + eps * np.sin(phi_a) > 0.0))
-    if len(bad):
-        i = int(bad[0])
-        raise ValueError(f"start {i} (phi0={phi_a[i]!r}, v0={v_a[i]!r}) does not depart:"
-                         f" v0 + eps*sin(phi0) <= 0 at eps={eps!r}")
-    n_grid = np.asarray(n_grid, dtype=np.int64).ravel()
-    t_grid = np.asarray(t_grid, dtype=np.float64).ravel()
-    for name, grid in (("n_grid", n_grid), ("t_grid", t_grid)):
-        if len(grid) and (np.any(np.diff(grid) < 0) or grid[0] < 0
-                          or not np.all(np.isfinite(grid))):
-            raise ValueError(f"{name} must be finite, >= 0 and sorted, got {grid!r}")
-    if not len(n_grid) and not len(t_grid):
-        raise ValueError("give n_grid and/or t_grid")
-    blocks = max(1, min(count("blocks", blocks, 1), len(phi_a)))
-    per_block = -(-len(phi_a) // blocks)
-    blocks = -(-len(phi_a) // per_block)  # no empty block
-    if max_collisions is None:
-        n_last = int(n_grid[-1]) if len(n_grid) else 0
-        max_collisions = 100 * n_last + 10**6 if len(t_grid) else n_last
-    max_collisions = count("max_collisions", max_collisions)
-    described = holmes(eps) if model == "holmes" else describe(eps, drag, law, restitution)
-    m = len(phi_a)
-    sums = MomentSums.zeros(blocks, len(n_grid), len(t_grid))
-    flags = Flags.zeros(m)
-    moments_chunk(described, Starts(phi=phi_a, v=v_a, t=np.zeros(m), n=np.zeros(m, np.int64)),
-                  MomentGrid(n=n_grid, t=t_grid, max_collisions=max_collisions), False,
-                  Sample.none(m), sums, flags)
-    return Moments(n_grid, t_grid, sums, int(np.count_nonzero(flags.status)), model, eps)
-
-
-__all__ = ["Moments", "moments", "moments_chunk"]
+__all__ = ["Moments", "moments_chunk"]

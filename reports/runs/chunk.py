@@ -365,7 +365,7 @@ def check_sample(phi, v, tau, eps, physics=None):
         kappa = dissipative_kappa(phi, v, eps, tau_ref, phi1_ref, v1_ref,
                                   physics["restitution"])
     else:  # the flight time of verify.step (its cert.tau), without the step's phi1 and v1
-        tau_ref = verify.certify_flight(phi, v, eps, VERIFY_DPS).tau
+        tau_ref = verify.certify_flight(phi, v, eps, dps=VERIFY_DPS).tau
         kappa = verify.condition_number(phi, v, eps, tau_ref)
     rel = (tau - tau_ref) / tau_ref
     error = float(abs(rel) / (kappa * UNIT_ROUNDOFF))

@@ -309,7 +309,7 @@ def test_w0_zero_departure_from_drag_detachment(law, eps, k):
 def test_moments_with_drag_and_restitution_count_every_particle(law):
     """fastpath.kernels.moments with drag and r < 1 (eps = 0.6, k = 0.1: never detaches): at every
     n of the grid, moving + stuck + flagged = particles, and particles do get stuck."""
-    from fastpath.kernels.moments import moments
+    from fastpath import moments
 
     n = 64
     m = moments(np.full(n, 4.0), np.linspace(2.0, 4.0, n), 0.6, [10, 100, 1000], drag=0.1,

@@ -220,13 +220,17 @@ def test_a_scalar_flight_status_is_a_flight_status():
                                                          fastpath.FlightStatus.NOT_DEPARTING]
 
 
-def test_the_lower_bound_method_keeps_its_former_name_seed():
-    """method="lower_bound" names the paper's lower-bound steps; "seed" stays an alias."""
-    a = fastpath.flight(1.0, 2.0, 3.0, "lower_bound")
-    b = fastpath.flight(1.0, 2.0, 3.0, "seed")
-    assert (a.tau, a.iterations, a.status) == (b.tau, b.iterations, b.status)
-    orb = fastpath.orbit(4.0, 3.0, 0.6, 5, method="lower_bound")
-    assert np.array_equal(orb.phi, fastpath.orbit(4.0, 3.0, 0.6, 5, method="seed").phi)
+@pytest.mark.parametrize("call", [
+    lambda method: fastpath.flight(1.0, 2.0, 3.0, method=method),
+    lambda method: fastpath.orbit(4.0, 3.0, 0.6, 5, method=method),
+])
+def test_an_unknown_method_is_refused_naming_the_valid_ones(call):
+    """Only "auto" and "lower_bound" are methods; a former name such as "seed" is a ValueError
+    that lists them."""
+    call("lower_bound")
+    with pytest.raises(ValueError, match=r"method must be one of \['auto', 'lower_bound'\],"
+                                         r" got 'seed'"):
+        call("seed")
 
 
 def test_version_is_the_package_version():

@@ -139,7 +139,7 @@ def test_no_evaluation_before_a_non_departure_or_an_uncertain_departure(eps):
     makes w0 = fl(v + fl(eps*sin(phi))) = 0 exactly (a float plus its negation), while the bound
     3u*|eps*sin(phi)| > 0."""
     for method in ("auto", "lower_bound"):
-        result = fastpath.flight(-math.copysign(math.pi / 2, eps), abs(eps) / 2, eps, method)
+        result = fastpath.flight(-math.copysign(math.pi / 2, eps), abs(eps) / 2, eps, method=method)
         assert result.status == NOT_DEPARTING and result.iterations == 0
         assert math.isnan(result.tau)
     phi = 1.0
@@ -228,7 +228,7 @@ def test_lower_bound_flight_at_eps_zero_is_twice_v_in_one_evaluation(phi, v):
     where
     d = 0*sin*sin + 2v*(v - v) = 0 exactly: within rounding, no dip (|eps| <= 1), and the polish
     t - 0/(-v) leaves 2v: tau = 2v (exact at eps = 0) after one evaluation, reported as one."""
-    result = fastpath.flight(phi, v, 0.0, "lower_bound")
+    result = fastpath.flight(phi, v, 0.0, method="lower_bound")
     assert (result.tau, result.iterations, result.status) == (2.0 * v, 1, CONVERGED)
 
 
@@ -277,7 +277,7 @@ def test_an_overflowing_first_evaluation_is_an_overflow():
     v - t + eps*sin(1.5) ~ 2.5e308 overflows while the gap ~ 2.5e8 is finite (2*eps = 1.6e308
     does not overflow). Either way (NaN, 1, OVERFLOW): one evaluation."""
     for method in ("auto", "lower_bound"):
-        result = fastpath.flight(1.0, 5e307, 2.0, method)
+        result = fastpath.flight(1.0, 5e307, 2.0, method=method)
         assert (result.iterations, result.status) == (1, OVERFLOW) and math.isnan(result.tau)
     assert math.isfinite(gap(1.5, 1.7e308, 8e307, 1e-300))
     assert math.isinf(gap_rate(1.5, 1.7e308, 8e307, 1e-300))

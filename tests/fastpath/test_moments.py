@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import fastpath
-from fastpath.kernels.moments import moments
+from fastpath import moments
 
 N_GRID = np.array([0, 1, 2, 7, 50, 300])
 T_GRID = np.array([0.0, 0.5, 3.0, 40.0, 700.0])
@@ -38,7 +38,7 @@ def _loop(phi0, v0, eps, model):
 @pytest.mark.parametrize("model", ["exact", "holmes"])
 def test_matches_a_loop_over_orbit(model):
     phi0, v0 = _starts(7)
-    mom = moments(phi0, v0, 0.6, N_GRID, T_GRID, model=model, blocks=3)
+    mom = moments(phi0, v0, 0.6, N_GRID, t_grid=T_GRID, model=model, blocks=3)
     mean_v, mean_v2, mean_dv2, mean_vt = _loop(phi0, v0, 0.6, model)
     rtol = 8 * np.finfo(float).eps
     np.testing.assert_allclose(mom.mean_v_n, mean_v, rtol=rtol)
@@ -64,9 +64,9 @@ def test_identical_for_one_and_two_threads(model, eps, v):
     saved = numba.get_num_threads()
     try:
         numba.set_num_threads(1)
-        one = moments(phi0, v0, eps, N_GRID, T_GRID, model=model, blocks=16)
+        one = moments(phi0, v0, eps, N_GRID, t_grid=T_GRID, model=model, blocks=16)
         numba.set_num_threads(2)  # exactly 2: min(2, available) compared 1 with 1 on one core
-        two = moments(phi0, v0, eps, N_GRID, T_GRID, model=model, blocks=16)
+        two = moments(phi0, v0, eps, N_GRID, t_grid=T_GRID, model=model, blocks=16)
     finally:
         numba.set_num_threads(saved)
     for a, b in zip(_all(one), _all(two), strict=True):
@@ -85,7 +85,7 @@ def test_blocks_partition_the_particles():
 
 def test_time_points_past_the_cap_are_missing_not_wrong():
     phi0, v0 = _starts(5)
-    mom = moments(phi0, v0, 0.6, [0, 3], [0.0, 1e9], max_collisions=20)
+    mom = moments(phi0, v0, 0.6, [0, 3], t_grid=[0.0, 1e9], max_collisions=20)
     assert (mom.particles_t == [5, 0]).all()
     assert math.isnan(mom.mean_v_t[1])
     assert mom.collisions == 5 * 20

@@ -31,7 +31,7 @@ def exact_w0(phi, v, eps):
 
 def judge(phi, v, eps, method="auto"):
     """Assert the module docstring's rule for one flight; return its status."""
-    res = fastpath.flight(phi, v, eps, method)
+    res = fastpath.flight(phi, v, eps, method=method)
     status = FlightStatus(int(res.status))
     if status == FlightStatus.NOT_DEPARTING:
         assert exact_w0(phi, v, eps) <= 0, (phi, v, eps)

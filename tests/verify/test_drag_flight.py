@@ -214,10 +214,12 @@ def test_bad_physics_is_a_value_error_naming_it(func, kwargs, named):
 
 
 @pytest.mark.parametrize("func", [verify.certify_flight, verify.flight_time])
-def test_a_flight_takes_no_restitution(func):
-    """The restitution acts at the impact, not during a flight: the flight functions do not
-    accept it (rather than accepting and ignoring it)."""
-    with pytest.raises(TypeError, match="restitution"):
+def test_a_flight_refuses_a_restitution_other_than_1(func):
+    """The restitution acts at the impact, not during a flight: the flight functions take only
+    restitution 1 (the keyword fastpath's flights take), and refuse any other value rather than
+    accepting and ignoring it."""
+    assert func(4.0, 3.0, 0.6, restitution=1.0) == func(4.0, 3.0, 0.6)
+    with pytest.raises(ValueError, match=r"restitution=0.5 does not act on a flight"):
         func(4.0, 3.0, 0.6, restitution=0.5)
 
 
@@ -259,7 +261,7 @@ def test_a_long_fall_against_drag_is_proved_over_one_window(phi, v, eps, k, law)
     """Thousands of plate periods above the plate's reach are proved in one window
     (d >= Y - P with Y's minimum at an end): a few dozen boxes, where the box-by-box search
     took thousands. The enclosure is checked against the spec's closed forms at 200 digits."""
-    cert = verify.certify_flight(phi, v, eps, DPS, drag=k, drag_law=law)
+    cert = verify.certify_flight(phi, v, eps, dps=DPS, drag=k, drag_law=law)
     assert cert.boxes <= 100
     lo_, hi_ = cert.enclosure
     with mp.workdps(REF_DPS):

@@ -13,10 +13,10 @@ TOL = mp.mpf(10) ** -40
 
 @pytest.mark.parametrize(("phi", "v", "eps"), [(0.3, 2.0, 0.6), (4.0, 3.0, 0.6), (0.3, 2.0, 3.0)])
 def test_reversibility(phi, v, eps):
-    phi1, _, tau = verify.step(phi, v, eps, DPS)
+    phi1, _, tau = verify.step(phi, v, eps, dps=DPS)
     with mp.workdps(DPS):
         back_phi, back_v = -phi1, tau - mp.mpf(v)
-    phi2, _, tau2 = verify.step(back_phi, back_v, eps, DPS)
+    phi2, _, tau2 = verify.step(back_phi, back_v, eps, dps=DPS)
     assert abs(tau2 - tau) < TOL * tau
     with mp.workdps(DPS):
         target = (-mp.mpf(phi)) % (2 * mp.pi)
@@ -26,7 +26,7 @@ def test_reversibility(phi, v, eps):
 
 @pytest.mark.parametrize(("phi", "v", "eps"), [(0.3, 2.0, 0.6), (1e6 + 0.3, 5.0, 3.0)])
 def test_impact_energy_balance(phi, v, eps):
-    phi1, v1, tau = verify.step(phi, v, eps, DPS)
+    phi1, v1, tau = verify.step(phi, v, eps, dps=DPS)
     with mp.workdps(DPS):
         phi, v, eps = mp.mpf(phi), mp.mpf(v), mp.mpf(eps)
         v_in, u = v - tau, -eps * mp.sin(phi + tau)
@@ -37,13 +37,13 @@ def test_impact_energy_balance(phi, v, eps):
 
 
 def test_orbit_matches_steps():
-    orb = verify.orbit(0.3, 2.0, 0.6, 6, DPS)
+    orb = verify.orbit(0.3, 2.0, 0.6, 6, dps=DPS)
     assert len(orb.phi) == len(orb.v) == len(orb.t) == 7
     assert orb.t[0] == 0
     phi, v, t = mp.mpf(0.3), mp.mpf(2.0), mp.zero
     with mp.workdps(DPS):
         for k in range(6):
-            phi, v, tau = verify.step(phi, v, 0.6, DPS)
+            phi, v, tau = verify.step(phi, v, 0.6, dps=DPS)
             t += tau
             # the orbit carries the exact impact state, the steps the rounded one
             assert abs(orb.phi[k + 1] - phi) < TOL and abs(orb.v[k + 1] - v) < TOL
@@ -53,7 +53,7 @@ def test_orbit_matches_steps():
 def test_orbit_fixed_point_times():
     with mp.workdps(DPS + 10):
         v = +mp.pi
-    orb = verify.orbit(0, v, 0.6, 3, DPS)
+    orb = verify.orbit(0, v, 0.6, 3, dps=DPS)
     with mp.workdps(DPS):
         for k, t in enumerate(orb.t):
             assert abs(t - 2 * mp.pi * k) < TOL * (k + 1)

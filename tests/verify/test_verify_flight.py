@@ -48,7 +48,7 @@ def test_fixed_point_flight(m, eps):
     with mp.workdps(DPS + 20):
         v = mp.pi * m
         two_pi_m = 2 * mp.pi * m
-    phi1, v1, tau = verify.step(0, v, eps, DPS)
+    phi1, v1, tau = verify.step(0, v, eps, dps=DPS)
     with mp.workdps(DPS + 20):
         assert abs(tau - two_pi_m) < TOL * m
         assert min(phi1, 2 * mp.pi - phi1) < TOL
@@ -62,16 +62,16 @@ def test_eps_zero_is_two_v(v):
 
 @pytest.mark.parametrize(("phi", "v", "eps"), STATES)
 def test_certificate_is_rigorous(phi, v, eps):
-    cert = verify.certify_flight(phi, v, eps, DPS)
+    cert = verify.certify_flight(phi, v, eps, dps=DPS)
     _check_certificate(phi, v, eps, cert, samples=10)
-    assert verify.flight_time(phi, v, eps, DPS) == cert.tau
+    assert verify.flight_time(phi, v, eps, dps=DPS) == cert.tau
 
 
 @pytest.mark.parametrize("eps", [0.0, 1e-8, 0.2429, 0.6, 0.999999, 1.0, 1.000001, 3.0, 100.0])
 @pytest.mark.parametrize("w0", [1e-3, 1e-6, 1e-9, 1e-12])
 def test_small_departure_velocity(eps, w0):
     v = small_w0_velocity(0.3, eps, w0)
-    cert = verify.certify_flight(0.3, v, eps, DPS)
+    cert = verify.certify_flight(0.3, v, eps, dps=DPS)
     _check_certificate(0.3, v, eps, cert, samples=5)
     if abs(eps) < 1:
         with mp.workdps(60):
@@ -84,8 +84,8 @@ def test_small_departure_velocity(eps, w0):
 def test_eps_sign_is_a_phase_shift_by_pi(phi, v, eps):
     with mp.workdps(DPS + 30):
         shifted = mp.mpf(phi) + mp.pi
-    a = verify.flight_time(phi, v, eps, DPS)
-    b = verify.flight_time(shifted, v, -eps, DPS)
+    a = verify.flight_time(phi, v, eps, dps=DPS)
+    b = verify.flight_time(shifted, v, -eps, dps=DPS)
     assert abs(a - b) < TOL * a
 
 
@@ -94,14 +94,14 @@ def test_unreduced_phase_equals_reduced():
     with mp.workdps(DPS + 30):
         reduced = mp.mpf(phi) - 2 * mp.pi * mp.floor(mp.mpf(phi) / (2 * mp.pi))
     for eps in (0.6, 3.0):
-        a = verify.flight_time(phi, 2.0, eps, DPS)
-        b = verify.flight_time(reduced, 2.0, eps, DPS)
+        a = verify.flight_time(phi, 2.0, eps, dps=DPS)
+        b = verify.flight_time(reduced, 2.0, eps, dps=DPS)
         assert abs(a - b) < TOL * a
 
 
 def test_global_precision_is_restored():
     before_mp, before_iv = mp.prec, iv.prec
-    verify.certify_flight(0.3, 2.0, 3.0, 80)
+    verify.certify_flight(0.3, 2.0, 3.0, dps=80)
     assert (mp.prec, iv.prec) == (before_mp, before_iv)
 
 
@@ -113,7 +113,7 @@ def test_global_precision_is_restored():
 )
 def test_no_grid_point_before_tau_is_below_the_plate(phi, v, eps):
     assume(v + eps * math.sin(phi) > 1e-6)
-    cert = verify.certify_flight(phi, v, eps, 30)
+    cert = verify.certify_flight(phi, v, eps, dps=30)
     tau = float(cert.tau)
     grid = np.linspace(0.0, tau, 4001)[1:-1]
     scale = abs(v) * tau + tau * tau + abs(eps) * (1 + abs(phi) + tau)

@@ -51,7 +51,7 @@ def _assert_certified(phi, v, eps, cert):
 @example((-1e-8, 1e-8, 1.0 - 1e-6))
 def test_triple_root_family_is_certified_at_two_x(case):
     phi, v, eps = case
-    cert = verify.certify_flight(phi, v, eps, DPS)
+    cert = verify.certify_flight(phi, v, eps, dps=DPS)
     lo_, hi_ = cert.enclosure
     assert lo_ < 2 * mp.mpf(v) < hi_  # d(2x) = 0 exactly for the float inputs
     assert (hi_ - lo_) / hi_ <= REL
@@ -81,9 +81,9 @@ def test_near_triple_roots_just_above_eps_one_are_certified_in_milliseconds():
             for phi, eps in ((-x, size), (math.pi - x, -size)):
                 if _exact_w0(phi, x, eps) <= 0:
                     with pytest.raises(ValueError, match="no departure"):
-                        verify.certify_flight(phi, x, eps, DPS)
+                        verify.certify_flight(phi, x, eps, dps=DPS)
                     continue
-                cert = verify.certify_flight(phi, x, eps, DPS)
+                cert = verify.certify_flight(phi, x, eps, dps=DPS)
                 _assert_certified(phi, x, eps, cert)
                 lo_ = cert.enclosure[0]
                 assert all(_iv_gap(phi, x, eps, lo_ * k / 32)[0] > 0 for k in range(1, 32))
@@ -110,7 +110,7 @@ def test_a_near_triple_root_above_eps_one_is_its_first_root():
 @pytest.mark.parametrize("phi, v", [(-0.01, 0.01), (4.0, 3.0), (0.3, None), (2.0, 50.0)])
 def test_eps_near_one_is_certified(phi, v, eps):
     v = small_w0_velocity(phi, eps, 1e-9) if v is None else v  # None: w0 ~ 1e-9
-    _assert_certified(phi, v, eps, verify.certify_flight(phi, v, eps, DPS))
+    _assert_certified(phi, v, eps, verify.certify_flight(phi, v, eps, dps=DPS))
 
 
 def test_eps_one_uses_the_concave_certificate():
@@ -141,21 +141,21 @@ def test_huge_phase_equals_its_exact_reduction(phi, eps):
         reduced = mp.mpf(phi) % (2 * mp.pi)
     with mp.workdps(DPS + 30):
         reduced = +reduced
-    a = verify.flight_time(phi, 3.0, eps, DPS)
-    b = verify.flight_time(reduced, 3.0, eps, DPS)
+    a = verify.flight_time(phi, 3.0, eps, dps=DPS)
+    b = verify.flight_time(reduced, 3.0, eps, dps=DPS)
     assert abs(a - b) <= REL * a
 
 
 def test_huge_phases_give_different_flights():
     """Huge phases are reduced exactly: |phi| >= 1e17 keeps its information."""
-    taus = {float(verify.flight_time(phi, 3.0, 0.6, 30)) for phi in (1e17, 1e17 + 16, 1e300)}
+    taus = {float(verify.flight_time(phi, 3.0, 0.6, dps=30)) for phi in (1e17, 1e17 + 16, 1e300)}
     assert len(taus) == 3
 
 
 def test_huge_phase_at_high_digits_stays_decidable():
     """1e300 at dps = 100 needs > 400 digits if the precision does not grow with phi's exponent
     (the default max_dps is 400): the exact reduction settles it at the first attempt."""
-    cert = verify.certify_flight(1e300, 3.0, 0.6, 100)
+    cert = verify.certify_flight(1e300, 3.0, 0.6, dps=100)
     assert cert.dps_used == 110
 
 
@@ -163,7 +163,7 @@ def test_huge_phase_at_high_digits_stays_decidable():
 @given(vs.huge_phases(eps=(0.0, 5.0)))
 def test_huge_phases_are_certified(case):
     phi, v, eps = case
-    _assert_certified(phi, v, eps, verify.certify_flight(phi, v, eps, DPS))
+    _assert_certified(phi, v, eps, verify.certify_flight(phi, v, eps, dps=DPS))
 
 
 def test_step_phase_of_a_huge_phase_is_reduced():
@@ -179,7 +179,7 @@ def test_step_phase_of_a_huge_phase_is_reduced():
 @pytest.mark.parametrize("case", OVERFLOW_CASES, ids=[c.id for c in OVERFLOW_CASES])
 def test_overflow_cases_are_certified_by_verify(case):
     _assert_certified(case.phi, case.v, case.eps,
-                      verify.certify_flight(case.phi, case.v, case.eps, DPS))
+                      verify.certify_flight(case.phi, case.v, case.eps, dps=DPS))
 
 
 # --- one validator ------------------------------------------------------------------------------
@@ -262,7 +262,7 @@ def test_table_classes_and_entries():
 
 @pytest.mark.parametrize("case", HARD_CASES, ids=[c.id for c in HARD_CASES])
 def test_every_hard_case_is_certified(case):
-    cert = verify.certify_flight(case.phi, case.v, case.eps, DPS)
+    cert = verify.certify_flight(case.phi, case.v, case.eps, dps=DPS)
     _assert_certified(case.phi, case.v, case.eps, cert)
     if case.kind == "near-triple-root" and abs(case.eps) <= 1:
         assert cert.enclosure[0] < 2 * mp.mpf(case.v) < cert.enclosure[1]

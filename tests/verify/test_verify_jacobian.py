@@ -15,7 +15,7 @@ DPS = 50
 def test_jacobian_at_fixed_points(m, eps):
     with mp.workdps(DPS + 10):
         v = mp.pi * m
-    jac = verify.jacobian(0, v, eps, DPS)
+    jac = verify.jacobian(0, v, eps, dps=DPS)
     with mp.workdps(DPS):
         expected = mp.matrix([[1, 2], [-2 * mp.mpf(eps), 1 - 4 * mp.mpf(eps)]])
         assert mp.mnorm(jac - expected, 1) < mp.mpf(10) ** -45
@@ -24,13 +24,13 @@ def test_jacobian_at_fixed_points(m, eps):
 
 @pytest.mark.parametrize(("phi", "v", "eps"), [(0.3, 2.0, 0.6), (1.1, 4.0, 3.0)])
 def test_jacobian_matches_central_differences(phi, v, eps):
-    jac = verify.jacobian(phi, v, eps, DPS)
+    jac = verify.jacobian(phi, v, eps, dps=DPS)
     h = mp.mpf(10) ** -15
     with mp.workdps(DPS):
         phi, v = mp.mpf(phi), mp.mpf(v)
         for col, (dphi, dv) in enumerate([(h, 0), (0, h)]):
-            plus = verify.step(phi + dphi, v + dv, eps, DPS)
-            minus = verify.step(phi - dphi, v - dv, eps, DPS)
+            plus = verify.step(phi + dphi, v + dv, eps, dps=DPS)
+            minus = verify.step(phi - dphi, v - dv, eps, dps=DPS)
             dphi1 = (plus[0] - minus[0]) / (2 * h)
             dphi1 -= 2 * mp.pi * mp.nint(dphi1 * 2 * h / (2 * mp.pi)) / (2 * h)
             dv1 = (plus[1] - minus[1]) / (2 * h)

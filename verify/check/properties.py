@@ -46,7 +46,7 @@ class Checker:
     def _reference(self, phi, v, eps):
         """(tau_ref, kappa) at REF_DPS digits, or None where verify cannot decide."""
         try:
-            cert = certify_flight(phi, v, eps, REF_DPS)
+            cert = certify_flight(phi, v, eps, dps=REF_DPS)
         except UndecidableCollision:
             return None
         with mp.workdps(WORK_DPS):

@@ -9,6 +9,12 @@ The flight certificate (:func:`verify.certify_flight`), the map (:func:`verify.s
 orbit loop (:func:`verify.orbit`, through :func:`verify.dissipative.sticking_model.
 sticking_model`) all take this one value, so a new drag law added to
 :mod:`verify.dissipative.drag` reaches every one of them.
+
+The fields are fastpath's physics keywords under the same names; the plate's amplitude ``eps``
+is not one of them (fastpath's description carries it for its compiled kernels): here it is
+part of the state ``(phi, v, eps)``, validated with ``phi`` and ``v`` as exact values by
+:func:`verify.numerics.inputs.check_state` after this value (whose :attr:`Physics.is_default`
+decides whether ``w0 = 0`` is a departure), and passed beside it to every certificate.
 """
 
 from __future__ import annotations

@@ -114,12 +114,12 @@ def classify(residue) -> str:
     return UNDECIDED
 
 
-def periodic_orbit(phi, v, eps, period, dps: int = DEFAULT_DPS, *, winding=None, velocity_shift=0,
+def periodic_orbit(phi, v, eps, period, *, dps: int = DEFAULT_DPS, winding=None, velocity_shift=0,
                    tolerance=1e-3, max_dps=None) -> CertifiedOrbit:
     """Prove that a periodic orbit of the exact map exists near the guess (phi, v).
 
     phi, v, eps: exact real values (floats are taken as exact binary numbers); period p >= 1;
-    dps >= 15: the digits of the arithmetic (raised where the orbit needs more, up to
+    keyword-only: dps >= 15: the digits of the arithmetic (raised where the orbit needs more, up to
     ``max_dps``, default max(4*dps, 400)); winding m (default: the guess's own p flights /
     2*pi, rounded); velocity_shift l (an accelerator mode, v_p = v + pi*l: certified only for
     the exact map's period-1 modes with l > 0, module docstring); tolerance: the orbit must lie
@@ -186,7 +186,7 @@ def _repeated_mode(guess, eps, period, winding, shift, dps, tol, max_dps, where)
         if one < 1:
             raise NotCertified(f"{refusal}: winding {winding} is too small for one")
     try:
-        return periodic_orbit(guess[0], guess[1], eps, 1, dps, winding=one,
+        return periodic_orbit(guess[0], guess[1], eps, 1, dps=dps, winding=one,
                               velocity_shift=step, tolerance=tol, max_dps=max_dps)
     except NotCertified as err:
         raise NotCertified(f"{refusal}, and none was certified: {err}") from None
@@ -208,7 +208,7 @@ def _minimal(state, found, dps, max_dps):
             continue
         centre = (orbit.box[0].lo + orbit.box[0].hi) / 2, (orbit.box[1].lo + orbit.box[1].hi) / 2
         try:
-            shorter = periodic_orbit(centre[0], centre[1], state.eps, d, dps, winding=turns,
+            shorter = periodic_orbit(centre[0], centre[1], state.eps, d, dps=dps, winding=turns,
                                      tolerance=state.tolerance, max_dps=max_dps)
         except NotCertified as err:
             raise NotCertified(

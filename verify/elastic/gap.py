@@ -90,7 +90,7 @@ def departure_speed(phi, v, eps, prec: int):
     return iw
 
 
-def gap(phi, v, eps, tau, dps: int = DEFAULT_DPS) -> mpmath.mpf:
+def gap(phi, v, eps, tau, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
     """The gap ``d(tau)`` of the elastic flight from ``(phi, v)``, to ``dps`` digits.
 
     Parameters: the departure ``phi``, ``v``, ``eps`` and the time ``tau > 0`` (exact binary

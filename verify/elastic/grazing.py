@@ -42,7 +42,7 @@ class GrazingContact:
     w0: mpmath.mpf
 
 
-def grazing_contact(eps, psi, T, clearance, dps: int = DEFAULT_DPS) -> GrazingContact:
+def grazing_contact(eps, psi, T, clearance, *, dps: int = DEFAULT_DPS) -> GrazingContact:
     """Solve ``D(T) = clearance`` for ``T`` near the given guess (see module docstring).
 
     Parameters: ``eps`` the amplitude (``eps*cos(psi) > 1`` required), ``psi`` the plate phase
@@ -81,9 +81,9 @@ def grazing_contact(eps, psi, T, clearance, dps: int = DEFAULT_DPS) -> GrazingCo
         return GrazingContact(*to_user((+phi, +v, +t, +psi, +c, +w0)))
 
 
-def grazing_departure(eps, psi, T, clearance,
+def grazing_departure(eps, psi, T, clearance, *,
                       dps: int = DEFAULT_DPS) -> tuple[mpmath.mpf, mpmath.mpf]:
     """``(phi, v)`` of :func:`grazing_contact` (the same parameters; the solved contact time
     is its ``.T``)."""
-    g = grazing_contact(eps, psi, T, clearance, dps)
+    g = grazing_contact(eps, psi, T, clearance, dps=dps)
     return g.phi, g.v

@@ -9,8 +9,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import jv
 
+from fastpath import moments
 from fastpath.arithmetic.phase import TWO_PI
-from fastpath.kernels.moments import moments
 from reports.paper.checks.physics_table import Check, agree
 from reports.paper.studies.paper_runs import say_nothing
 from reports.paper.studies.sampling import verified_text, verify_sample

@@ -63,7 +63,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import fastpath
-from fastpath.kernels.moments import moments
+from fastpath import moments
 from reports.paper.studies.sampling import bootstrap_blocks, slope_fit, verify_sample
 from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.stats.analysis import SHIFT_DECADES

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fastpath.kernels.moments import moments
+from fastpath import moments
 from reports.paper.studies.sampling import (
     bootstrap_blocks,
     slope_fit,
@@ -79,7 +79,7 @@ def fermi_ensemble(quick=False, particles=None):
     v0 = rng.uniform(*FERMI_BOX[1], m)
     n_grid = np.unique(np.round(np.logspace(0, math.log10(cfg["n_max"]), 61)).astype(np.int64))
     t_grid = np.logspace(0, math.log10(cfg["t_max"]), 61)
-    mom = moments(phi0, v0, FERMI_EPS, n_grid, t_grid, blocks=64,
+    mom = moments(phi0, v0, FERMI_EPS, n_grid, t_grid=t_grid, blocks=64,
                   max_collisions=40 * cfg["n_max"])
     full_t = mom.particles_t == m
     n_win = (cfg["n_fit"], float(n_grid[-1]))

@@ -11,7 +11,7 @@ import pytest
 from scene_texts import SMALL_VELOCITY as SMALL
 
 import fastpath
-from fastpath.kernels.moments import moments
+from fastpath import moments
 from reports.cli import main
 from reports.runs import driver, executor
 from reports.runs.chunk import run_chunk
