@@ -72,6 +72,10 @@ class Dissipative(NamedTuple):
 
 _MODELS = {Elastic: ELASTIC, Holmes: HOLMES, Dissipative: DISSIPATIVE}
 
+# the public model names (``fastpath.orbit``, ``fastpath.dynamics``: model="exact" or "holmes")
+# and the class of each; a Dissipative description is model "exact" with drag or restitution
+MODELS = {"exact": Elastic, "holmes": Holmes}
+
 
 def elastic(eps):
     return Elastic(float(eps), 0.0, NONE, 1.0)
@@ -90,6 +94,11 @@ def describe(eps, drag=0.0, law=NONE, restitution=1.0):
     if drag == 0.0 and restitution == 1.0:
         return elastic(eps)
     return dissipative(eps, drag, law, restitution)
+
+
+def model_name(physics):
+    """The public model name of a description: "holmes" for ``Holmes``, else "exact"."""
+    return "holmes" if type(physics) is Holmes else "exact"
 
 
 def model_of(physics):
