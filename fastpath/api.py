@@ -26,6 +26,7 @@ from fastpath.status import (
     MAX_ITERATIONS,
     NOT_DEPARTING,
     OVERFLOW,
+    STATUS_DTYPE,
     FlightStatus,
     UncertainCollision,
 )
@@ -165,7 +166,7 @@ def _flight_arrays(phi, v, eps, code, described):
     """(tau, iterations, status, inputs, shape, scalar) of the flights, elastic or with drag."""
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
-    out = (np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8))
+    out = (np.empty(n), np.empty(n, np.int64), np.empty(n, STATUS_DTYPE))
     _flights(described, phi_a, v_a, eps_a, code, *out)
     return (*out, (phi_a, v_a, eps_a), shape, scalar)
 
@@ -273,7 +274,7 @@ def step(phi, v, eps, *, drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW,
         return phi1, v1, tau
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
-    out = (np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8))
+    out = (np.empty(n), np.empty(n), np.empty(n), np.empty(n, STATUS_DTYPE))
     _steps(elastic(0.0) if described is None else described, phi_a, v_a, eps_a, *out)
     _raise_on_status(out[3], phi_a, v_a, eps_a)
     return _shaped(shape, scalar, *out[:3])
@@ -360,7 +361,7 @@ def holmes_step(phi, v, eps):
         return holmes_collide(reduce_phase(phi), v, eps)
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
-    out = (np.empty(n), np.empty(n), np.empty(n, np.int8))
+    out = (np.empty(n), np.empty(n), np.empty(n, STATUS_DTYPE))
     _holmes_steps(phi_a, v_a, eps_a, *out)
     _raise_on_status(out[2], phi_a, v_a, eps_a)
     return _shaped(shape, scalar, *out[:2])

@@ -7,6 +7,7 @@ import numpy as np
 
 from fastpath.inputs import departing, integer, model_physics
 from fastpath.inputs import real_scalar as real
+from fastpath.status import STATUS_DTYPE
 
 
 def _starts(phi, v, eps):
@@ -37,7 +38,7 @@ def velocities(phi, v, eps, collisions, *, model="exact"):
     if points.ndim != 1 or len(points) == 0 or points[0] < 1 or np.any(np.diff(points) <= 0):
         raise ValueError("collisions must be ascending positive integers")
     out = np.full((len(phi), len(points)), np.nan)
-    done, status = np.zeros(len(phi), np.int64), np.zeros(len(phi), np.int64)
+    done, status = np.zeros(len(phi), np.int64), np.zeros(len(phi), STATUS_DTYPE)
     velocity_ensemble(phi, v, physics, points, out, done, status)
     for i in range(len(phi)):
         out[i, points > done[i]] = np.nan
@@ -55,6 +56,6 @@ def first_passage(phi, v, eps, v_top, n, *, model="exact"):
     n = integer("n", n, minimum=1)
     physics = model_physics(model, eps)
     phi, v = _starts(phi, v, eps)
-    passage, status = np.zeros(len(phi), np.int64), np.zeros(len(phi), np.int64)
+    passage, status = np.zeros(len(phi), np.int64), np.zeros(len(phi), STATUS_DTYPE)
     kernel(phi, v, physics, v_top, n, passage, status)
     return passage, status

@@ -20,7 +20,13 @@ import numpy as np
 from fastpath.dynamics.kernels import separation_exponent, tangent_band_ensemble, tangent_ensemble
 from fastpath.inputs import departing, integer, model_physics
 from fastpath.inputs import real_scalar as real
-from fastpath.status import CONVERGED, NOT_DEPARTING, FlightStatus, UncertainCollision
+from fastpath.status import (
+    CONVERGED,
+    NOT_DEPARTING,
+    STATUS_DTYPE,
+    FlightStatus,
+    UncertainCollision,
+)
 
 
 @dataclass(frozen=True)
@@ -92,7 +98,7 @@ def lyapunov(phi, v, eps, n, *, model="exact", checkpoints=64):
     rows, k = len(phi_a), len(points)
     growth, times, vel = np.full((rows, k), np.nan), np.full((rows, k), np.nan), np.full(
         (rows, k), np.nan)
-    done, status = np.zeros(rows, np.int64), np.zeros(rows, np.int64)
+    done, status = np.zeros(rows, np.int64), np.zeros(rows, STATUS_DTYPE)
     tangent_ensemble(phi_a, v_a, physics, points, growth, times, vel, done, status)
     for i in range(rows):  # checkpoints after a failed flight were never written
         after = points > done[i]
@@ -170,7 +176,7 @@ def by_band(phi, v, eps, n, edges, *, model="exact"):
         departing(p, w, eps)
     rows, bands = len(phi_a), len(edges) - 1
     sums, counts = np.zeros((rows, bands)), np.zeros((rows, bands), np.int64)
-    done, status = np.zeros(rows, np.int64), np.zeros(rows, np.int64)
+    done, status = np.zeros(rows, np.int64), np.zeros(rows, STATUS_DTYPE)
     tangent_band_ensemble(phi_a, v_a, physics, n, edges, sums, counts, done, status)
     total = counts.sum(0)
     with np.errstate(invalid="ignore", divide="ignore"):
