@@ -115,7 +115,7 @@ def real_scalar(name, value):
     return x
 
 
-def model_physics(model, eps, drag=0.0, law=NONE, restitution=1.0):
+def model_physics(model, eps, drag=0.0, drag_law=NONE, restitution=1.0):
     """The physics description (``fastpath.physics``) of the public model name with the plate
     amplitude eps and the checked physics options (``physics_options``): ``Holmes`` for
     "holmes", ``Elastic`` or ``Dissipative`` (``describe``) for "exact".
@@ -129,7 +129,7 @@ def model_physics(model, eps, drag=0.0, law=NONE, restitution=1.0):
         if drag != 0.0 or restitution != 1.0:
             raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
         return holmes(eps)
-    return describe(eps, drag, law, restitution)
+    return describe(eps, drag, drag_law, restitution)
 
 
 def integer(name, value, minimum=None):

@@ -146,7 +146,7 @@ def long_flight(physics, theta, v, method):
 def incoming_velocity(physics, v, tau):
     """The particle's velocity at the end of a flight of length tau from velocity v."""
     if physics.drag != 0.0:
-        return particle(v, physics.drag, physics.law, tau)[1]
+        return particle(v, physics.drag, physics.drag_law, tau)[1]
     return v - tau
 
 

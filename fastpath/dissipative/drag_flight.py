@@ -102,7 +102,7 @@ def drag_flight(physics, phi, sin_phi, cos_phi, v, w0_error, method=AUTO):
     method: AUTO (Halley where the gap is provably concave) or LOWER_BOUND (lower-bound steps
     only).
     """
-    eps, drag, law = physics.eps, physics.drag, physics.law
+    eps, drag, law = physics.eps, physics.drag, physics.drag_law
     w0 = v + eps * sin_phi
     verdict = departure_verdict(w0, w0_error)
     if verdict != CONVERGED:
@@ -137,7 +137,7 @@ def concave_drag_flight(physics, phi, cos_phi, v, w0, lo):
     certified concave at an iterate; tau is then the bracket's certified lower end (the gap is
     positive on (0, tau]), where the caller goes on with lower-bound steps.
     """
-    eps, drag, law = physics.eps, physics.drag, physics.law
+    eps, drag, law = physics.eps, physics.drag, physics.drag_law
     hi = math.inf
     t = 2.0 * w0 / (1.0 + eta(v, drag, law) - eps * cos_phi)
     drop = drag * v if law == LINEAR else 0.75 * drag * v * v  # 3*(relative shortening)
@@ -184,7 +184,7 @@ def drag_gap_bounds(physics, phi, v, t):
     bound on d2 with the particle's part at its bound min(p, 0) (module docstring), the jerk
     -eps*sin(phi + t), eps and the curvature bound a(t); the particle's velocity for the graze
     test."""
-    eps, drag, law = physics.eps, physics.drag, physics.law
+    eps, drag, law = physics.eps, physics.drag, physics.drag_law
     d, d1, _, d_err, d1_err, vel, v_err = gap_state(phi, v, eps, drag, law, t)
     if law == LINEAR:
         d_err, d1_err, v_err = tight_linear_bounds(phi, v, eps, drag, t, d, d1, vel, d_err,
@@ -264,7 +264,7 @@ def falls_concave(physics, v):
     -1 - eta(V) <= 0 at the departure, beyond the rounding of eta(v). V then moves towards the
     terminal velocity from above and never crosses it (linear: V(t) = -1/k + (v + 1/k)*exp(-kt);
     quadratic: V' = -1 + k*V**2 < 0 while |V| < 1/sqrt(k)), so -1 - eta(V(t)) <= 0 throughout."""
-    e = eta(v, physics.drag, physics.law)
+    e = eta(v, physics.drag, physics.drag_law)
     return 1.0 + e > 4.0 * _U * (1.0 + abs(e))
 
 
@@ -306,7 +306,7 @@ def descent_jump(physics, v, t, reach, budget):
 def descent_particle(physics, v, t):
     """``particle`` at t for the descent's jumps; with linear drag the bounds of
     ``tight_linear_errors``."""
-    drag, law = physics.drag, physics.law
+    drag, law = physics.drag, physics.drag_law
     y, vel, y_err, v_err = particle(v, drag, law, t)
     if law == LINEAR:
         y_err, v_err = tight_linear_errors(v, drag, t, vel, y_err, v_err)
@@ -318,7 +318,7 @@ def may_be_drag_graze(physics, phi, vel, v_err, t, r, d_err):
     """Whether a gap within rounding of zero at t may be a near-tangent dip (module docstring;
     the argument of ``fastpath.elastic.lower_bound.may_be_graze`` with the drag's curvature and
     jerk bounds); vel: V(t) with its error bound v_err."""
-    eps, drag, law = physics.eps, physics.drag, physics.law
+    eps, drag, law = physics.eps, physics.drag, physics.drag_law
     p = -1.0 - eta(vel, drag, law)
     p_err = abs(eta(vel + v_err, drag, law) - eta(vel - v_err, drag, law)) + 4.0 * _U * abs(p)
     # sup of p after t: 0 (approached, p increasing) or p(t) (p > 0 decreasing); -1 without drag

@@ -53,6 +53,6 @@ def dissipative_collide(physics, phi, v):
             physics, centred, sin_phi, cos_phi, v, w0_error, AUTO
         )
         tau_lo = 0.0
-        v_in = particle(v, drag, physics.law, tau)[1] if status == CONVERGED else math.nan
+        v_in = particle(v, drag, physics.drag_law, tau)[1] if status == CONVERGED else math.nan
     v1 = impact_velocity(v_in, -eps * sin1, restitution)
     return landing_phase(centred, tau, tau_lo), v1, tau, iterations, status

@@ -232,7 +232,8 @@ def short_window(physics, sin_phi, cos_phi, w, v):
     """Upper bound on a short flight from relative velocity w (absolute v) where the module
     docstring's test certifies one, else 0: ``elastic_short_window`` or ``drag_short_window``."""
     if physics.drag != 0.0:
-        return drag_short_window(sin_phi, cos_phi, w, v, physics.eps, physics.drag, physics.law)
+        return drag_short_window(sin_phi, cos_phi, w, v, physics.eps, physics.drag,
+                                 physics.drag_law)
     return elastic_short_window(sin_phi, cos_phi, w, physics.eps)
 
 
@@ -242,7 +243,7 @@ def relative_gap_and_rate(physics, sin_phi, cos_phi, w, v, t):
     ``relative_rate``) or with it (``drag_relative_gap``)."""
     eps = physics.eps
     if physics.drag != 0.0:
-        return drag_relative_gap(sin_phi, cos_phi, w, v, eps, physics.drag, physics.law, t)
+        return drag_relative_gap(sin_phi, cos_phi, w, v, eps, physics.drag, physics.drag_law, t)
     accel = -1.0 + eps * cos_phi
     return (relative_gap(sin_phi, cos_phi, w, eps, accel, t),
             relative_rate(sin_phi, cos_phi, w, eps, accel, t))
@@ -271,6 +272,6 @@ def short_flight(physics, sin_phi, cos_phi, w, v, upper):
 def incoming_rate(physics, sin_phi, cos_phi, w, v, t):
     """d'(t) alone (``relative_gap_and_rate``)."""
     if physics.drag != 0.0:
-        return drag_relative_gap(sin_phi, cos_phi, w, v, physics.eps, physics.drag, physics.law,
-                                 t)[1]
+        return drag_relative_gap(sin_phi, cos_phi, w, v, physics.eps, physics.drag,
+                                 physics.drag_law, t)[1]
     return relative_rate(sin_phi, cos_phi, w, physics.eps, -1.0 + physics.eps * cos_phi, t)

@@ -325,7 +325,7 @@ def drag_detachment_phase(eps, k, law):
 def drag_detachment(physics):
     """(tau, iterations, status, theta*, u(theta*), kind): the flight from detachment (module
     docstring), the same after every episode; kind from ``detach_kind``."""
-    eps, k, law = physics.eps, physics.drag, physics.law
+    eps, k, law = physics.eps, physics.drag, physics.drag_law
     kind = detach_kind(eps, k, law)
     if kind != DETACHES:
         return math.nan, 0, UNCERTAIN, math.nan, math.nan, kind
@@ -367,7 +367,7 @@ def accumulation_tail(physics, sin_theta, cos_theta, w):
     ``drag_accumulation_tail``, without ``elastic_accumulation_tail`` (module docstring)."""
     if physics.drag != 0.0:
         return drag_accumulation_tail(sin_theta, cos_theta, w, physics.eps, physics.drag,
-                                      physics.law, physics.restitution)
+                                      physics.drag_law, physics.restitution)
     return elastic_accumulation_tail(sin_theta, cos_theta, w, physics.eps, physics.restitution)
 
 
