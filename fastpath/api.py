@@ -84,18 +84,18 @@ class Orbit:
 
 
 @parallel_jit
-def _flights(physics, phi, v, eps, method, tau, iterations, status):
+def _flights(phi, v, eps, physics, method, tau, iterations, status):
     """(tau, iterations, status)[i] of the flight from (phi[i], v[i]) at eps[i]."""
     for i in prange(len(phi)):
-        tau[i], iterations[i], status[i] = flight_of(with_eps(physics, eps[i]), phi[i], v[i],
+        tau[i], iterations[i], status[i] = flight_of(phi[i], v[i], with_eps(physics, eps[i]),
                                                      method)
 
 
 @parallel_jit
-def _steps(physics, phi, v, eps, phi1, v1, tau, status):
+def _steps(phi, v, eps, physics, phi1, v1, tau, status):
     """(phi1, v1, tau, status)[i] of one collision from (phi[i], v[i]) at eps[i]."""
     for i in prange(len(phi)):
-        phi1[i], v1[i], tau[i], _, status[i] = step_of(with_eps(physics, eps[i]), phi[i], v[i])
+        phi1[i], v1[i], tau[i], _, status[i] = step_of(phi[i], v[i], with_eps(physics, eps[i]))
 
 
 @parallel_jit
@@ -167,14 +167,14 @@ def _flight_arrays(phi, v, eps, code, described):
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     out = (np.empty(n), np.empty(n, np.int64), np.empty(n, STATUS_DTYPE))
-    _flights(described, phi_a, v_a, eps_a, code, *out)
+    _flights(phi_a, v_a, eps_a, described, code, *out)
     return (*out, (phi_a, v_a, eps_a), shape, scalar)
 
 
 def _scalar_flight(scalars, code, described):
     if described is None:
         return solve_flight(*scalars, code)
-    return flight_of(with_eps(described, scalars[2]), scalars[0], scalars[1], code)
+    return flight_of(scalars[0], scalars[1], with_eps(described, scalars[2]), code)
 
 
 def _flight_physics(drag, drag_law, restitution):
@@ -268,14 +268,14 @@ def step(phi, v, eps, *, drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW,
         if described is None:
             phi1, v1, tau, _, status = collide(*scalars)
         else:
-            phi1, v1, tau, _, status = step_of(with_eps(described, scalars[2]), *scalars[:2])
+            phi1, v1, tau, _, status = step_of(*scalars[:2], with_eps(described, scalars[2]))
         if status != CONVERGED:
             _raise_on_status(np.array([status]), *([x] for x in scalars))
         return phi1, v1, tau
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
     out = (np.empty(n), np.empty(n), np.empty(n), np.empty(n, STATUS_DTYPE))
-    _steps(elastic(0.0) if described is None else described, phi_a, v_a, eps_a, *out)
+    _steps(phi_a, v_a, eps_a, elastic(0.0) if described is None else described, *out)
     _raise_on_status(out[3], phi_a, v_a, eps_a)
     return _shaped(shape, scalar, *out[:3])
 
@@ -337,7 +337,7 @@ def carried_step(phi, v, eps, carried, *, drag=DEFAULT_DRAG, drag_law=DEFAULT_DR
         raise ValueError("carried_step takes scalar phi, v and eps")
     phi, v, eps = scalars
     _check_carried(phi, v, eps, tuple(carried))
-    phi1, v1, tau, status = carried_collide(dissipative(eps, drag, law, restitution), phi, v,
+    phi1, v1, tau, status = carried_collide(phi, v, dissipative(eps, drag, law, restitution),
                                             np.array(carried, dtype=float))
     if status != CONVERGED:
         _raise_on_status(np.array([status]), [phi], [v], [eps])

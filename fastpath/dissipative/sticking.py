@@ -336,7 +336,7 @@ def drag_detachment(physics):
     d, _, _, d_err, _, _, _ = gap_state(phi, v, eps, k, law, t_c)
     if not d > d_err:
         return math.nan, 0, UNCERTAIN, theta_star, v, kind
-    tau, iterations, status = lower_bound_drag_flight(physics, phi, v, t_c, 0)
+    tau, iterations, status = lower_bound_drag_flight(phi, v, physics, t_c, 0)
     return tau, iterations, status, theta_star, v, kind
 
 
@@ -362,7 +362,7 @@ def drag_accumulation_tail(sin_theta, cos_theta, w, eps, k, law, r):
 
 
 @jit
-def accumulation_tail(physics, sin_theta, cos_theta, w):
+def accumulation_tail(sin_theta, cos_theta, w, physics):
     """T if the impacts from (theta, w) accumulate within q <= u, else NaN: with drag
     ``drag_accumulation_tail``, without ``elastic_accumulation_tail`` (module docstring)."""
     if physics.drag != 0.0:
