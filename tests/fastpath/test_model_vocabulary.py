@@ -8,9 +8,9 @@ import pytest
 
 import fastpath
 import fastpath.dynamics as fd
+from fastpath.api import moments
 from fastpath.dynamics.kernels import step_tangent
 from fastpath.inputs import model_physics
-from fastpath.api import moments
 from fastpath.physics import LINEAR, MODELS, Dissipative, Elastic, Holmes, dissipative, model_name
 
 
