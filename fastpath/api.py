@@ -13,19 +13,20 @@ from fastpath.elastic.collision import collide
 from fastpath.elastic.flight import METHODS, departure_of, solve_flight
 from fastpath.elastic.gap import departure_verdict
 from fastpath.elastic.holmes import holmes_collide
-from fastpath.inputs import count, float_inputs, physics_options, scalar_inputs
+from fastpath.inputs import float_inputs, integer, model_physics, physics_options, scalar_inputs
 from fastpath.kernels.arrays import Flags, MomentGrid, MomentSums, OrbitArrays, Sample, Starts
 from fastpath.kernels.moments import Moments, moments_chunk
 from fastpath.kernels.orbit import orbit_loop
 from fastpath.kernels.particle import flight as flight_of
 from fastpath.kernels.particle import step as step_of
-from fastpath.physics import describe, dissipative, elastic, holmes, with_eps
+from fastpath.physics import Holmes, dissipative, elastic, with_eps
 from fastpath.status import (
     CONVERGED,
     ITERATION_LIMIT,
     MAX_ITERATIONS,
     NOT_DEPARTING,
     OVERFLOW,
+    STATUS_DTYPE,
     FlightStatus,
     UncertainCollision,
 )
@@ -33,7 +34,6 @@ from fastpath.status import (
 # The public model names (``orbit``, ``moments``) and the defaults of the physics keywords
 # (the elastic bouncer of the paper); ``_elastic`` recognises the defaults by value before any
 # validation, so the elastic call skips ``physics_options``.
-MODELS = ("exact", "holmes")
 DEFAULT_DRAG, DEFAULT_DRAG_LAW, DEFAULT_RESTITUTION = 0.0, "linear", 1.0
 
 
@@ -84,18 +84,18 @@ class Orbit:
 
 
 @parallel_jit
-def _flights(physics, phi, v, eps, method, tau, iterations, status):
+def _flights(phi, v, eps, physics, method, tau, iterations, status):
     """(tau, iterations, status)[i] of the flight from (phi[i], v[i]) at eps[i]."""
     for i in prange(len(phi)):
-        tau[i], iterations[i], status[i] = flight_of(with_eps(physics, eps[i]), phi[i], v[i],
+        tau[i], iterations[i], status[i] = flight_of(phi[i], v[i], with_eps(physics, eps[i]),
                                                      method)
 
 
 @parallel_jit
-def _steps(physics, phi, v, eps, phi1, v1, tau, status):
+def _steps(phi, v, eps, physics, phi1, v1, tau, status):
     """(phi1, v1, tau, status)[i] of one collision from (phi[i], v[i]) at eps[i]."""
     for i in prange(len(phi)):
-        phi1[i], v1[i], tau[i], _, status[i] = step_of(with_eps(physics, eps[i]), phi[i], v[i])
+        phi1[i], v1[i], tau[i], _, status[i] = step_of(phi[i], v[i], with_eps(physics, eps[i]))
 
 
 @parallel_jit
@@ -166,15 +166,15 @@ def _flight_arrays(phi, v, eps, code, described):
     """(tau, iterations, status, inputs, shape, scalar) of the flights, elastic or with drag."""
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
-    out = (np.empty(n), np.empty(n, np.int64), np.empty(n, np.int8))
-    _flights(described, phi_a, v_a, eps_a, code, *out)
+    out = (np.empty(n), np.empty(n, np.int64), np.empty(n, STATUS_DTYPE))
+    _flights(phi_a, v_a, eps_a, described, code, *out)
     return (*out, (phi_a, v_a, eps_a), shape, scalar)
 
 
 def _scalar_flight(scalars, code, described):
     if described is None:
         return solve_flight(*scalars, code)
-    return flight_of(with_eps(described, scalars[2]), scalars[0], scalars[1], code)
+    return flight_of(scalars[0], scalars[1], with_eps(described, scalars[2]), code)
 
 
 def _flight_physics(drag, drag_law, restitution):
@@ -268,14 +268,14 @@ def step(phi, v, eps, *, drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW,
         if described is None:
             phi1, v1, tau, _, status = collide(*scalars)
         else:
-            phi1, v1, tau, _, status = step_of(with_eps(described, scalars[2]), *scalars[:2])
+            phi1, v1, tau, _, status = step_of(*scalars[:2], with_eps(described, scalars[2]))
         if status != CONVERGED:
             _raise_on_status(np.array([status]), *([x] for x in scalars))
         return phi1, v1, tau
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
-    out = (np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8))
-    _steps(elastic(0.0) if described is None else described, phi_a, v_a, eps_a, *out)
+    out = (np.empty(n), np.empty(n), np.empty(n), np.empty(n, STATUS_DTYPE))
+    _steps(phi_a, v_a, eps_a, elastic(0.0) if described is None else described, *out)
     _raise_on_status(out[3], phi_a, v_a, eps_a)
     return _shaped(shape, scalar, *out[:3])
 
@@ -337,7 +337,7 @@ def carried_step(phi, v, eps, carried, *, drag=DEFAULT_DRAG, drag_law=DEFAULT_DR
         raise ValueError("carried_step takes scalar phi, v and eps")
     phi, v, eps = scalars
     _check_carried(phi, v, eps, tuple(carried))
-    phi1, v1, tau, status = carried_collide(dissipative(eps, drag, law, restitution), phi, v,
+    phi1, v1, tau, status = carried_collide(phi, v, dissipative(eps, drag, law, restitution),
                                             np.array(carried, dtype=float))
     if status != CONVERGED:
         _raise_on_status(np.array([status]), [phi], [v], [eps])
@@ -361,7 +361,7 @@ def holmes_step(phi, v, eps):
         return holmes_collide(reduce_phase(phi), v, eps)
     (phi_a, v_a, eps_a), shape, scalar = float_inputs(phi=phi, v=v, eps=eps)
     n = len(phi_a)
-    out = (np.empty(n), np.empty(n), np.empty(n, np.int8))
+    out = (np.empty(n), np.empty(n), np.empty(n, STATUS_DTYPE))
     _holmes_steps(phi_a, v_a, eps_a, *out)
     _raise_on_status(out[2], phi_a, v_a, eps_a)
     return _shaped(shape, scalar, *out[:2])
@@ -395,38 +395,31 @@ def orbit(phi0, v0, eps, n, *, model="exact", on_uncertain="raise", method="auto
     (phi_a, v_a, eps_a), _, scalar = float_inputs(phi0=phi0, v0=v0, eps=eps)
     if not scalar:
         raise ValueError("orbit takes scalar phi0, v0 and eps; use step() for arrays of states")
-    n = count("n", n)
+    n = integer("n", n, minimum=0)
     if on_uncertain not in ("raise", "stop"):
         raise ValueError(f"on_uncertain must be 'raise' or 'stop', got {on_uncertain!r}")
     phi0, v0, eps = float(phi_a[0]), float(v_a[0]), float(eps_a[0])
-    if model == "holmes":
+    physics = with_eps(physics, eps)
+    holmes_map = type(physics) is Holmes
+    if holmes_map:
         status = departure_status(phi0, v0, eps)
         if status != CONVERGED:
             _raise_on_status(np.array([status]), [phi0], [v0], [eps])
     out = OrbitArrays.empty(n)
-    done, episodes, status, stuck = orbit_loop(_described(model, eps, physics), phi0, v0, code,
-                                               out)
+    done, episodes, status, stuck = orbit_loop(phi0, v0, physics, code, out)
     _raise_for_orbit(status, done, out.phi, out.v, eps, on_uncertain)
-    iterations = None if model == "holmes" else out.iterations[:done]
+    iterations = None if holmes_map else out.iterations[:done]
     return Orbit(out.phi[: done + 1], out.v[: done + 1], out.t[: done + 1], iterations,
                  FlightStatus(status), model, eps, out.sticking[:episodes].copy(),
                  "stuck" if stuck else "collisions")
 
 
 def _model_physics(model, drag, drag_law, restitution):
-    """The checked physics keywords (``physics_options``: drag, law code, restitution) of a model
-    in MODELS; drag or restitution < 1 need the exact map."""
+    """The description of ``model`` with the checked physics keywords, at eps = 0 (the caller
+    sets eps with ``with_eps`` once it is checked): the model and the physics are refused before
+    the state (``fastpath.inputs.model_physics``, ``physics_options``)."""
     drag, law, restitution = physics_options(drag, drag_law, restitution)
-    if not (isinstance(model, str) and model in MODELS):
-        raise ValueError(f"model must be one of {list(MODELS)}, got model={model!r}")
-    if (drag != 0.0 or restitution != 1.0) and model != "exact":
-        raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
-    return drag, law, restitution
-
-
-def _described(model, eps, physics):
-    """The description (``fastpath.physics``) of the model at eps with the checked physics."""
-    return holmes(eps) if model == "holmes" else describe(eps, *physics)
+    return model_physics(model, 0.0, drag, law, restitution)
 
 
 def _raise_for_orbit(status, done, phi, v, eps, on_uncertain):
@@ -482,17 +475,17 @@ def moments(phi0, v0, eps, n_grid, *, t_grid=(), model="exact", blocks=64, max_c
             raise ValueError(f"{name} must be finite, >= 0 and sorted, got {grid!r}")
     if not len(n_grid) and not len(t_grid):
         raise ValueError("give n_grid and/or t_grid")
-    blocks = max(1, min(count("blocks", blocks, 1), len(phi_a)))
+    blocks = max(1, min(integer("blocks", blocks, minimum=1), len(phi_a)))
     per_block = -(-len(phi_a) // blocks)
     blocks = -(-len(phi_a) // per_block)  # no empty block
     if max_collisions is None:
         n_last = int(n_grid[-1]) if len(n_grid) else 0
         max_collisions = 100 * n_last + 10**6 if len(t_grid) else n_last
-    max_collisions = count("max_collisions", max_collisions)
+    max_collisions = integer("max_collisions", max_collisions, minimum=0)
     m = len(phi_a)
     sums = MomentSums.zeros(blocks, len(n_grid), len(t_grid))
     flags = Flags.zeros(m)
-    moments_chunk(_described(model, eps, physics),
+    moments_chunk(with_eps(physics, eps),
                   Starts(phi=phi_a, v=v_a, t=np.zeros(m), n=np.zeros(m, np.int64)),
                   MomentGrid(n=n_grid, t=t_grid, max_collisions=max_collisions), False,
                   Sample.none(m), sums, flags)

@@ -8,7 +8,7 @@ import numbers
 
 import numpy as np
 
-from fastpath.physics import LAWS
+from fastpath.physics import LAWS, MODELS, NONE, describe, holmes
 
 _LAW_NAMES = tuple(LAWS)  # a str compares by value; a tuple test never calls array __eq__
 
@@ -81,15 +81,6 @@ def scalar_inputs(**named):
     return out
 
 
-def count(name, value, minimum=0):
-    """Check that value is an integer >= minimum; return it as int."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise ValueError(f"{name} must be an integer, got {value!r}")
-    if value < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {value}")
-    return int(value)
-
-
 def physics_options(drag, drag_law, restitution):
     """Check the keyword-only physics options; return (drag, law code, restitution).
 
@@ -122,3 +113,38 @@ def real_scalar(name, value):
     if not math.isfinite(x):
         raise ValueError(f"{name} must be finite, got {name}={x!r}")
     return x
+
+
+def model_physics(model, eps, drag=0.0, drag_law=NONE, restitution=1.0):
+    """The physics description (``fastpath.physics``) of the public model name with the plate
+    amplitude eps and the checked physics options (``physics_options``): ``Holmes`` for
+    "holmes", ``Elastic`` or ``Dissipative`` (``describe``) for "exact".
+
+    ValueError for a model that is not one of ``fastpath.physics.MODELS`` and for drag or
+    restitution < 1 with the Holmes map (it has neither).
+    """
+    if not isinstance(model, str) or model not in MODELS:
+        raise ValueError(f"model must be one of {sorted(MODELS)}, got model={model!r}")
+    if model == "holmes":
+        if drag != 0.0 or restitution != 1.0:
+            raise ValueError(f"drag or restitution < 1 needs model='exact', got model={model!r}")
+        return holmes(eps)
+    return describe(eps, drag, drag_law, restitution)
+
+
+def integer(name, value, minimum=None):
+    """An integer (not a bool, numpy's included) >= minimum, as an int; ValueError naming
+    ``name`` otherwise."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise ValueError(f"{name} must be an integer, got {name}={value!r}")
+    if minimum is not None and value < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {name}={value}")
+    return int(value)
+
+
+def departing(phi, v, eps, what="the start"):
+    """ValueError unless w0 = v + eps*sin(phi) > 0 (the particle leaves the plate)."""
+    w0 = v + eps * math.sin(phi)
+    if not w0 > 0.0:
+        raise ValueError(f"{what} does not depart: w0 = v + eps*sin(phi) = {w0!r} <= 0 at "
+                         f"phi={phi!r}, v={v!r}, eps={eps!r}")

@@ -7,7 +7,12 @@ the relative velocity reverses and shrinks by the restitution r:
     V' = -1 - eta(V),      eta(V) = 0 (NONE), k*V (LINEAR), k*V*|V| (QUADRATIC),  k = drag,
     v1 - u = -r*(v_in - u),    u = -eps*sin(phi + tau) the plate's velocity at the impact.
 
-A description is a named tuple with these four fields, of one of three classes:
+A description is a named tuple with the four fields (eps, drag, drag_law, restitution), the
+field set of ``verify``'s physics description too. ``drag_law`` is an int code here, so that
+compiled code can take it: NONE = 0 (no drag), LINEAR = 1, QUADRATIC = 2; ``LAWS`` maps the
+public names "linear" and "quadratic" (the ``drag_law`` keyword of ``fastpath.step``,
+``fastpath.orbit``, ...) to their codes. The public model names ("exact", "holmes": the
+``model`` keyword) are ``MODELS``, one class each:
 
 ``Elastic``      the paper's exact map (drag 0, restitution 1): equations (1)-(2).
 ``Holmes``       the Holmes map: the plate's displacement neglected, its velocity kept.
@@ -15,7 +20,7 @@ A description is a named tuple with these four fields, of one of three classes:
 
 The class is the model: numba compiles a loop once per class, and ``model_of`` is a constant in
 the compiled code, so the elastic loops carry no dissipative branch. All three classes have all
-four fields (an ``Elastic`` one has drag 0, law NONE, restitution 1), so that one loop body
+four fields (an ``Elastic`` one has drag 0, drag_law NONE, restitution 1), so that one loop body
 type-checks for every class. Build descriptions with ``elastic``, ``holmes``, ``dissipative`` or
 ``describe`` (which picks the class from the values).
 
@@ -44,11 +49,11 @@ DISSIPATIVE = 2
 
 
 class Elastic(NamedTuple):
-    """The paper's bouncer: elastic impacts, no drag (drag 0, law NONE, restitution 1)."""
+    """The paper's bouncer: elastic impacts, no drag (drag 0, drag_law NONE, restitution 1)."""
 
     eps: float
     drag: float
-    law: int
+    drag_law: int
     restitution: float
 
 
@@ -57,20 +62,24 @@ class Holmes(NamedTuple):
 
     eps: float
     drag: float
-    law: int
+    drag_law: int
     restitution: float
 
 
 class Dissipative(NamedTuple):
-    """Drag k = ``drag`` >= 0 with law code ``law`` and restitution r in (0, 1]."""
+    """Drag k = ``drag`` >= 0 with law code ``drag_law`` and restitution r in (0, 1]."""
 
     eps: float
     drag: float
-    law: int
+    drag_law: int
     restitution: float
 
 
 _MODELS = {Elastic: ELASTIC, Holmes: HOLMES, Dissipative: DISSIPATIVE}
+
+# the public model names (``fastpath.orbit``, ``fastpath.dynamics``: model="exact" or "holmes")
+# and the class of each; a Dissipative description is model "exact" with drag or restitution
+MODELS = {"exact": Elastic, "holmes": Holmes}
 
 
 def elastic(eps):
@@ -81,15 +90,20 @@ def holmes(eps):
     return Holmes(float(eps), 0.0, NONE, 1.0)
 
 
-def dissipative(eps, drag, law, restitution):
-    return Dissipative(float(eps), float(drag), int(law), float(restitution))
+def dissipative(eps, drag, drag_law, restitution):
+    return Dissipative(float(eps), float(drag), int(drag_law), float(restitution))
 
 
-def describe(eps, drag=0.0, law=NONE, restitution=1.0):
+def describe(eps, drag=0.0, drag_law=NONE, restitution=1.0):
     """``Elastic`` where drag == 0 and restitution == 1, else ``Dissipative``."""
     if drag == 0.0 and restitution == 1.0:
         return elastic(eps)
-    return dissipative(eps, drag, law, restitution)
+    return dissipative(eps, drag, drag_law, restitution)
+
+
+def model_name(physics):
+    """The public model name of a description: "holmes" for ``Holmes``, else "exact"."""
+    return "holmes" if type(physics) is Holmes else "exact"
 
 
 def model_of(physics):
@@ -111,5 +125,5 @@ def with_eps(physics, eps):
 @overload(with_eps)
 def _with_eps_compiled(physics, eps):
     cls = physics.instance_class
-    return lambda physics, eps: cls(eps, physics.drag, physics.law, physics.restitution)
+    return lambda physics, eps: cls(eps, physics.drag, physics.drag_law, physics.restitution)
 

@@ -6,6 +6,8 @@ The kernels return the status as a small int (``CONVERGED`` ... ``OVERFLOW`` bel
 
 from enum import IntEnum
 
+import numpy as np
+
 ITERATION_LIMIT = 60  # gap evaluations of one flight, at most, before MAX_ITERATIONS
 # The accuracy every CONVERGED flight time is held to: |tau - tau*| <= TAU_ACCURACY*kappa*u*tau*
 # (kappa the flight's condition number, u = 2**-53); the tests and the runs' audit use it.
@@ -39,6 +41,7 @@ UNCERTAIN = int(FlightStatus.UNCERTAIN)
 NOT_DEPARTING = int(FlightStatus.NOT_DEPARTING)
 MAX_ITERATIONS = int(FlightStatus.MAX_ITERATIONS)
 OVERFLOW = int(FlightStatus.OVERFLOW)
+STATUS_DTYPE = np.int8  # the dtype of every array of status codes
 
 
 class UncertainCollision(ArithmeticError):

@@ -74,7 +74,7 @@ _TAIL_MARGIN = 64.0 * UNIT_ROUNDOFF * 8.0 * math.pi  # phase rounding of theta_a
 
 
 @jit
-def begin(physics, state, phi0, v0, t0):
+def begin(state, phi0, v0, t0, physics):
     """Fill ``state`` for a departure from (phi0, v0) at time t0; return a FlightStatus code.
 
     With r < 1 the departure is checked here (w0 = v0 + eps*sin(phi0) beyond its rounding
@@ -128,12 +128,12 @@ def carried_state(phi, v, carried):
 
 
 @jit
-def long_flight(physics, theta, v, method):
+def long_flight(theta, v, physics, method):
     """(tau, iterations, status) of an ordinary flight from the absolute state (theta, v): with
     drag ``solve_drag_flight``; without, the elastic flight from libm's sine and cosine of the
     centred phase."""
     if physics.drag != 0.0:
-        return solve_drag_flight(physics, theta, v, method)
+        return solve_drag_flight(theta, v, physics, method)
     centred = centre_phase(theta)
     tau, _, _, _, iterations, status = flight_from(
         centred, math.sin(centred), math.cos(centred), v, physics.eps, method,
@@ -143,10 +143,10 @@ def long_flight(physics, theta, v, method):
 
 
 @jit
-def incoming_velocity(physics, v, tau):
+def incoming_velocity(v, physics, tau):
     """The particle's velocity at the end of a flight of length tau from velocity v."""
     if physics.drag != 0.0:
-        return particle(v, physics.drag, physics.law, tau)[1]
+        return particle(v, physics.drag, physics.drag_law, tau)[1]
     return v - tau
 
 
@@ -161,7 +161,7 @@ def edge_within(theta, span, hole_lo):
 
 
 @jit
-def advance(physics, state, method, detach, hole_lo):
+def advance(state, physics, method, detach, hole_lo):
     """Move ``state`` on by one impact; return (status, iterations, tau, sticking, t_start, t_end).
 
     status: CONVERGED, or the FlightStatus of a flight that could not be decided (the state is
@@ -171,16 +171,16 @@ def advance(physics, state, method, detach, hole_lo):
     lower edges of the holes whose crossing forbids summing a tail (empty for a plain orbit).
     """
     if physics.restitution == 1.0:
-        phi1, v1, tau, its, status = dissipative_collide(physics, state[PHI], state[V])
+        phi1, v1, tau, its, status = dissipative_collide(state[PHI], state[V], physics)
         if status != CONVERGED:
             return status, its, tau, NO_STICKING, math.nan, math.nan
         state[PHI], state[V], state[T] = phi1, v1, state[T] + tau
         return CONVERGED, its, tau, NO_STICKING, math.nan, math.nan
-    return inelastic_advance(physics, state, method, detach, hole_lo)
+    return inelastic_advance(state, physics, method, detach, hole_lo)
 
 
 @jit
-def inelastic_advance(physics, state, method, detach, hole_lo):
+def inelastic_advance(state, physics, method, detach, hole_lo):
     """``advance`` for r < 1, with or without drag (module docstring)."""
     eps, r = physics.eps, physics.restitution
     base_phase, base_time, s = state[BASE_PHASE], state[BASE_TIME], state[S]
@@ -192,23 +192,23 @@ def inelastic_advance(physics, state, method, detach, hole_lo):
             return status, its, tau, NO_STICKING, math.nan, math.nan
         long = True
     else:
-        upper = short_window(physics, sin_th, cos_th, w, vk)
+        upper = short_window(sin_th, cos_th, w, vk, physics)
         long = not upper > 0.0
         if long:
-            tau, its, status = long_flight(physics, base_phase + s, vk, method)
+            tau, its, status = long_flight(base_phase + s, vk, physics, method)
             if status != CONVERGED:
                 return status, its, tau, NO_STICKING, math.nan, math.nan
         else:
-            tau, w_in, its = short_flight(physics, sin_th, cos_th, w, vk, upper)
+            tau, w_in, its = short_flight(sin_th, cos_th, w, vk, physics, upper)
             if s + tau == s:  # the clock no longer moves: a hole edge within rounding
                 return UNCERTAIN, its, tau, NO_STICKING, math.nan, math.nan
     s_new = s + tau
     theta = base_phase + s_new
     sin_new, cos_new = math.sin(theta), math.cos(theta)
     if long:
-        w_in = incoming_velocity(physics, vk, tau) + eps * sin_new
+        w_in = incoming_velocity(vk, physics, tau) + eps * sin_new
     vk_new, w_new = inelastic_impact(-eps * sin_new, w_in, r)
-    tail = accumulation_tail(physics, sin_new, cos_new, w_new)
+    tail = accumulation_tail(sin_new, cos_new, w_new, physics)
     summed = tail == tail and not edge_within(reduce_phase(theta), tail, hole_lo)
     if summed and detach.kind != DETACHES and detach.kind != NEVER:
         return UNCERTAIN, its, tau, NO_STICKING, math.nan, math.nan  # ever detaches: undecided
@@ -235,9 +235,9 @@ def inelastic_advance(physics, state, method, detach, hole_lo):
 
 
 @jit
-def carried_collide(physics, phi, v, carried):
+def carried_collide(phi, v, physics, carried):
     """(phi1, v1, tau, status) of one ``advance`` (r < 1, any drag) from the departure (phi, v)
     with the ``CARRIED`` entries ``carried``: the step an ensemble kernel made from that state."""
     state = carried_state(phi, v, carried)
-    status, _, tau, _, _, _ = advance(physics, state, AUTO, detachment(physics), np.empty(0))
+    status, _, tau, _, _, _ = advance(state, physics, AUTO, detachment(physics), np.empty(0))
     return state[PHI], state[V], tau, status

@@ -77,7 +77,7 @@ from fastpath.dissipative.drag import ROUNDING_FACTOR, eta, gap_state, particle,
 from fastpath.elastic.concave import AFTER, AT_ROOT, BEFORE, halley
 from fastpath.elastic.flight import AUTO, departure_phase
 from fastpath.elastic.gap import departure, departure_verdict
-from fastpath.elastic.lower_bound import GOING_ON, lower_bound_step, next_point
+from fastpath.elastic.lower_bound import GOING_ON, GapBounds, lower_bound_step, next_point
 from fastpath.physics import LINEAR, NONE, QUADRATIC
 from fastpath.status import (
     CONVERGED,
@@ -93,7 +93,7 @@ _DESCENT_CLOSE = 0.25  # a jump stops once the particle is within this share of 
 
 
 @jit
-def drag_flight(physics, phi, sin_phi, cos_phi, v, w0_error, method=AUTO):
+def drag_flight(phi, sin_phi, cos_phi, v, physics, w0_error, method=AUTO):
     """(tau, sin(phi + tau), cos(phi + tau), iterations, status) with drag (module docstring).
 
     physics: the description (``fastpath.physics``) with drag > 0. phi in [-pi, pi) with its
@@ -102,7 +102,7 @@ def drag_flight(physics, phi, sin_phi, cos_phi, v, w0_error, method=AUTO):
     method: AUTO (Halley where the gap is provably concave) or LOWER_BOUND (lower-bound steps
     only).
     """
-    eps, drag, law = physics.eps, physics.drag, physics.law
+    eps, drag, law = physics.eps, physics.drag, physics.drag_law
     w0 = v + eps * sin_phi
     verdict = departure_verdict(w0, w0_error)
     if verdict != CONVERGED:
@@ -111,12 +111,12 @@ def drag_flight(physics, phi, sin_phi, cos_phi, v, w0_error, method=AUTO):
     lo = 2.0 * (w0 - w0_error) / a * (1.0 - 4.0 * _U)
     used = 0
     if method == AUTO and abs(eps) < 1.0 and 1.0 + eta(v, drag, law) >= 0.0:
-        tau, iterations, status = concave_drag_flight(physics, phi, cos_phi, v, w0, lo)
+        tau, iterations, status = concave_drag_flight(phi, cos_phi, v, physics, w0, lo)
         if status != MAX_ITERATIONS or iterations == ITERATION_LIMIT:
             sin1, cos1 = sin_cos_of_sum(phi, tau)
             return tau, sin1, cos1, iterations, status
         used, lo = iterations, tau  # not certified concave: lower-bound steps from its lo
-    tau, iterations, status = lower_bound_drag_flight(physics, phi, v, lo, used)
+    tau, iterations, status = lower_bound_drag_flight(phi, v, physics, lo, used)
     sin1, cos1 = sin_cos_of_sum(phi, tau)
     return tau, sin1, cos1, iterations, status
 
@@ -130,14 +130,14 @@ def curvature_bound(vel, v_err, eps, drag, law):
 
 
 @jit
-def concave_drag_flight(physics, phi, cos_phi, v, w0, lo):
+def concave_drag_flight(phi, cos_phi, v, physics, w0, lo):
     """(tau, evaluations, status) by Halley in a certified bracket (module docstring).
 
     MAX_ITERATIONS with fewer than ITERATION_LIMIT evaluations means: the gap could not be
     certified concave at an iterate; tau is then the bracket's certified lower end (the gap is
     positive on (0, tau]), where the caller goes on with lower-bound steps.
     """
-    eps, drag, law = physics.eps, physics.drag, physics.law
+    eps, drag, law = physics.eps, physics.drag, physics.drag_law
     hi = math.inf
     t = 2.0 * w0 / (1.0 + eta(v, drag, law) - eps * cos_phi)
     drop = drag * v if law == LINEAR else 0.75 * drag * v * v  # 3*(relative shortening)
@@ -178,13 +178,13 @@ def concave_drag_flight(physics, phi, cos_phi, v, w0, lo):
 
 
 @jit
-def drag_gap_bounds(physics, phi, v, t):
-    """(bounds, V(t), its error): the gap with drag at t and what the lower-bound step needs, as
-    ``fastpath.elastic.lower_bound.elastic_gap_bounds``: d, d1, their rounding bounds, a lower
-    bound on d2 with the particle's part at its bound min(p, 0) (module docstring), the jerk
-    -eps*sin(phi + t), eps and the curvature bound a(t); the particle's velocity for the graze
-    test."""
-    eps, drag, law = physics.eps, physics.drag, physics.law
+def drag_gap_bounds(phi, v, physics, t):
+    """(bounds, V(t), its error): the gap with drag at t and what the lower-bound step needs, a
+    ``fastpath.elastic.lower_bound.GapBounds`` as ``elastic_gap_bounds``'s: d, d1, their
+    rounding bounds, a lower bound on d2 with the particle's part at its bound min(p, 0) (module
+    docstring), the jerk -eps*sin(phi + t), eps and the curvature bound a(t); the particle's
+    velocity for the graze test."""
+    eps, drag, law = physics.eps, physics.drag, physics.drag_law
     d, d1, _, d_err, d1_err, vel, v_err = gap_state(phi, v, eps, drag, law, t)
     if law == LINEAR:
         d_err, d1_err, v_err = tight_linear_bounds(phi, v, eps, drag, t, d, d1, vel, d_err,
@@ -193,7 +193,7 @@ def drag_gap_bounds(physics, phi, v, t):
     p_low = min(-1.0 - eta(vel + v_err, drag, law), 0.0) * (1.0 + 4.0 * _U)
     curvature = p_low + eps * math.cos(theta) - 4.0 * _U * abs(eps) * (1.0 + t)
     a = curvature_bound(vel, v_err, eps, drag, law)
-    return (d, d1, d_err, d1_err, curvature, -eps * math.sin(theta), eps, a), vel, v_err
+    return GapBounds(d, d1, d_err, d1_err, curvature, -eps * math.sin(theta), eps, a), vel, v_err
 
 
 @jit
@@ -227,24 +227,24 @@ def tight_linear_bounds(phi, v, eps, k, t, d, d1, vel, d_err, d1_err, v_err):
 
 
 @jit
-def lower_bound_drag_flight(physics, phi, v, t, used):
+def lower_bound_drag_flight(phi, v, physics, t, used):
     """(tau, evaluations, status) by certified lower-bound steps from t (a certified lower bound,
     the departure's step), counting ``used`` evaluations already spent: the iteration of
     ``fastpath.elastic.lower_bound`` with ``drag_gap_bounds`` and ``may_be_drag_graze``, and
     the descent's jumps (``descent_jump``) while the particle is above the plate's reach."""
-    reach = plate_reach(physics.eps, math.cos(phi))
-    concave = falls_concave(physics, v)
+    reach = plate_reach(math.cos(phi), physics.eps)
+    concave = falls_concave(v, physics)
     evaluations = used
     while evaluations < ITERATION_LIMIT:
         if concave:
-            t, jumped = descent_jump(physics, v, t, reach, ITERATION_LIMIT - evaluations)
+            t, jumped = descent_jump(v, physics, t, reach, ITERATION_LIMIT - evaluations)
             evaluations += jumped
         if evaluations >= ITERATION_LIMIT:
             break
         evaluations += 1
-        bounds, vel, v_err = drag_gap_bounds(physics, phi, v, t)
-        d, r, d_err = bounds[0], bounds[1], bounds[2]
-        grazes = d <= d_err and may_be_drag_graze(physics, phi, vel, v_err, t, r, d_err)
+        bounds, vel, v_err = drag_gap_bounds(phi, v, physics, t)
+        d, r, d_err = bounds.gap, bounds.rate, bounds.gap_error
+        grazes = d <= d_err and may_be_drag_graze(phi, physics, vel, v_err, t, r, d_err)
         t, status = next_point(t, bounds, grazes)
         if status != GOING_ON:
             return t, evaluations, status
@@ -252,24 +252,24 @@ def lower_bound_drag_flight(physics, phi, v, t, used):
 
 
 @jit
-def plate_reach(eps, cos_phi):
+def plate_reach(cos_phi, eps):
     """c = |eps| - eps*cos(phi), rounded up: the most the plate rises above its position at the
     departure, so that d(t) >= Y(t) - c (module docstring)."""
     return (abs(eps) - eps * cos_phi) * (1.0 + 4.0 * _U) + 4.0 * _U * abs(eps)
 
 
 @jit
-def falls_concave(physics, v):
+def falls_concave(v, physics):
     """Whether the particle's height Y is concave for the whole flight: its acceleration
     -1 - eta(V) <= 0 at the departure, beyond the rounding of eta(v). V then moves towards the
     terminal velocity from above and never crosses it (linear: V(t) = -1/k + (v + 1/k)*exp(-kt);
     quadratic: V' = -1 + k*V**2 < 0 while |V| < 1/sqrt(k)), so -1 - eta(V(t)) <= 0 throughout."""
-    e = eta(v, physics.drag, physics.law)
+    e = eta(v, physics.drag, physics.drag_law)
     return 1.0 + e > 4.0 * _U * (1.0 + abs(e))
 
 
 @jit
-def descent_jump(physics, v, t, reach, budget):
+def descent_jump(v, physics, t, reach, budget):
     """(t', evaluations): a later start for the lower-bound steps, or (t, evaluations) with
     t' = t where the descent's argument does not apply.
 
@@ -281,20 +281,20 @@ def descent_jump(physics, v, t, reach, budget):
     undershoots it (Y concave lies over it), so the chord's crossing is a certified later start. At
     most ``budget`` particle evaluations, each counted.
     """
-    y, vel, y_err, v_err = descent_particle(physics, v, t)
+    y, vel, y_err, v_err = descent_particle(v, physics, t)
     evaluations = 1
     if not (vel + v_err < 0.0 and y - y_err > reach):
         return t, evaluations
     lo, y_lo, vel_lo = t, y - y_err, vel
     while evaluations + 2 <= min(budget, _DESCENT_EVALUATIONS):
         beyond = lo + (reach - y_lo) / vel_lo  # the tangent's crossing of the reach
-        y_b, _, e_b, _ = descent_particle(physics, v, beyond)
+        y_b, _, e_b, _ = descent_particle(v, physics, beyond)
         evaluations += 1
         if y_b - e_b > reach:  # above the reach there too: Y > c on [lo, beyond] (concave)
             lo = beyond
         else:  # the chord's crossing: Y >= chord >= c up to it
             lo = lo + (y_lo - reach) / (y_lo - (y_b - e_b)) * (beyond - lo) * (1.0 - 4.0 * _U)
-        y, vel_lo, y_err, _ = descent_particle(physics, v, lo)
+        y, vel_lo, y_err, _ = descent_particle(v, physics, lo)
         evaluations += 1
         y_lo = y - y_err
         if not y_lo - reach > _DESCENT_CLOSE * abs(physics.eps) + 4.0 * y_err:
@@ -303,10 +303,10 @@ def descent_jump(physics, v, t, reach, budget):
 
 
 @jit
-def descent_particle(physics, v, t):
+def descent_particle(v, physics, t):
     """``particle`` at t for the descent's jumps; with linear drag the bounds of
     ``tight_linear_errors``."""
-    drag, law = physics.drag, physics.law
+    drag, law = physics.drag, physics.drag_law
     y, vel, y_err, v_err = particle(v, drag, law, t)
     if law == LINEAR:
         y_err, v_err = tight_linear_errors(v, drag, t, vel, y_err, v_err)
@@ -314,11 +314,11 @@ def descent_particle(physics, v, t):
 
 
 @jit
-def may_be_drag_graze(physics, phi, vel, v_err, t, r, d_err):
+def may_be_drag_graze(phi, physics, vel, v_err, t, r, d_err):
     """Whether a gap within rounding of zero at t may be a near-tangent dip (module docstring;
     the argument of ``fastpath.elastic.lower_bound.may_be_graze`` with the drag's curvature and
     jerk bounds); vel: V(t) with its error bound v_err."""
-    eps, drag, law = physics.eps, physics.drag, physics.law
+    eps, drag, law = physics.eps, physics.drag, physics.drag_law
     p = -1.0 - eta(vel, drag, law)
     p_err = abs(eta(vel + v_err, drag, law) - eta(vel - v_err, drag, law)) + 4.0 * _U * abs(p)
     # sup of p after t: 0 (approached, p increasing) or p(t) (p > 0 decreasing); -1 without drag
@@ -339,13 +339,13 @@ def may_be_drag_graze(physics, phi, vel, v_err, t, r, d_err):
 
 
 @jit
-def solve_drag_flight(physics, phi, v, method=AUTO):
+def solve_drag_flight(phi, v, physics, method=AUTO):
     """(tau, iterations, status) for a departure at any real phase phi (as
     ``fastpath.elastic.flight.solve_flight``), with the drag of ``physics``."""
     centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)  # as dissipative_collide: flight and step agree
     _, w0_error = departure(centred, sin_phi, v, physics.eps, phase_error)
     tau, _, _, iterations, status = drag_flight(
-        physics, centred, sin_phi, cos_phi, v, w0_error, method
+        centred, sin_phi, cos_phi, v, physics, w0_error, method
     )
     return tau, iterations, status

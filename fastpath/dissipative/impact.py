@@ -32,7 +32,7 @@ def impact_velocity(v_in, u, restitution):
 
 
 @jit
-def dissipative_collide(physics, phi, v):
+def dissipative_collide(phi, v, physics):
     """(phi1, v1, tau, iterations, status): one flight (with the drag of the description
     ``physics``, ``fastpath.dissipative.drag``) and one impact with its restitution r; phi any
     real, phi1 in [0, 2*pi) (without drag as ``fastpath.elastic.collision``: a long flight's
@@ -50,9 +50,9 @@ def dissipative_collide(physics, phi, v):
     else:
         _, w0_error = departure(centred, sin_phi, v, eps, phase_error)
         tau, sin1, _, iterations, status = drag_flight(
-            physics, centred, sin_phi, cos_phi, v, w0_error, AUTO
+            centred, sin_phi, cos_phi, v, physics, w0_error, AUTO
         )
         tau_lo = 0.0
-        v_in = particle(v, drag, physics.law, tau)[1] if status == CONVERGED else math.nan
+        v_in = particle(v, drag, physics.drag_law, tau)[1] if status == CONVERGED else math.nan
     v1 = impact_velocity(v_in, -eps * sin1, restitution)
     return landing_phase(centred, tau, tau_lo), v1, tau, iterations, status

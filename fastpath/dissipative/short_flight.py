@@ -228,28 +228,29 @@ def drag_short_window(sin_phi, cos_phi, w, v, eps, k, law):
 
 
 @jit
-def short_window(physics, sin_phi, cos_phi, w, v):
+def short_window(sin_phi, cos_phi, w, v, physics):
     """Upper bound on a short flight from relative velocity w (absolute v) where the module
     docstring's test certifies one, else 0: ``elastic_short_window`` or ``drag_short_window``."""
     if physics.drag != 0.0:
-        return drag_short_window(sin_phi, cos_phi, w, v, physics.eps, physics.drag, physics.law)
+        return drag_short_window(sin_phi, cos_phi, w, v, physics.eps, physics.drag,
+                                 physics.drag_law)
     return elastic_short_window(sin_phi, cos_phi, w, physics.eps)
 
 
 @jit
-def relative_gap_and_rate(physics, sin_phi, cos_phi, w, v, t):
+def relative_gap_and_rate(sin_phi, cos_phi, w, v, physics, t):
     """(d(t), d'(t)) in relative coordinates, without drag (``relative_gap``,
     ``relative_rate``) or with it (``drag_relative_gap``)."""
     eps = physics.eps
     if physics.drag != 0.0:
-        return drag_relative_gap(sin_phi, cos_phi, w, v, eps, physics.drag, physics.law, t)
+        return drag_relative_gap(sin_phi, cos_phi, w, v, eps, physics.drag, physics.drag_law, t)
     accel = -1.0 + eps * cos_phi
     return (relative_gap(sin_phi, cos_phi, w, eps, accel, t),
             relative_rate(sin_phi, cos_phi, w, eps, accel, t))
 
 
 @jit
-def short_flight(physics, sin_phi, cos_phi, w, v, upper):
+def short_flight(sin_phi, cos_phi, w, v, physics, upper):
     """(tau, d'(tau), iterations): Newton from the certified upper bound ``short_window``.
 
     Returns the first root of the gap from a departure with relative velocity w > 0 (absolute
@@ -257,20 +258,20 @@ def short_flight(physics, sin_phi, cos_phi, w, v, upper):
     """
     t = upper
     for k in range(1, ITERATION_LIMIT + 1):
-        d, r = relative_gap_and_rate(physics, sin_phi, cos_phi, w, v, t)
+        d, r = relative_gap_and_rate(sin_phi, cos_phi, w, v, physics, t)
         if not d < 0.0:  # within rounding of the root (d <= 0 at or beyond it)
             return t, r, k
         t_next = t - d / r
         if not t_next < t:
             return t, r, k
         t = t_next
-    return t, incoming_rate(physics, sin_phi, cos_phi, w, v, t), ITERATION_LIMIT
+    return t, incoming_rate(sin_phi, cos_phi, w, v, physics, t), ITERATION_LIMIT
 
 
 @jit
-def incoming_rate(physics, sin_phi, cos_phi, w, v, t):
+def incoming_rate(sin_phi, cos_phi, w, v, physics, t):
     """d'(t) alone (``relative_gap_and_rate``)."""
     if physics.drag != 0.0:
-        return drag_relative_gap(sin_phi, cos_phi, w, v, physics.eps, physics.drag, physics.law,
-                                 t)[1]
+        return drag_relative_gap(sin_phi, cos_phi, w, v, physics.eps, physics.drag,
+                                 physics.drag_law, t)[1]
     return relative_rate(sin_phi, cos_phi, w, physics.eps, -1.0 + physics.eps * cos_phi, t)

@@ -325,7 +325,7 @@ def drag_detachment_phase(eps, k, law):
 def drag_detachment(physics):
     """(tau, iterations, status, theta*, u(theta*), kind): the flight from detachment (module
     docstring), the same after every episode; kind from ``detach_kind``."""
-    eps, k, law = physics.eps, physics.drag, physics.law
+    eps, k, law = physics.eps, physics.drag, physics.drag_law
     kind = detach_kind(eps, k, law)
     if kind != DETACHES:
         return math.nan, 0, UNCERTAIN, math.nan, math.nan, kind
@@ -336,7 +336,7 @@ def drag_detachment(physics):
     d, _, _, d_err, _, _, _ = gap_state(phi, v, eps, k, law, t_c)
     if not d > d_err:
         return math.nan, 0, UNCERTAIN, theta_star, v, kind
-    tau, iterations, status = lower_bound_drag_flight(physics, phi, v, t_c, 0)
+    tau, iterations, status = lower_bound_drag_flight(phi, v, physics, t_c, 0)
     return tau, iterations, status, theta_star, v, kind
 
 
@@ -362,12 +362,12 @@ def drag_accumulation_tail(sin_theta, cos_theta, w, eps, k, law, r):
 
 
 @jit
-def accumulation_tail(physics, sin_theta, cos_theta, w):
+def accumulation_tail(sin_theta, cos_theta, w, physics):
     """T if the impacts from (theta, w) accumulate within q <= u, else NaN: with drag
     ``drag_accumulation_tail``, without ``elastic_accumulation_tail`` (module docstring)."""
     if physics.drag != 0.0:
         return drag_accumulation_tail(sin_theta, cos_theta, w, physics.eps, physics.drag,
-                                      physics.law, physics.restitution)
+                                      physics.drag_law, physics.restitution)
     return elastic_accumulation_tail(sin_theta, cos_theta, w, physics.eps, physics.restitution)
 
 

@@ -19,11 +19,12 @@ import math
 import numpy as np
 
 from fastpath.arithmetic.phase import TWO_PI
-from fastpath.dynamics._checks import integer, model_code
-from fastpath.dynamics._internals import CONVERGED
-from fastpath.dynamics.kernels import EXACT, block_search
+from fastpath.dynamics.kernels import block_search
 from fastpath.dynamics.periodic_orbit import OrbitNotFound, build_orbit, periodic_orbit
+from fastpath.inputs import integer, model_physics
 from fastpath.inputs import real_scalar as real
+from fastpath.physics import Elastic
+from fastpath.status import CONVERGED
 
 MAX_ITERATIONS = 40
 _SAME = 1e-7  # two blocks whose states agree to this (phase mod 2*pi, v mod pi) are one
@@ -39,25 +40,25 @@ def search(eps, period, *, model="holmes", grid=24, v_base=20 * math.pi):
     period = integer("period", period, minimum=1)
     grid = integer("grid", grid, minimum=1)
     v_base = real("v_base", v_base)
-    code = model_code(model)
+    physics = model_physics(model, eps)
     phases = (np.arange(grid) + 0.5) * TWO_PI / grid
     speeds = v_base + (np.arange(grid) + 0.5) * math.pi / grid
     phi0, v0 = (a.ravel() for a in np.meshgrid(phases, speeds))
     out = np.empty((len(phi0), 6))
-    block_search(phi0, v0, eps, period, code, MAX_ITERATIONS, out)
+    block_search(phi0, v0, physics, period, MAX_ITERATIONS, out)
     found = []
     keys = []
     for phi, v, m, shift, _, status in out:
         if status != CONVERGED or shift == 0:
             continue
         try:
-            if code == EXACT:  # only the exact map's modes (periodic_orbit's rules)
+            if type(physics) is Elastic:  # only the exact map's modes (periodic_orbit's rules)
                 orbit = periodic_orbit(phi, v, eps, period, winding=int(m),
                                        velocity_shift=int(shift), model=model)
                 if orbit.period != period:
                     continue  # a mode of a shorter period: found at that period
             else:
-                orbit = build_orbit(phi, v, eps, period, int(m), int(shift), model)
+                orbit = build_orbit(phi, v, physics, period, int(m), int(shift))
         except OrbitNotFound:
             continue
         key = _canonical(orbit)

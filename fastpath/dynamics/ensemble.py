@@ -5,8 +5,9 @@ first passage above a velocity (transport across a band). Thin wrappers of the p
 
 import numpy as np
 
-from fastpath.dynamics._checks import departing, integer, model_code
+from fastpath.inputs import departing, integer, model_physics
 from fastpath.inputs import real_scalar as real
+from fastpath.status import STATUS_DTYPE
 
 
 def _starts(phi, v, eps):
@@ -31,14 +32,14 @@ def velocities(phi, v, eps, collisions, *, model="exact"):
     from fastpath.dynamics.kernels import velocity_ensemble
 
     eps = real("eps", eps)
-    code = model_code(model)
+    physics = model_physics(model, eps)
     phi, v = _starts(phi, v, eps)
     points = np.asarray(collisions, dtype=np.int64)
     if points.ndim != 1 or len(points) == 0 or points[0] < 1 or np.any(np.diff(points) <= 0):
         raise ValueError("collisions must be ascending positive integers")
     out = np.full((len(phi), len(points)), np.nan)
-    done, status = np.zeros(len(phi), np.int64), np.zeros(len(phi), np.int64)
-    velocity_ensemble(phi, v, eps, code, points, out, done, status)
+    done, status = np.zeros(len(phi), np.int64), np.zeros(len(phi), STATUS_DTYPE)
+    velocity_ensemble(phi, v, physics, points, out, done, status)
     for i in range(len(phi)):
         out[i, points > done[i]] = np.nan
     return out, status
@@ -53,8 +54,8 @@ def first_passage(phi, v, eps, v_top, n, *, model="exact"):
 
     eps, v_top = real("eps", eps), real("v_top", v_top)
     n = integer("n", n, minimum=1)
-    code = model_code(model)
+    physics = model_physics(model, eps)
     phi, v = _starts(phi, v, eps)
-    passage, status = np.zeros(len(phi), np.int64), np.zeros(len(phi), np.int64)
-    kernel(phi, v, eps, code, v_top, n, passage, status)
+    passage, status = np.zeros(len(phi), np.int64), np.zeros(len(phi), STATUS_DTYPE)
+    kernel(phi, v, physics, v_top, n, passage, status)
     return passage, status

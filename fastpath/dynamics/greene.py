@@ -38,11 +38,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fastpath.dynamics._checks import integer, model_code
-from fastpath.dynamics._internals import CONVERGED
-from fastpath.dynamics.kernels import UNIT_ROUNDOFF, half_orbit, symmetric_newton
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.dynamics.kernels import half_orbit, symmetric_newton
 from fastpath.dynamics.periodic_orbit import TRACE_ROUNDING, OrbitNotFound, build_orbit
+from fastpath.inputs import integer, model_physics
 from fastpath.inputs import real_scalar as real
+from fastpath.status import CONVERGED
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
 CRITICAL_RESIDUE = 0.2500888  # Greene (1979): residues of noble approximants at the break-up
@@ -122,19 +123,19 @@ def symmetric_orbit(v, eps, period, winding, *, phase=0.0, model="exact"):
     winding = integer("winding", winding, minimum=1)
     if phase not in (0.0, math.pi):
         raise ValueError(f"phase must be 0 or pi (a symmetry line), got phase={phase!r}")
-    code = model_code(model)
-    v1, g, _, its, status = symmetric_newton(v, eps, phase, period, winding, code, MAX_NEWTON)
+    physics = model_physics(model, eps)
+    v1, g, _, its, status = symmetric_newton(phase, v, physics, period, winding, MAX_NEWTON)
     if status != CONVERGED:
         raise OrbitNotFound(f"no symmetric orbit of period {period}, winding {winding} found from "
                             f"v={v!r} at eps={eps!r} (status {status}, residual {g:.3g})")
-    return build_orbit(phase, v1, eps, period, winding, 0, model, its,
-                       start_error=_start_error(v1, eps, phase, period, code))
+    return build_orbit(phase, v1, physics, period, winding, 0, its,
+                       start_error=_start_error(phase, v1, physics, period))
 
 
-def _start_error(v, eps, phase, period, code):
+def _start_error(phase, v, physics, period):
     """(0, dv): the start lies exactly on its symmetry line; v is off by the rounding of the
     half-orbit condition g (~u times the half orbit's time and speeds) over |g'|."""
-    time, vn, dt, dvn, status = half_orbit(v, eps, phase, period // 2, code)
+    time, vn, dt, dvn, status = half_orbit(phase, v, physics, period // 2)
     slope = dt + dvn if period % 2 == 1 else dt
     if status != CONVERGED or slope == 0.0:
         return (0.0, math.inf)
@@ -170,16 +171,20 @@ def residue_crossing(approximant, *, phase=0.0, model="exact", target=TARGET, ep
     bracket's ends (a solution farther than their distance is refused as another branch).
     """
     q, m = approximant.period, approximant.winding
-    code = model_code(model)
+    model_physics(model, 0.0)  # a ValueError for an unknown model before any work
     count = 0
+
+    def described(eps):
+        return model_physics(model, eps)
 
     def solve(eps, v_guess):
         nonlocal count
         count += 1
-        v, _, _, _, status = symmetric_newton(v_guess, eps, phase, q, m, code, MAX_NEWTON)
+        physics = described(eps)
+        v, _, _, _, status = symmetric_newton(phase, v_guess, physics, q, m, MAX_NEWTON)
         if status != CONVERGED:
             return None
-        return v, build_orbit(phase, v, eps, q, m, 0, model).residue
+        return v, build_orbit(phase, v, physics, q, m, 0).residue
 
     eps, v, slope = 0.0, math.pi * m / q, 0.0
     residue = 0.0
@@ -224,8 +229,8 @@ def residue_crossing(approximant, *, phase=0.0, model="exact", target=TARGET, ep
     eps = 0.5 * (lo + hi)
     h = _SLOPE_STEP * max(eps, 1.0)
     below, above = solve(eps - h, v_lo), solve(eps + h, v_lo)
-    orbit = build_orbit(phase, v_lo, lo, q, m, 0, model,
-                        start_error=_start_error(v_lo, lo, phase, q, code))
+    orbit = build_orbit(phase, v_lo, described(lo), q, m, 0,
+                        start_error=_start_error(phase, v_lo, described(lo), q))
     if below is None or above is None:
         raise OrbitNotFound(f"lost the symmetric orbit {approximant} near eps={eps!r}")
     slope = (above[1] - below[1]) / (2.0 * h)
@@ -304,7 +309,7 @@ def extrapolate(eps, errors):
 def critical_amplitude(band, prefix=(), *, model="exact", levels=10, smallest=3,
                        target=TARGET):
     """Greene's estimate of the break-up amplitude of the curve omega = band + noble(prefix)."""
-    model_code(model)
+    model_physics(model, 0.0)  # a ValueError for an unknown model before any work
     if levels < 3:
         raise ValueError(f"levels must be >= 3 for an uncertainty, got {levels}")
     crossings = [residue_crossing(a, model=model, target=target)

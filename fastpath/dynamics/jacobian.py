@@ -4,11 +4,12 @@ import math
 
 import numpy as np
 
-from fastpath.dynamics._checks import departing, model_code
-from fastpath.dynamics._internals import CONVERGED, NOT_DEPARTING, reduce_phase
+from fastpath.arithmetic.phase import reduce_phase
 from fastpath.dynamics.kernels import step_tangent
 from fastpath.dynamics.periodic_orbit import _raise_for_status
+from fastpath.inputs import departing, model_physics
 from fastpath.inputs import real_scalar as real
+from fastpath.status import CONVERGED, NOT_DEPARTING
 
 
 def step_jacobian(phi, v, eps, *, model="exact"):
@@ -18,11 +19,11 @@ def step_jacobian(phi, v, eps, *, model="exact"):
     ``fastpath.UncertainCollision`` for a flight float64 cannot decide.
     """
     phi, v, eps = real("phi", phi), real("v", v), real("eps", eps)
-    code = model_code(model)
+    physics = model_physics(model, eps)
     departing(phi, v, eps)
     phase = reduce_phase(phi)
     *_, j11, j12, j21, j22, status = step_tangent(phase, math.sin(phase), math.cos(phase), v,
-                                                  eps, code)
+                                                  physics)
     if status == NOT_DEPARTING:
         raise ValueError(f"the Holmes map's absolute value acts at phi={phi!r}, v={v!r}")
     if status != CONVERGED:

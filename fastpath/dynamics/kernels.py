@@ -1,7 +1,9 @@
 """Compiled kernels of the dynamics: the collision map with its Jacobian, and loops over it.
 
-All kernels of this package live in this one file: numba checks only the timestamp of the file
-that defines a kernel, so a kernel calling one from a sibling file could keep stale machine code.
+Every kernel takes the state first, then the physics description (``fastpath.physics``:
+``Elastic`` for the exact map, ``Holmes`` for the Holmes map), then the rest. The description's
+class is a compile-time constant: ``step_tangent`` compiles the one map of that class
+(``fastpath.kernels.particle`` does the same for the loops of the flights).
 
 The exact map (docs/model.md). After the flight tau from (phi, v), with w = v + eps*sin(phi)
 the departure speed relative to the plate and w1 = v1 + eps*sin(phi1) the next one,
@@ -30,20 +32,14 @@ import math
 import numpy as np
 from numba import prange
 
-from fastpath.arithmetic.phase import PI, TWO_PI
-from fastpath.dynamics._internals import (
-    CONVERGED,
-    GENERAL,
-    NOT_DEPARTING,
-    UNIT_ROUNDOFF,
-    collide_from,
-    jit,
-    parallel_jit,
-    reduce_phase,
-)
+from fastpath.arithmetic.jit import jit, parallel_jit, typed_overload
+from fastpath.arithmetic.phase import PI, TWO_PI, reduce_phase
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.elastic.collision import collide_from
+from fastpath.elastic.flight import GENERAL
+from fastpath.physics import Elastic, Holmes
+from fastpath.status import CONVERGED, NOT_DEPARTING
 
-EXACT, HOLMES = 0, 1
-MODELS = {"exact": EXACT, "holmes": HOLMES}
 _NEAR = math.sqrt(UNIT_ROUNDOFF)  # relative step below which Newton is in its quadratic end game
 
 
@@ -55,20 +51,42 @@ def _converged(step, last, scale):
 
 
 @jit
-def step_tangent(phi, sin_phi, cos_phi, v, eps, model):
-    """One collision from phi in [0, 2*pi) (with its sine and cosine) and its Jacobian.
+def step_tangent(phi, sin_phi, cos_phi, v, physics):
+    """One collision from phi in [0, 2*pi) (with its sine and cosine) and its Jacobian, by the
+    map of the description (``Elastic``: the exact map; ``Holmes``: its standard-map form).
 
     Returns (phi1, sin1, cos1, v1, tau, j11, j12, j21, j22, status); status is a FlightStatus
     code (the other values are meaningless unless it is CONVERGED).
     """
-    if model == HOLMES:
-        tau = 2.0 * v
-        phi1 = reduce_phase(phi + tau)
-        s1, c1 = math.sin(phi1), math.cos(phi1)
-        v1 = v - 2.0 * eps * s1
-        c = 2.0 * eps * c1
-        status = CONVERGED if (v > 0.0 and v1 > 0.0) else NOT_DEPARTING
-        return phi1, s1, c1, v1, tau, 1.0, 2.0, -c, 1.0 - 2.0 * c, status
+    return _tangent(phi, sin_phi, cos_phi, v, physics)
+
+
+def _tangent(phi, sin_phi, cos_phi, v, physics):
+    """``step_tangent``, compiled for the description's class only."""
+
+
+@typed_overload(_tangent)
+def _tangent_of_model(phi, sin_phi, cos_phi, v, physics):
+    if physics.instance_class is Holmes:
+        return _holmes_tangent
+    if physics.instance_class is Elastic:
+        return _exact_tangent
+    return None  # a Dissipative description: no Jacobian here (a typing error)
+
+
+def _holmes_tangent(phi, sin_phi, cos_phi, v, physics):
+    eps = physics.eps
+    tau = 2.0 * v
+    phi1 = reduce_phase(phi + tau)
+    s1, c1 = math.sin(phi1), math.cos(phi1)
+    v1 = v - 2.0 * eps * s1
+    c = 2.0 * eps * c1
+    status = CONVERGED if (v > 0.0 and v1 > 0.0) else NOT_DEPARTING
+    return phi1, s1, c1, v1, tau, 1.0, 2.0, -c, 1.0 - 2.0 * c, status
+
+
+def _exact_tangent(phi, sin_phi, cos_phi, v, physics):
+    eps = physics.eps
     phi1, s1, c1, v1, tau, _, status = collide_from(phi, sin_phi, cos_phi, v, eps, GENERAL)
     w1 = v1 + eps * s1
     a = eps * (s1 - sin_phi) / w1
@@ -78,7 +96,7 @@ def step_tangent(phi, sin_phi, cos_phi, v, eps, model):
 
 
 @jit
-def orbit_monodromy(phi0, v0, eps, period, model, phi_out, v_out, tau_out, jac_out):
+def orbit_monodromy(phi0, v0, physics, period, phi_out, v_out, tau_out, jac_out):
     """``period`` collisions from (phi0, v0) with the product M of their Jacobians.
 
     Fills phi_out, v_out (the states before each collision, phases reduced), tau_out and jac_out
@@ -93,7 +111,7 @@ def orbit_monodromy(phi0, v0, eps, period, model, phi_out, v_out, tau_out, jac_o
     time = 0.0
     for k in range(period):
         phi_out[k], v_out[k] = phi, v
-        phi, s, c, v1, tau, j11, j12, j21, j22, status = step_tangent(phi, s, c, v, eps, model)
+        phi, s, c, v1, tau, j11, j12, j21, j22, status = step_tangent(phi, s, c, v, physics)
         if status != CONVERGED:
             return time, v, phi, m11, m12, m21, m22, status, k
         tau_out[k] = tau
@@ -134,7 +152,7 @@ def product_rounding_scale(jac):
 
 
 @jit
-def newton_block(phi0, v0, eps, period, winding, shift, model, max_iterations):
+def newton_block(phi0, v0, physics, period, winding, shift, max_iterations):
     """Newton's method on G(x) = F^p(x) - x - (2*pi*winding, pi*shift), x = (phi, v).
 
     F^p's phase is unreduced (the sum of the flight times), so G's first component is the total
@@ -152,7 +170,7 @@ def newton_block(phi0, v0, eps, period, winding, shift, model, max_iterations):
     phi, v = reduce_phase(phi0), v0
     target_t, target_v = TWO_PI * winding, PI * shift
     time, v_end, _, m11, m12, m21, m22, status, _ = orbit_monodromy(
-        phi, v, eps, period, model, phi_k, v_k, tau_k, jac)
+        phi, v, physics, period, phi_k, v_k, tau_k, jac)
     if status != CONVERGED:
         return phi, v, math.nan, math.nan, math.nan, 0, status
     g1, g2 = time - target_t, v_end - v - target_v
@@ -174,7 +192,7 @@ def newton_block(phi0, v0, eps, period, winding, shift, model, max_iterations):
         for _ in range(40):
             t_phi, t_v = phi + scale * d_phi, v + scale * d_v
             time, v_end, _, n11, n12, n21, n22, status, _ = orbit_monodromy(
-                t_phi, t_v, eps, period, model, phi_k, v_k, tau_k, jac)
+                t_phi, t_v, physics, period, phi_k, v_k, tau_k, jac)
             if status == CONVERGED:
                 h1, h2 = time - target_t, v_end - t_v - target_v
                 if end_game or abs(h1) + abs(h2) < size:
@@ -195,7 +213,7 @@ def newton_block(phi0, v0, eps, period, winding, shift, model, max_iterations):
 
 
 @jit
-def half_orbit(v, eps, phase0, steps, model):
+def half_orbit(phase0, v, physics, steps):
     """``steps`` collisions from (phase0, v) with the tangent of the start's v direction.
 
     Returns (time, v_end, dtime_dv, dv_end_dv, status): time is the sum of the flight times.
@@ -205,7 +223,7 @@ def half_orbit(v, eps, phase0, steps, model):
     d_phi, d_v = 0.0, 1.0
     time = 0.0
     for _ in range(steps):
-        phi, s, c, v1, tau, j11, j12, j21, j22, status = step_tangent(phi, s, c, v, eps, model)
+        phi, s, c, v1, tau, j11, j12, j21, j22, status = step_tangent(phi, s, c, v, physics)
         if status != CONVERGED:
             return time, v, d_phi, d_v, status
         time += tau
@@ -215,7 +233,7 @@ def half_orbit(v, eps, phase0, steps, model):
 
 
 @jit
-def symmetric_newton(v0, eps, phase0, period, winding, model, max_iterations):
+def symmetric_newton(phase0, v0, physics, period, winding, max_iterations):
     """Newton's method for the symmetric periodic orbit through (phase0, v), phase0 = 0 or pi.
 
     The map is F = I1 o I0 with the involutions whose fixed sets are the lines phi = 0, pi
@@ -230,7 +248,7 @@ def symmetric_newton(v0, eps, phase0, period, winding, model, max_iterations):
     n, odd = period // 2, period % 2 == 1
     target = PI * winding
     v = v0
-    time, vn, dt, dvn, status = half_orbit(v, eps, phase0, n, model)
+    time, vn, dt, dvn, status = half_orbit(phase0, v, physics, n)
     if status != CONVERGED:
         return v, math.nan, math.nan, 0, status
     g, dg = (time + vn - target, dt + dvn) if odd else (time - target, dt)
@@ -245,7 +263,7 @@ def symmetric_newton(v0, eps, phase0, period, winding, model, max_iterations):
         accepted = False
         for _ in range(40):
             trial = v + scale * delta
-            time, vn, dt, dvn, status = half_orbit(trial, eps, phase0, n, model)
+            time, vn, dt, dvn, status = half_orbit(phase0, trial, physics, n)
             if status == CONVERGED:
                 h, dh = (time + vn - target, dt + dvn) if odd else (time - target, dt)
                 if end_game or abs(h) < abs(g):
@@ -265,7 +283,7 @@ def symmetric_newton(v0, eps, phase0, period, winding, model, max_iterations):
 
 
 @jit
-def tangent_orbit(phi0, v0, eps, model, checkpoints, log_growth, times, velocities):
+def tangent_orbit(phi0, v0, physics, checkpoints, log_growth, times, velocities):
     """Largest Lyapunov exponent by the tangent map with renormalisation at every collision.
 
     A tangent vector u (start (1, 1)/sqrt(2)) is mapped by the Jacobian of each collision and
@@ -279,7 +297,7 @@ def tangent_orbit(phi0, v0, eps, model, checkpoints, log_growth, times, velociti
     total, time = 0.0, 0.0
     j = 0
     for k in range(1, checkpoints[len(checkpoints) - 1] + 1):
-        phi, s, c, v1, tau, j11, j12, j21, j22, status = step_tangent(phi, s, c, v, eps, model)
+        phi, s, c, v1, tau, j11, j12, j21, j22, status = step_tangent(phi, s, c, v, physics)
         if status != CONVERGED:
             return k - 1, status
         v = v1
@@ -295,11 +313,11 @@ def tangent_orbit(phi0, v0, eps, model, checkpoints, log_growth, times, velociti
 
 
 @parallel_jit
-def tangent_ensemble(phi0, v0, eps, model, checkpoints, log_growth, times, velocities, done,
+def tangent_ensemble(phi0, v0, physics, checkpoints, log_growth, times, velocities, done,
                      status):
     """``tangent_orbit`` for each start (rows of the 2-D outputs), in parallel."""
     for i in prange(len(phi0)):
-        done[i], status[i] = tangent_orbit(phi0[i], v0[i], eps, model, checkpoints,
+        done[i], status[i] = tangent_orbit(phi0[i], v0[i], physics, checkpoints,
                                            log_growth[i], times[i], velocities[i])
 
 
@@ -310,7 +328,7 @@ def _wrapped(x):
 
 
 @jit
-def separation_exponent(phi0, v0, eps, model, n, d0):
+def separation_exponent(phi0, v0, physics, n, d0):
     """Largest Lyapunov exponent from two nearby orbits (Benettin's renormalised separation).
 
     A companion starts at distance d0 along (1, 1)/sqrt(2); after each collision the separation
@@ -326,10 +344,10 @@ def separation_exponent(phi0, v0, eps, model, n, d0):
     total = 0.0
     for k in range(n):
         sb, cb = math.sin(phi_b), math.cos(phi_b)
-        phi_a, sa, ca, va1, _, _, _, _, _, status = step_tangent(phi_a, sa, ca, va, eps, model)
+        phi_a, sa, ca, va1, _, _, _, _, _, status = step_tangent(phi_a, sa, ca, va, physics)
         if status != CONVERGED:
             return total / max(k, 1), k, status
-        phi_b, _, _, vb1, _, _, _, _, _, status = step_tangent(phi_b, sb, cb, vb, eps, model)
+        phi_b, _, _, vb1, _, _, _, _, _, status = step_tangent(phi_b, sb, cb, vb, physics)
         if status != CONVERGED:
             return total / max(k, 1), k, status
         va = va1
@@ -342,7 +360,7 @@ def separation_exponent(phi0, v0, eps, model, n, d0):
 
 
 @parallel_jit
-def velocity_ensemble(phi0, v0, eps, model, checkpoints, velocities, done, status):
+def velocity_ensemble(phi0, v0, physics, checkpoints, velocities, done, status):
     """Velocities of each start at the collision counts ``checkpoints`` (diffusion of v)."""
     for i in prange(len(phi0)):
         phi = reduce_phase(phi0[i])
@@ -351,7 +369,7 @@ def velocity_ensemble(phi0, v0, eps, model, checkpoints, velocities, done, statu
         j = 0
         done[i], status[i] = checkpoints[len(checkpoints) - 1], CONVERGED
         for k in range(1, checkpoints[len(checkpoints) - 1] + 1):
-            phi, s, c, v1, _, _, _, _, _, st = step_tangent(phi, s, c, v, eps, model)
+            phi, s, c, v1, _, _, _, _, _, st = step_tangent(phi, s, c, v, physics)
             if st != CONVERGED:
                 done[i], status[i] = k - 1, st
                 break
@@ -362,7 +380,7 @@ def velocity_ensemble(phi0, v0, eps, model, checkpoints, velocities, done, statu
 
 
 @parallel_jit
-def first_passage(phi0, v0, eps, model, v_top, n, passage, status):
+def first_passage(phi0, v0, physics, v_top, n, passage, status):
     """Collision count at which each orbit first has v >= v_top (-1: not within n)."""
     for i in prange(len(phi0)):
         phi = reduce_phase(phi0[i])
@@ -370,7 +388,7 @@ def first_passage(phi0, v0, eps, model, v_top, n, passage, status):
         v = v0[i]
         passage[i], status[i] = -1, CONVERGED
         for k in range(1, n + 1):
-            phi, s, c, v, _, _, _, _, _, st = step_tangent(phi, s, c, v, eps, model)
+            phi, s, c, v, _, _, _, _, _, st = step_tangent(phi, s, c, v, physics)
             if st != CONVERGED:
                 status[i] = st
                 break
@@ -380,7 +398,7 @@ def first_passage(phi0, v0, eps, model, v_top, n, passage, status):
 
 
 @parallel_jit
-def block_search(phi0, v0, eps, period, model, max_iterations, out):
+def block_search(phi0, v0, physics, period, max_iterations, out):
     """Newton's method on F^p - id - (2*pi*m, pi*l) from each start, with m and l the nearest
     integers to the start's own p collisions. Rows of ``out``: phi, v, m, l, residual, status
     (status CONVERGED, a failed flight's, or -1)."""
@@ -388,7 +406,7 @@ def block_search(phi0, v0, eps, period, model, max_iterations, out):
         phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
         jac = np.empty((period, 4))
         time, v_end, _, _, _, _, _, status, _ = orbit_monodromy(
-            phi0[i], v0[i], eps, period, model, phi_k, v_k, tau_k, jac)
+            phi0[i], v0[i], physics, period, phi_k, v_k, tau_k, jac)
         out[i, 0], out[i, 1], out[i, 5] = phi0[i], v0[i], status
         if status != CONVERGED:
             continue
@@ -397,14 +415,14 @@ def block_search(phi0, v0, eps, period, model, max_iterations, out):
         if winding < 1:  # shorter than pi: no block with a positive winding near this start
             out[i, 5] = -1
             continue
-        phi, v, g1, g2, _, _, status = newton_block(phi0[i], v0[i], eps, period, winding, shift,
-                                                    model, max_iterations)
+        phi, v, g1, g2, _, _, status = newton_block(phi0[i], v0[i], physics, period, winding, shift,
+                                                    max_iterations)
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = phi, v, winding, shift
         out[i, 4], out[i, 5] = max(abs(g1), abs(g2)), status
 
 
 @jit
-def tangent_bands(phi0, v0, eps, model, n, edges, sums, counts):
+def tangent_bands(phi0, v0, physics, n, edges, sums, counts):
     """``tangent_orbit``'s log-stretches log|J u| of n collisions, summed by the velocity band
     of the state before each collision: band j holds v in [edges[j], edges[j+1]) (sums[j] and
     counts[j] accumulate). Returns (collisions done, status)."""
@@ -415,7 +433,7 @@ def tangent_bands(phi0, v0, eps, model, n, edges, sums, counts):
     top = len(edges) - 1
     for k in range(1, n + 1):
         band = np.searchsorted(edges, v, side="right") - 1
-        phi, s, c, v1, _, j11, j12, j21, j22, status = step_tangent(phi, s, c, v, eps, model)
+        phi, s, c, v1, _, j11, j12, j21, j22, status = step_tangent(phi, s, c, v, physics)
         if status != CONVERGED:
             return k - 1, status
         x, y = j11 * u1 + j12 * u2, j21 * u1 + j22 * u2
@@ -429,8 +447,8 @@ def tangent_bands(phi0, v0, eps, model, n, edges, sums, counts):
 
 
 @parallel_jit
-def tangent_band_ensemble(phi0, v0, eps, model, n, edges, sums, counts, done, status):
+def tangent_band_ensemble(phi0, v0, physics, n, edges, sums, counts, done, status):
     """``tangent_bands`` for each start (rows of ``sums`` and ``counts``), in parallel."""
     for i in prange(len(phi0)):
-        done[i], status[i] = tangent_bands(phi0[i], v0[i], eps, model, n, edges, sums[i],
+        done[i], status[i] = tangent_bands(phi0[i], v0[i], physics, n, edges, sums[i],
                                            counts[i])

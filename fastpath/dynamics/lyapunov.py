@@ -17,10 +17,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fastpath.dynamics._checks import departing, integer, model_code
-from fastpath.dynamics._internals import CONVERGED, NOT_DEPARTING, FlightStatus, UncertainCollision
 from fastpath.dynamics.kernels import separation_exponent, tangent_band_ensemble, tangent_ensemble
+from fastpath.inputs import departing, integer, model_physics
 from fastpath.inputs import real_scalar as real
+from fastpath.status import (
+    CONVERGED,
+    NOT_DEPARTING,
+    STATUS_DTYPE,
+    FlightStatus,
+    UncertainCollision,
+)
 
 
 @dataclass(frozen=True)
@@ -78,7 +84,7 @@ def lyapunov(phi, v, eps, n, *, model="exact", checkpoints=64):
     phi_a, v_a = _starts(phi, v)
     eps = real("eps", eps)
     n = integer("n", n, minimum=1)
-    code = model_code(model)
+    physics = model_physics(model, eps)
     for p, w in zip(phi_a, v_a, strict=True):
         departing(p, w, eps)
     if np.ndim(checkpoints) == 0:
@@ -92,8 +98,8 @@ def lyapunov(phi, v, eps, n, *, model="exact", checkpoints=64):
     rows, k = len(phi_a), len(points)
     growth, times, vel = np.full((rows, k), np.nan), np.full((rows, k), np.nan), np.full(
         (rows, k), np.nan)
-    done, status = np.zeros(rows, np.int64), np.zeros(rows, np.int64)
-    tangent_ensemble(phi_a, v_a, eps, code, points, growth, times, vel, done, status)
+    done, status = np.zeros(rows, np.int64), np.zeros(rows, STATUS_DTYPE)
+    tangent_ensemble(phi_a, v_a, physics, points, growth, times, vel, done, status)
     for i in range(rows):  # checkpoints after a failed flight were never written
         after = points > done[i]
         growth[i, after] = times[i, after] = vel[i, after] = np.nan
@@ -122,12 +128,12 @@ def separation(phi, v, eps, n, *, model="exact", distance=1e-9):
     after every collision (no Jacobian used). Returns the exponent after n collisions."""
     phi, v, eps = real("phi", phi), real("v", v), real("eps", eps)
     n = integer("n", n, minimum=1)
-    code = model_code(model)
+    physics = model_physics(model, eps)
     distance = real("distance", distance)
     if not 0.0 < distance < 1e-3:
         raise ValueError(f"distance must be in (0, 1e-3), got distance={distance!r}")
     departing(phi, v, eps)
-    exponent, done, status = separation_exponent(phi, v, eps, code, n, distance)
+    exponent, done, status = separation_exponent(phi, v, physics, n, distance)
     if status != CONVERGED:
         _raise(status, done, phi, v, eps)
     return float(exponent)
@@ -162,7 +168,7 @@ def by_band(phi, v, eps, n, edges, *, model="exact"):
     phi_a, v_a = _starts(phi, v)
     eps = real("eps", eps)
     n = integer("n", n, minimum=1)
-    code = model_code(model)
+    physics = model_physics(model, eps)
     edges = np.asarray(edges, dtype=float)
     if edges.ndim != 1 or len(edges) < 2 or np.any(np.diff(edges) <= 0):
         raise ValueError("edges must be at least two ascending velocities")
@@ -170,8 +176,8 @@ def by_band(phi, v, eps, n, edges, *, model="exact"):
         departing(p, w, eps)
     rows, bands = len(phi_a), len(edges) - 1
     sums, counts = np.zeros((rows, bands)), np.zeros((rows, bands), np.int64)
-    done, status = np.zeros(rows, np.int64), np.zeros(rows, np.int64)
-    tangent_band_ensemble(phi_a, v_a, eps, code, n, edges, sums, counts, done, status)
+    done, status = np.zeros(rows, np.int64), np.zeros(rows, STATUS_DTYPE)
+    tangent_band_ensemble(phi_a, v_a, physics, n, edges, sums, counts, done, status)
     total = counts.sum(0)
     with np.errstate(invalid="ignore", divide="ignore"):
         pooled = sums.sum(0) / total

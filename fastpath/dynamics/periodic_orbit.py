@@ -42,23 +42,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from fastpath.arithmetic.phase import TWO_PI
-from fastpath.dynamics._checks import departing, integer, model_code
-from fastpath.dynamics._internals import (
-    CONVERGED,
-    GENERAL,
-    NOT_DEPARTING,
-    FlightStatus,
-    UncertainCollision,
-    collide_from,
-)
-from fastpath.dynamics.kernels import (
-    EXACT,
-    UNIT_ROUNDOFF,
-    newton_block,
-    orbit_monodromy,
-    product_rounding_scale,
-)
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.dynamics.kernels import newton_block, orbit_monodromy, product_rounding_scale
+from fastpath.elastic.collision import collide_from
+from fastpath.elastic.flight import GENERAL
+from fastpath.inputs import departing, integer, model_physics
 from fastpath.inputs import real_scalar as real
+from fastpath.physics import Elastic, model_name
+from fastpath.status import CONVERGED, NOT_DEPARTING, FlightStatus, UncertainCollision
 
 ELLIPTIC, HYPERBOLIC, UNDECIDED = "elliptic", "hyperbolic", "undecided"
 MAX_ITERATIONS = 60
@@ -131,16 +122,17 @@ def _raise_for_status(status, phi, v, eps, where):
                              f"eps={eps!r}; settle it with verify")
 
 
-def build_orbit(phi, v, eps, period, winding, shift, model, iterations=0, start_error=None):
-    """The PeriodicOrbit through (phi, v) as given (no Newton step): its states, monodromy,
-    residue and stability, and the residual |G|. ``start_error``: the displacements
-    (dphi, dv) of the start's own error where the caller knows them (a symmetric orbit found on
-    its symmetry line); by default they come from G's rounding through (M - I)^-1."""
-    code = model_code(model)
+def build_orbit(phi, v, physics, period, winding, shift, iterations=0, start_error=None):
+    """The PeriodicOrbit through (phi, v) as given (no Newton step) of the map of ``physics``
+    (``Elastic`` or ``Holmes``): its states, monodromy, residue and stability, and the residual
+    |G|. ``start_error``: the displacements (dphi, dv) of the start's own error where the caller
+    knows them (a symmetric orbit found on its symmetry line); by default they come from G's
+    rounding through (M - I)^-1."""
+    eps = physics.eps
     phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
     jac = np.empty((period, 4))
     time, v_end, _, m11, m12, m21, m22, status, _ = orbit_monodromy(
-        phi, v, eps, period, code, phi_k, v_k, tau_k, jac)
+        phi, v, physics, period, phi_k, v_k, tau_k, jac)
     if status != CONVERGED:
         _raise_for_status(status, phi, v, eps, "the orbit")
     monodromy = np.array([[m11, m12], [m21, m22]])
@@ -148,24 +140,25 @@ def build_orbit(phi, v, eps, period, winding, shift, model, iterations=0, start_
     residue = (2.0 - trace) / 4.0
     error = TRACE_ROUNDING * UNIT_ROUNDOFF * product_rounding_scale(jac) / 4.0
     if start_error is None:
-        error += _position_error(phi, v, eps, period, code, monodromy, time, v_k, residue)
+        error += _position_error(phi, v, physics, period, monodromy, time, v_k, residue)
     else:
-        error += _residue_change(phi, v, eps, period, code, residue, [start_error])
+        error += _residue_change(phi, v, physics, period, residue, [start_error])
     decided = residue if shift == 0 else stability_residue(trace, det)
     residual = max(abs(time - TWO_PI * winding), abs(v_end - v - math.pi * shift))
-    return PeriodicOrbit(phi_k, v_k, tau_k, eps, period, winding, shift, model, monodromy, trace,
-                         det, residue, error, classify(decided, error), residual, iterations)
+    return PeriodicOrbit(phi_k, v_k, tau_k, eps, period, winding, shift, model_name(physics),
+                         monodromy, trace, det, residue, error, classify(decided, error),
+                         residual, iterations)
 
 
-def _residue_at(phi, v, eps, period, code):
+def _residue_at(phi, v, physics, period):
     phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
     jac = np.empty((period, 4))
-    *_, m11, m12, m21, m22, status, _ = orbit_monodromy(phi, v, eps, period, code, phi_k, v_k,
+    *_, m11, m12, m21, m22, status, _ = orbit_monodromy(phi, v, physics, period, phi_k, v_k,
                                                        tau_k, jac)
     return (2.0 - m11 - m22) / 4.0 if status == CONVERGED else math.nan
 
 
-def _position_error(phi, v, eps, period, code, monodromy, time, speeds, residue):
+def _position_error(phi, v, physics, period, monodromy, time, speeds, residue):
     """Effect on the residue of the float orbit's own position error. Newton stops where G is
     at its rounding, |dG| <= g ~ u times the summed times and speeds, so the start is off by
     dx = (M - I)^-1 dG; the residue is recomputed at the four starts x + (M - I)^-1 (+-g, +-g)
@@ -177,15 +170,15 @@ def _position_error(phi, v, eps, period, code, monodromy, time, speeds, residue)
     inverse = np.array([[a[1, 1], -a[0, 1]], [-a[1, 0], a[0, 0]]]) / det
     g_error = TRACE_ROUNDING * UNIT_ROUNDOFF * (time + np.sum(np.abs(speeds)) + abs(v))
     moves = [inverse @ (g_error * np.array(signs)) for signs in ((1.0, 1.0), (1.0, -1.0))]
-    return _residue_change(phi, v, eps, period, code, residue, moves)
+    return _residue_change(phi, v, physics, period, residue, moves)
 
 
-def _residue_change(phi, v, eps, period, code, residue, moves):
+def _residue_change(phi, v, physics, period, residue, moves):
     """The largest |R(x +- dx) - R(x)| over the displacements dx (inf if one fails)."""
     worst = 0.0
     for dx in moves:
         for sign in (1.0, -1.0):
-            moved = _residue_at(phi + sign * dx[0], v + sign * dx[1], eps, period, code)
+            moved = _residue_at(phi + sign * dx[0], v + sign * dx[1], physics, period)
             worst = max(worst, abs(moved - residue))
     return worst if math.isfinite(worst) else math.inf
 
@@ -207,22 +200,21 @@ def periodic_orbit(phi, v, eps, period, *, winding=None, velocity_shift=0, model
     phi, v, eps = real("phi", phi), real("v", v), real("eps", eps)
     period = integer("period", period, minimum=1)
     shift = integer("velocity_shift", velocity_shift)
-    code = model_code(model)
+    physics = model_physics(model, eps)
     max_iterations = integer("max_iterations", max_iterations, minimum=1)
     if winding is not None:
         winding = integer("winding", winding, minimum=1)
     departing(phi, v, eps, "the guess")
     where = f"near phi={phi!r}, v={v!r} (eps={eps!r})"
-    if code == EXACT and shift < 0:
+    if type(physics) is Elastic and shift < 0:
         raise OrbitNotFound(f"velocity shift {shift} < 0 {where}: v falls by pi*{-shift} per "
                             f"block to 0 after finitely many; not an accelerator mode of the "
                             f"exact map (its time reverse, at phase -phi, has shift {-shift})")
-    if code == EXACT and shift != 0 and period > 1:
-        return _repeated_mode(phi, v, eps, period, winding, shift, model, max_iterations,
-                              where)
+    if type(physics) is Elastic and shift != 0 and period > 1:
+        return _repeated_mode(phi, v, physics, period, winding, shift, max_iterations, where)
     if winding is None:
-        winding = _own_winding(phi, v, eps, period, code, where)
-    phi1, v1, g1, g2, step, its, status = newton_block(phi, v, eps, period, winding, shift, code,
+        winding = _own_winding(phi, v, physics, period, where)
+    phi1, v1, g1, g2, step, its, status = newton_block(phi, v, physics, period, winding, shift,
                                                       max_iterations)
     if status == NOT_CONVERGED:
         raise OrbitNotFound(
@@ -231,19 +223,19 @@ def periodic_orbit(phi, v, eps, period, *, winding=None, velocity_shift=0, model
             f"residual {max(abs(g1), abs(g2)):.3g}, last step {step:.3g}; try a closer guess")
     if status != CONVERGED:
         _raise_for_status(status, phi1, v1, eps, "Newton's method")
-    period, winding, shift = _minimal(phi1, v1, eps, period, winding, shift, code)
-    if code == EXACT and shift != 0:
+    period, winding, shift = _minimal(phi1, v1, physics, period, winding, shift)
+    if type(physics) is Elastic and shift != 0:
         _mode_goes_on(phi1, v1, eps, winding, shift, where)
-    return build_orbit(phi1, v1, eps, period, winding, shift, model, its)
+    return build_orbit(phi1, v1, physics, period, winding, shift, its)
 
 
-def _own_winding(phi, v, eps, period, code, where):
+def _own_winding(phi, v, physics, period, where):
     """The winding of the guess's own p flights (rounded); OrbitNotFound below 1."""
     phi_k, v_k, tau_k = np.empty(period), np.empty(period), np.empty(period)
     jac = np.empty((period, 4))
-    time, *_, status, _ = orbit_monodromy(phi, v, eps, period, code, phi_k, v_k, tau_k, jac)
+    time, *_, status, _ = orbit_monodromy(phi, v, physics, period, phi_k, v_k, tau_k, jac)
     if status != CONVERGED:
-        _raise_for_status(status, phi, v, eps, "the guess's orbit")
+        _raise_for_status(status, phi, v, physics.eps, "the guess's orbit")
     winding = round(time / TWO_PI)
     if winding < 1:
         raise OrbitNotFound(f"the guess's {period} flights {where} last {time:.10g} < pi: no "
@@ -251,7 +243,7 @@ def _own_winding(phi, v, eps, period, code, where):
     return winding
 
 
-def _repeated_mode(phi, v, eps, period, winding, shift, model, max_iterations, where):
+def _repeated_mode(phi, v, physics, period, winding, shift, max_iterations, where):
     """p >= 2 collisions with a shift, exact map: only as p blocks of a period-1 mode."""
     refusal = (f"a block of {period} collisions with velocity shift {shift} {where} is an orbit "
                f"of the exact map only as {period} blocks of a period-1 accelerator mode")
@@ -266,28 +258,29 @@ def _repeated_mode(phi, v, eps, period, winding, shift, model, max_iterations, w
                                 f"of one")
         one = twice // (2 * period)
     try:
-        return periodic_orbit(phi, v, eps, 1, winding=one, velocity_shift=step, model=model,
+        return periodic_orbit(phi, v, physics.eps, 1, winding=one, velocity_shift=step,
+                              model=model_name(physics),
                               max_iterations=max_iterations)
     except OrbitNotFound as err:
         raise OrbitNotFound(f"{refusal}, and none was found: {err}") from None
 
 
-def _block(phi, v, eps, d, code):
+def _block(phi, v, physics, d):
     """(time, v_end, phase_end) of d collisions from (phi, v), or None if a flight fails."""
     phi_k, v_k, tau_k = np.empty(d), np.empty(d), np.empty(d)
     jac = np.empty((d, 4))
-    time, v_end, phi_end, *_, status, _ = orbit_monodromy(phi, v, eps, d, code, phi_k, v_k,
+    time, v_end, phi_end, *_, status, _ = orbit_monodromy(phi, v, physics, d, phi_k, v_k,
                                                           tau_k, jac)
     return None if status != CONVERGED else (time, v_end, phi_end)
 
 
-def _minimal(phi, v, eps, period, winding, shift, code):
+def _minimal(phi, v, physics, period, winding, shift):
     """(period, winding, shift) of the shortest block that closes at the converged state
     (module docstring: relabelled below ``SAME``)."""
     for d in range(1, period):
         if period % d:
             continue
-        block = _block(phi, v, eps, d, code)
+        block = _block(phi, v, physics, d)
         if block is None:
             continue
         time, v_end, _ = block

@@ -59,6 +59,7 @@ where its bound E overflows (v > 5e153) is within rounding of the root and is re
 """
 
 import math
+from typing import NamedTuple
 
 from fastpath.arithmetic.jit import jit
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
@@ -68,6 +69,20 @@ from fastpath.status import CONVERGED, ITERATION_LIMIT, MAX_ITERATIONS, OVERFLOW
 _GROWTH_ROUNDS = 4  # rounds of growing H in the local step
 RANGE_LIMIT = 2.0**1000  # the largest X of a point the analysis admits (module docstring: Range)
 GOING_ON = -1  # ``next_point``: no end yet
+
+
+class GapBounds(NamedTuple):
+    """What a lower-bound step at t needs (``elastic_gap_bounds``, and with drag
+    ``fastpath.dissipative.drag_flight.drag_gap_bounds``)."""
+
+    gap: float  # d(t)
+    rate: float  # d'(t)
+    gap_error: float  # E, the rounding bound of d
+    rate_error: float  # R, the rounding bound of d'
+    curvature: float  # c: d''(t) lowered by its rounding bound
+    jerk: float  # j = d'''(t) = -eps*sin(phi + t)
+    eps: float
+    curvature_bound: float  # a: the bound on -d'' for the rest of the flight
 
 
 @jit
@@ -116,7 +131,7 @@ def certified_step(d, r, c, j, eps, a):
 
 
 @jit
-def may_be_graze(eps, phi, t, r, d_err):
+def may_be_graze(phi, eps, t, r, d_err):
     """Whether a gap within rounding of zero at t (|d| <= d_err) may be a near-tangent dip.
 
     The exact gap is then <= 2*d_err at t. Where it is locally concave, d2 = d''(t) < 0, it
@@ -137,8 +152,8 @@ def may_be_graze(eps, phi, t, r, d_err):
 
 
 @jit
-def elastic_gap_bounds(eps, phi, v, t):
-    """What a lower-bound step at t needs, without drag: (d, d1, E, R, c, j, eps, a).
+def elastic_gap_bounds(phi, v, eps, t):
+    """What a lower-bound step at t needs, without drag: ``GapBounds`` (d, d1, E, R, c, j, eps, a).
 
     d and its slope d1 with their rounding bounds E, R (``fastpath.elastic.gap``); c = d2(t)
     lowered by its rounding bound (the argument's u*(|phi| + t) included); the jerk
@@ -150,13 +165,14 @@ def elastic_gap_bounds(eps, phi, v, t):
     r_err = rate_error(phi, v, eps, t)
     theta = phi + t
     curvature = -1.0 + eps * math.cos(theta) - 4.0 * UNIT_ROUNDOFF * abs(eps) * (1.0 + t)
-    return d, r, d_err, r_err, curvature, -eps * math.sin(theta), eps, 1.0 + abs(eps)
+    return GapBounds(d, r, d_err, r_err, curvature, -eps * math.sin(theta), eps,
+                     1.0 + abs(eps))
 
 
 @jit
 def next_point(t, bounds, grazes):
-    """One lower-bound iteration from t, given the gap's ``bounds`` there (as
-    ``elastic_gap_bounds``) and whether a zero gap there may be a graze: (t_next, status),
+    """One lower-bound iteration from t, given the gap's ``bounds`` there
+    (``GapBounds``) and whether a zero gap there may be a graze: (t_next, status),
     status GOING_ON or the FlightStatus of the flight's end at t_next.
 
     The models take the worst values within rounding: d, d1 and d2 lowered by their bounds.
@@ -186,8 +202,9 @@ def lower_bound_flight(phi, v, eps, t):
     ``fastpath.dissipative.drag_flight.lower_bound_drag_flight``.
     """
     for k in range(1, ITERATION_LIMIT + 1):
-        bounds = elastic_gap_bounds(eps, phi, v, t)
-        grazes = bounds[0] <= bounds[2] and may_be_graze(eps, phi, t, bounds[1], bounds[2])
+        bounds = elastic_gap_bounds(phi, v, eps, t)
+        grazes = bounds.gap <= bounds.gap_error and may_be_graze(phi, eps, t, bounds.rate,
+                                                                 bounds.gap_error)
         t, status = next_point(t, bounds, grazes)
         if status != GOING_ON:
             return t, k, status

@@ -13,6 +13,7 @@ import numpy as np
 
 from fastpath.arithmetic.jit import jit
 from fastpath.dissipative.carried import CARRIED
+from fastpath.status import STATUS_DTYPE
 
 NO_LIMIT = np.int64(2**62)  # max_collisions when the horizon is a time only
 SAMPLE_FIELDS = ("n", "phi", "v", "phi1", "v1", "tau")  # a sample row; then CARRIED (r < 1)
@@ -147,7 +148,7 @@ class Flags(NamedTuple):
 
     @classmethod
     def zeros(cls, particles):
-        return cls(np.zeros(particles, np.int8), np.zeros((particles, len(FLAG_FIELDS))))
+        return cls(np.zeros(particles, STATUS_DTYPE), np.zeros((particles, len(FLAG_FIELDS))))
 
 
 class Portrait(NamedTuple):

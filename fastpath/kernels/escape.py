@@ -142,7 +142,7 @@ def _depart_of_model(physics, real, states, lane, i, starts, flags):
 
     def dissipative_departure(physics, real, states, lane, i, starts, flags):
         state = states[lane]
-        if not start_particle(physics, state, i, starts, flags, True):
+        if not start_particle(state, physics, i, starts, flags, True):
             return False
         real[PHI_L, lane], real[V_L, lane], real[T_L, lane] = departure_point(state)
         return True
@@ -217,7 +217,7 @@ def _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, f
                     if keep_carried and slot[lane] >= 0 and n[lane] < target[lane]:
                         copy_carried(state, carried[lane])
                     status, _, tau_l, kind, t_start, _ = advance(
-                        physics, state, AUTO, True, detach, hole_lo)
+                        state, physics, AUTO, True, detach, hole_lo)
                     phi1_l, v1_l, t1 = state[PHI], state[V], state[T]
                     answered[lane] = False
                 elif answered[lane]:

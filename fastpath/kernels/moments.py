@@ -100,14 +100,14 @@ def _moments_block(physics, span, starts, grid, sample, sums, flags, detach):
     motion = (as_step, detach, np.empty(0))
     done = 0
     for i in range(first, last):
-        if not start_particle(physics, state, i, starts, flags, as_step):
+        if not start_particle(state, physics, i, starts, flags, as_step):
             continue
         n, v, t = starts.n[i], starts.v[i], starts.t[i]
         start = v
         jn = _add_n(sums, b, np.searchsorted(n_grid, n), n, v, start, n_grid)
         jt = np.searchsorted(t_grid, t)
         while not ((n >= n_last and t > t_last) or n >= grid.max_collisions):
-            status, _, kind, t_start, t_end = sampled_collision(physics, state, i, n, sample,
+            status, _, kind, t_start, t_end = sampled_collision(state, physics, i, n, sample,
                                                                 flags, carried, motion)
             if status != CONVERGED:
                 break

@@ -21,7 +21,7 @@ from fastpath.status import CONVERGED
 
 
 @jit
-def orbit_loop(physics, phi0, v0, method, out):
+def orbit_loop(phi0, v0, physics, method, out):
     """Fill ``out`` (phi, v, t of length n+1, iterations of length n, sticking rows) from
     (phi0, v0); return (collisions done, sticking episodes, status, stuck for good).
 
@@ -29,7 +29,7 @@ def orbit_loop(physics, phi0, v0, method, out):
     flight that is not CONVERGED (its status is returned), and when the particle sticks for good.
     """
     state = np.empty(STATE_SIZE)
-    status = begin(physics, state, phi0, v0, 0.0, False)
+    status = begin(state, phi0, v0, 0.0, physics, False)
     out.phi[0], out.v[0], out.t[0] = state[PHI], v0, 0.0
     if status != CONVERGED:
         return 0, 0, status, False
@@ -37,7 +37,7 @@ def orbit_loop(physics, phi0, v0, method, out):
     no_holes = np.empty(0)
     episodes = 0
     for k in range(len(out.iterations)):
-        status, its, _, kind, t_start, t_end = advance(physics, state, method, False, detach,
+        status, its, _, kind, t_start, t_end = advance(state, physics, method, False, detach,
                                                        no_holes)
         if status != CONVERGED:
             return k, episodes, status, False

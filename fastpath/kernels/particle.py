@@ -51,56 +51,56 @@ from fastpath.status import CONVERGED, UNCERTAIN
 
 
 @jit
-def flight(physics, phi, v, method=AUTO):
+def flight(phi, v, physics, method=AUTO):
     """(tau, iterations, status) of the flight from (phi, v), phi any real: the elastic flight,
     or the flight with the description's drag (restitution does not change a flight)."""
-    return _flight(physics, phi, v, method)
+    return _flight(phi, v, physics, method)
 
 
-def _flight(physics, phi, v, method):
+def _flight(phi, v, physics, method):
     """``flight``, compiled for the description's model only (module docstring)."""
 
 
 @typed_overload(_flight)
-def _flight_of_model(physics, phi, v, method):
+def _flight_of_model(phi, v, physics, method):
     if physics.instance_class is Dissipative:
-        def dissipative_flight(physics, phi, v, method):
+        def dissipative_flight(phi, v, physics, method):
             if physics.drag != 0.0:
-                return solve_drag_flight(physics, phi, v, method)
+                return solve_drag_flight(phi, v, physics, method)
             return solve_flight(phi, v, physics.eps, method)
         return dissipative_flight
-    return lambda physics, phi, v, method: solve_flight(phi, v, physics.eps, method)
+    return lambda phi, v, physics, method: solve_flight(phi, v, physics.eps, method)
 
 
 @jit
-def step(physics, phi, v):
+def step(phi, v, physics):
     """(phi1, v1, tau, iterations, status): one collision from (phi, v), phi any real, phi1 in
     [0, 2*pi); the collision of ``fastpath.step`` (Elastic or Dissipative)."""
-    return _step(physics, phi, v)
+    return _step(phi, v, physics)
 
 
-def _step(physics, phi, v):
+def _step(phi, v, physics):
     """``step``, compiled for the description's model only (module docstring)."""
 
 
 @typed_overload(_step)
-def _step_of_model(physics, phi, v):
+def _step_of_model(phi, v, physics):
     if physics.instance_class is Dissipative:
-        return lambda physics, phi, v: dissipative_collide(physics, phi, v)
-    return lambda physics, phi, v: collide(phi, v, physics.eps)
+        return lambda phi, v, physics: dissipative_collide(phi, v, physics)
+    return lambda phi, v, physics: collide(phi, v, physics.eps)
 
 
 @jit
-def begin(physics, state, phi0, v0, t0, as_step):
+def begin(state, phi0, v0, t0, physics, as_step):
     """Fill ``state`` for a departure from (phi0, v0) at time t0; return a FlightStatus code
     (not CONVERGED only for a dissipative departure that is not certain, r < 1)."""
-    status = carried.begin(physics, state, phi0, v0, t0)
+    status = carried.begin(state, phi0, v0, t0, physics)
     if model_of(physics) == ELASTIC and as_step:
         state[PHI] = phi0  # a step starts from the phase as given (module docstring)
     return status
 
 
-def advance(physics, state, method, as_step, detach, hole_lo):
+def advance(state, physics, method, as_step, detach, hole_lo):
     """Move ``state`` on by one collision: (status, iterations, tau, sticking, t_start, t_end)
     as ``fastpath.dissipative.carried.advance`` (sticking NO_STICKING without dissipation; the
     state is unchanged where status is not CONVERGED). method: AUTO or LOWER_BOUND (a
@@ -115,29 +115,29 @@ def advance(physics, state, method, as_step, detach, hole_lo):
 
 
 @typed_overload(advance, prefer_literal=True)
-def _advance_of_model(physics, state, method, as_step, detach, hole_lo):
+def _advance_of_model(state, physics, method, as_step, detach, hole_lo):
     if physics.instance_class is Holmes:
-        return lambda physics, state, method, as_step, detach, hole_lo: holmes_advance(
-            physics.eps, state)
+        return lambda state, physics, method, as_step, detach, hole_lo: holmes_advance(
+            state, physics.eps)
     if physics.instance_class is not Elastic:
-        return lambda physics, state, method, as_step, detach, hole_lo: carried.advance(
-            physics, state, method, detach, hole_lo)
+        return lambda state, physics, method, as_step, detach, hole_lo: carried.advance(
+            state, physics, method, detach, hole_lo)
     if isinstance(as_step, types.BooleanLiteral) and as_step.literal_value:
-        return lambda physics, state, method, as_step, detach, hole_lo: step_advance(
-            physics.eps, state, method)
+        return lambda state, physics, method, as_step, detach, hole_lo: step_advance(
+            state, physics.eps, method)
     if isinstance(as_step, types.BooleanLiteral):
-        return lambda physics, state, method, as_step, detach, hole_lo: orbit_advance(
-            physics.eps, state, method)
+        return lambda state, physics, method, as_step, detach, hole_lo: orbit_advance(
+            state, physics.eps, method)
 
-    def either_advance(physics, state, method, as_step, detach, hole_lo):
+    def either_advance(state, physics, method, as_step, detach, hole_lo):
         if as_step:
-            return step_advance(physics.eps, state, method)
-        return orbit_advance(physics.eps, state, method)
+            return step_advance(state, physics.eps, method)
+        return orbit_advance(state, physics.eps, method)
     return either_advance
 
 
 @jit
-def holmes_advance(eps, state):
+def holmes_advance(state, eps):
     """``advance`` with the Holmes map (flight time 2*v)."""
     tau = 2.0 * state[V]
     state[PHI], state[V] = holmes_collide(state[PHI], state[V], eps)
@@ -146,14 +146,14 @@ def holmes_advance(eps, state):
 
 
 @jit
-def step_advance(eps, state, method):
+def step_advance(state, eps, method):
     """``advance`` with the paper's map as ``fastpath.step`` computes it (module docstring)."""
     phi1, v1, tau, its, status = collide(state[PHI], state[V], eps, method)
     return _moved(state, status, its, phi1, v1, tau, state[SIN], state[COS])
 
 
 @jit
-def orbit_advance(eps, state, method):
+def orbit_advance(state, eps, method):
     """``advance`` with the paper's map as an orbit computes it: the sine and cosine carried
     from collision to collision, the straight-line flight skipped (module docstring)."""
     phi1, sin1, cos1, v1, tau, its, status = collide_from(

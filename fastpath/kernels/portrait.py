@@ -54,11 +54,11 @@ def _portrait_block(physics, span, starts, max_collisions, sample, portrait, fla
     counts = portrait.counts
     n_phi, n_v = counts.shape[1], counts.shape[2]
     for i in range(first, last):
-        if not start_particle(physics, state, i, starts, flags, True):
+        if not start_particle(state, physics, i, starts, flags, True):
             continue
         n = starts.n[i]
         while n < max_collisions:
-            status, _, kind, _, _ = sampled_collision(physics, state, i, n, sample, flags,
+            status, _, kind, _, _ = sampled_collision(state, physics, i, n, sample, flags,
                                                       carried, motion)
             if status != CONVERGED:
                 break

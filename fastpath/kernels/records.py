@@ -48,11 +48,11 @@ def particle_buffers():
 
 
 @jit
-def start_particle(physics, state, i, starts, flags, as_step):
+def start_particle(state, physics, i, starts, flags, as_step):
     """Fill ``state`` with particle i's start (``particle.begin``) and clear its flag; flag it
     instead if it does not depart for certain. Whether it departs."""
     flags.status[i] = 0
-    status = begin(physics, state, starts.phi[i], starts.v[i], starts.t[i], as_step)
+    status = begin(state, starts.phi[i], starts.v[i], starts.t[i], physics, as_step)
     if status != CONVERGED:
         flag(flags, i, status, starts.phi[i], starts.v[i], starts.t[i], starts.n[i])
         return False
@@ -60,7 +60,7 @@ def start_particle(physics, state, i, starts, flags, as_step):
 
 
 @jit
-def sampled_collision(physics, state, i, n, sample, flags, carried, motion):
+def sampled_collision(state, physics, i, n, sample, flags, carried, motion):
     """Particle i's collision n + 1 (``particle.advance``), flagged if undecided, into its sample
     row if picked: (status, tau, sticking, t_start, t_end). ``carried``: a buffer for the
     departure's carried entries; motion = (as_step, detach, hole_lo) of ``advance``."""
@@ -70,7 +70,7 @@ def sampled_collision(physics, state, i, n, sample, flags, carried, motion):
     phi, v, t = departure_point(state)
     if keep:
         copy_carried(state, carried)
-    status, _, tau, kind, t_start, t_end = advance(physics, state, AUTO_METHOD, as_step, detach,
+    status, _, tau, kind, t_start, t_end = advance(state, physics, AUTO_METHOD, as_step, detach,
                                                    hole_lo)
     if status != CONVERGED:
         flag(flags, i, status, phi, v, t, n)

@@ -36,13 +36,13 @@ def steps_of(phi0, v0, eps, r, n, k=0.0, law=NONE):
     """[(phi, v, carried, (phi1, v1, tau))] of up to n advance steps from (phi0, v0)."""
     state = np.zeros(STATE_SIZE)
     physics = dissipative(eps, k, law, r)
-    assert begin(physics, state, phi0, v0, 0.0) == CONVERGED
+    assert begin(state, phi0, v0, 0.0, physics) == CONVERGED
     detach, no_holes = detachment(physics), np.empty(0)
     out = []
     for _ in range(n):
         phi, v, _ = departure_point(state)
         carried = tuple(float(state[j]) for j in CARRIED)
-        status, _, tau, kind, _, _ = advance(physics, state, AUTO, detach, no_holes)
+        status, _, tau, kind, _, _ = advance(state, physics, AUTO, detach, no_holes)
         assert status == CONVERGED
         out.append((phi, v, carried, (state[PHI], state[V], tau)))
         if kind == STUCK:

@@ -28,9 +28,8 @@ import fastpath
 from fastpath.arithmetic.sincos import sin_cos
 from fastpath.elastic.flight import AUTO, GENERAL, LOWER_BOUND, departure_phase, flight_from
 from fastpath.elastic.gap import departure, gap, gap_error, gap_rate, rate_error
-from fastpath.elastic.lower_bound import first_root
+from fastpath.elastic.lower_bound import GapBounds, elastic_gap_bounds, first_root, may_be_graze
 from fastpath.elastic.lower_bound import lower_bound_flight as _lower_bound_flight
-from fastpath.elastic.lower_bound import may_be_graze as _may_be_graze
 from fastpath.elastic.lower_bound import polish as _polish
 from fastpath.status import (
     CONVERGED,
@@ -44,10 +43,6 @@ from fastpath.status import (
 
 DPS = 40
 flight_module = importlib.import_module("fastpath.elastic.lower_bound")
-
-
-def may_be_graze(phi, eps, t, r, d_err):
-    return _may_be_graze(eps, phi, t, r, d_err)
 
 
 def lower_bound_flight(phi, v, eps, w0, start=0.0):
@@ -428,3 +423,18 @@ def test_an_overflowing_w0_is_an_overflow():
     for method in (0, GENERAL):
         tau, _, _, _, evaluations, status = flight_from(1.0, s, c, 1.5e308, 1e308, method, 0.0)
         assert status == int(FlightStatus.OVERFLOW) and evaluations == 0 and math.isnan(tau)
+
+
+def test_the_gap_bounds_are_named_by_what_they_hold():
+    """``elastic_gap_bounds`` returns a ``GapBounds``: each field is the quantity its name says
+    (the gap, its slope, their rounding bounds; eps; a = 1 + |eps|)."""
+    phi, v, eps, t = 0.7, 3.0, 0.6, 1.25
+    bounds = elastic_gap_bounds(phi, v, eps, t)
+    assert isinstance(bounds, GapBounds)
+    assert bounds.gap == gap(phi, v, eps, t)
+    assert bounds.rate == gap_rate(phi, v, eps, t)
+    assert bounds.gap_error == gap_error(phi, v, eps, t)
+    assert bounds.rate_error == rate_error(phi, v, eps, t)
+    assert bounds.jerk == -eps * math.sin(phi + t)
+    assert (bounds.eps, bounds.curvature_bound) == (eps, 1.0 + abs(eps))
+    assert bounds.curvature < -1.0 + eps * math.cos(phi + t)

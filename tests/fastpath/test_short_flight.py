@@ -150,7 +150,7 @@ def _count_gap_evaluations(monkeypatch, gap=None, rate=None):
     short_flight = getattr(module.short_flight, "py_func", module.short_flight)
 
     def solve(sin_phi, cos_phi, w, eps, upper):  # without drag the absolute v is not read
-        return short_flight(dissipative(eps, 0.0, NONE, 0.5), sin_phi, cos_phi, w, 0.0, upper)
+        return short_flight(sin_phi, cos_phi, w, 0.0, dissipative(eps, 0.0, NONE, 0.5), upper)
 
     return solve, calls
 
