@@ -156,11 +156,11 @@ def _included_run(out_dir, run_dir, echo):
 # long this report took", docs/report/report.md): the weights of the overall progress line. A
 # stage not named here (an included run) weighs INCLUDED_RUN_S.
 STAGE_S = {
-    "paper's figures and claims": 269.0,
-    "dynamics: periodic orbits, Lyapunov exponents, Fermi acceleration": 4.0,
-    "physics checks": 27.0,
-    "speed": 59.0,
-    "work-precision and hard cases": 30.0,
+    "paper's figures and claims": 622.0,
+    "dynamics: periodic orbits, Lyapunov exponents, Fermi acceleration": 7.0,
+    "physics checks": 46.0,
+    "speed": 115.0,
+    "work-precision and hard cases": 57.0,
 }
 INCLUDED_RUN_S = 2.0
 
