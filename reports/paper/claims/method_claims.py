@@ -32,10 +32,10 @@ from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.register import make_claim
+from reports.paper.studies.sampling import ESCAPE_BOX, uniform_box
 from reports.paper.studies.seeds import SAMPLING_SEED
 
 EPS = 0.6
-BOX = ((3.85, 4.15), (2.0, 4.0))
 SIZES = {False: {"orbits": 200, "collisions": 50, "phase": 5000, "iterates": 200,
                  "overstep": 300},
          True: {"orbits": 20, "collisions": 20, "phase": 400, "iterates": 30, "overstep": 40}}
@@ -53,8 +53,7 @@ def samples(quick=False):
     """{name: (phi, v)} of the two samples (module docstring)."""
     size = SIZES[bool(quick)]
     rng = np.random.default_rng(SAMPLING_SEED)
-    phi0 = rng.uniform(*BOX[0], size["orbits"])
-    v0 = rng.uniform(*BOX[1], size["orbits"])
+    phi0, v0 = uniform_box(rng, ESCAPE_BOX, size["orbits"])
     orbits = [fastpath.orbit(float(p), float(w), EPS, size["collisions"])
               for p, w in zip(phi0, v0, strict=True)]
     phi = np.concatenate([o.phi[:-1] for o in orbits])

@@ -31,11 +31,11 @@ from reports.paper.claims.register import make_claim
 from reports.paper.claims.window_family import inside_windows, window_label
 from reports.paper.claims.window_members import window_fit
 from reports.paper.studies.follow import _step_all
+from reports.paper.studies.sampling import ESCAPE_BOX, uniform_box
 from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.stats.likelihood import fit_stretched_fixed, window_of
 
 EPS = 0.6
-BOX = ((3.85, 4.15), (2.0, 4.0))
 N_GRID = (50, 100, 200)
 TAIL_RANGES = ((1e-1, 1e-2), (1e-2, 1e-3))
 C1_RANGE = (1e-1, 1e-3)
@@ -50,7 +50,7 @@ def closed_times(quick=False):
     """{n: t_n of every orbit} of the closed system (module docstring)."""
     m = SIZES[bool(quick)]
     rng = np.random.default_rng(SAMPLING_SEED)
-    phi, v = rng.uniform(*BOX[0], m), rng.uniform(*BOX[1], m)
+    phi, v = uniform_box(rng, ESCAPE_BOX, m)
     t = np.zeros(m)
     out = {}
     for k in range(1, max(N_GRID) + 1):

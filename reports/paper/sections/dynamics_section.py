@@ -30,11 +30,11 @@ from reports.paper.figures.dynamics_residue import residue_figure
 from reports.paper.studies.dynamics_study import (
     FULL,
     K_C_QUARTER,
-    PAPER_BOX,
     QUICK,
     period_two_start,
     run,
 )
+from reports.paper.studies.sampling import ESCAPE_BOX
 
 STUDY = Path(__file__).resolve().parents[3] / "docs" / "report" / "dynamics" / "study.json"
 RUN = "docs/report/dynamics/study.json"
@@ -74,7 +74,7 @@ def recheck(study, quick):
                            f"recomputed, largest difference {max(diffs):.1e}")
     lyap = study["lyapunov"]
     rng = np.random.default_rng(lyap["seed"])
-    (p0, p1), (v0, v1) = PAPER_BOX
+    (p0, p1), (v0, v1) = ESCAPE_BOX
     early = np.array(lyap["first_orbits_early"])
     phi, v = rng.uniform(p0, p1, lyap["orbits"] + lyap["stopped"]), None
     v = rng.uniform(v0, v1, len(phi))

@@ -64,11 +64,16 @@ import numpy as np
 
 import fastpath
 from fastpath import moments
-from reports.paper.studies.sampling import bootstrap_blocks, slope_fit, verify_sample
+from reports.paper.studies.sampling import (
+    ESCAPE_BOX,
+    bootstrap_blocks,
+    slope_fit,
+    uniform_box,
+    verify_sample,
+)
 from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.stats.analysis import SHIFT_DECADES
 
-BOX = ((3.85, 4.15), (2.0, 4.0))  # the paper's escape start box
 BLOCKS = 64
 RANDOM_PHASE_BETA = -0.5  # our estimate (module docstring), not a published value
 
@@ -223,8 +228,7 @@ def dissipation_study(quick=False):
     t0 = time.perf_counter()
     rng = np.random.default_rng(SAMPLING_SEED)
     m = cfg["particles"]
-    phi0 = rng.uniform(*BOX[0], m)
-    v0 = rng.uniform(*BOX[1], m)
+    phi0, v0 = uniform_box(rng, ESCAPE_BOX, m)
     n = np.unique(np.round(np.logspace(0, math.log10(cfg["n_max"]), 41)).astype(np.int64))
     nf = n.astype(float)
     window = (cfg["n_max"] / 10.0, float(cfg["n_max"]))

@@ -48,12 +48,12 @@ from fastpath.dynamics.greene import (
     noble,
     tail_uncertainty,
 )
+from reports.paper.studies.sampling import ESCAPE_BOX
 from reports.paper.studies.seeds import DYNAMICS_SEED
 from verify.dynamics import residue as precise
 
 K_C_QUARTER = STANDARD_MAP_K_C / 4.0  # the standard map's K_c in the bouncer's eps (K = 4 eps)
 PAPER_EPS = 0.6
-PAPER_BOX = ((3.85, 4.15), (2.0, 4.0))
 NOBLES = ((), (2,), (3,), (4,), (5,), (1, 2), (2, 2), (1, 3), (3, 2), (1, 4))
 GOLDEN_PAIR = ((), (2,))
 PRECISE_DPS = 40  # digits of the multiprecision crossings (their error is measured at +20)
@@ -428,7 +428,7 @@ def crossing_simulation(sizes: Sizes, critical: dict) -> list:
 # --- Lyapunov exponents ------------------------------------------------------------------------
 
 def _paper_starts(count, rng):
-    (p0, p1), (v0, v1) = PAPER_BOX
+    (p0, p1), (v0, v1) = ESCAPE_BOX
     return rng.uniform(p0, p1, count), rng.uniform(v0, v1, count)
 
 

@@ -15,8 +15,10 @@ import numpy as np
 
 from fastpath import moments
 from reports.paper.studies.sampling import (
+    ESCAPE_BOX,
     bootstrap_blocks,
     slope_fit,
+    uniform_box,
     verify_sample,
 )
 from reports.paper.studies.seeds import SAMPLING_SEED
@@ -25,7 +27,6 @@ from reports.paper.studies.seeds import SAMPLING_SEED
 FERMI_EPS = 0.6
 
 
-FERMI_BOX = ((3.85, 4.15), (2.0, 4.0))
 
 
 FERMI = {False: {"particles": 8000, "n_max": 30_000, "t_max": 3e6, "n_fit": 1000.0,
@@ -75,8 +76,7 @@ def fermi_ensemble(quick=False, particles=None):
     t0 = time.perf_counter()
     rng = np.random.default_rng(SAMPLING_SEED)
     m = cfg["particles"]
-    phi0 = rng.uniform(*FERMI_BOX[0], m)
-    v0 = rng.uniform(*FERMI_BOX[1], m)
+    phi0, v0 = uniform_box(rng, ESCAPE_BOX, m)
     n_grid = np.unique(np.round(np.logspace(0, math.log10(cfg["n_max"]), 61)).astype(np.int64))
     t_grid = np.logspace(0, math.log10(cfg["t_max"]), 61)
     mom = moments(phi0, v0, FERMI_EPS, n_grid, t_grid=t_grid, blocks=64,

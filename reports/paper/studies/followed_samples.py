@@ -25,11 +25,11 @@ import numpy as np
 from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.studies.follow import follow
 from reports.paper.studies.islands import classify
+from reports.paper.studies.sampling import ESCAPE_BOX, uniform_box
 from reports.paper.studies.seeds import FOLLOWED_SEED
 from reports.runs.scenes import load_scene
 
 EPS = 0.6
-ESCAPE_BOX = ((3.85, 4.15), (2.0, 4.0))
 HOLE_WIDTH = 0.3
 TRANSPORT_V = (2.0, 4.0)
 MAX_COLLISIONS = 100_000
@@ -52,11 +52,6 @@ def smooth_box(rng, box, m):
     u = np.arccos(1.0 - 2.0 * rng.random(m)) / math.pi
     w = np.arccos(1.0 - 2.0 * rng.random(m)) / math.pi
     return p0 + (p1 - p0) * u, v0 + (v1 - v0) * w
-
-
-def uniform_box(rng, box, m):
-    (p0, p1), (v0, v1) = box
-    return rng.uniform(p0, p1, m), rng.uniform(v0, v1, m)
 
 
 def hole_lo(centre, width):

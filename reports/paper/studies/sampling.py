@@ -12,6 +12,13 @@ from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.runs.chunk import check_sample
 
 BOOTSTRAP = 400
+ESCAPE_BOX = ((3.85, 4.15), (2.0, 4.0))  # the paper's escape start box: (phi range, v range)
+
+
+def uniform_box(rng, box, m):
+    """m starts uniform on ``box`` = ((phi0, phi1), (v0, v1)): (phi, v), phases drawn first."""
+    (p0, p1), (v0, v1) = box
+    return rng.uniform(p0, p1, m), rng.uniform(v0, v1, m)
 
 
 
