@@ -32,6 +32,7 @@ from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.register import make_claim
+from reports.paper.studies.replicates import INTERVAL_REPLICATES
 from reports.paper.studies.sampling import ESCAPE_BOX, uniform_box
 from reports.paper.studies.seeds import SAMPLING_SEED
 
@@ -45,7 +46,6 @@ FIVE = 5.0
 FIVE_HOLDS = (4.0, 6.0)    # "around five": within one step of five
 FIVE_FAILS = (2.5, 10.0)   # ... not: a factor two off
 QUADRATIC = 2.0            # order of convergence
-BOOTSTRAP = 200
 
 
 @functools.lru_cache(maxsize=2)
@@ -66,7 +66,7 @@ def samples(quick=False):
 
 def _bootstrap_mean(x, seed=SAMPLING_SEED):
     rng = np.random.default_rng(seed)
-    means = [float(np.mean(rng.choice(x, len(x)))) for _ in range(BOOTSTRAP)]
+    means = [float(np.mean(rng.choice(x, len(x)))) for _ in range(INTERVAL_REPLICATES)]
     return float(np.percentile(means, 2.5)), float(np.percentile(means, 97.5))
 
 
@@ -142,7 +142,8 @@ def quadratic_claim(quick=False):
             members.append(F.too_few(name, "order of convergence"))
             continue
         rng = np.random.default_rng(SAMPLING_SEED)
-        boot = [float(np.median(rng.choice(orders, len(orders)))) for _ in range(BOOTSTRAP)]
+        boot = [float(np.median(rng.choice(orders, len(orders))))
+                for _ in range(INTERVAL_REPLICATES)]
         members.append(F.band_member(
             f"{name}: {len(orders)} flights, median order {np.median(orders):.3f} (5-95% "
             f"{np.percentile(orders, 5):.2f}-{np.percentile(orders, 95):.2f})",

@@ -28,6 +28,7 @@ from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.claims import family as F
 from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.claims.register import make_claim
+from reports.paper.studies.replicates import INTERVAL_REPLICATES
 from reports.paper.studies.seeds import SAMPLING_SEED
 
 STABILITY_EPS = (0.3, 0.6, 1.5)
@@ -35,7 +36,6 @@ ORDERS = 4
 EPS = 0.6
 ORDERS_V = (1, 2, 4, 8, 16, 32, 64)
 PHASES = {False: 2000, True: 200}
-BOOTSTRAP = 200
 
 
 def stability_member(eps):
@@ -100,10 +100,10 @@ def less_significant_claim(quick=False):
         values = [row[i] for row in table]
         slope = _slope(levels, values)
         boot = [_slope(levels, [rng.choice(x, len(x)) for x in values])
-                for _ in range(BOOTSTRAP)]
+                for _ in range(INTERVAL_REPLICATES)]
         boot = np.array([b for b in boot if math.isfinite(b)])
         lo, hi = ((float(np.percentile(boot, 2.5)), float(np.percentile(boot, 97.5)))
-                  if len(boot) > BOOTSTRAP // 2 else (math.nan, math.nan))
+                  if len(boot) > INTERVAL_REPLICATES // 2 else (math.nan, math.nan))
         medians = ", ".join(f"{np.median(x):.2g}" for x in values)
         members.append(F.threshold_member(
             f"{name}: medians {medians} at v = pi (m + 1/2), m = "

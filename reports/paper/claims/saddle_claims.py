@@ -31,6 +31,7 @@ from reports.paper.claims.register import make_claim
 from reports.paper.claims.window_family import inside_windows, window_label
 from reports.paper.claims.window_members import window_fit
 from reports.paper.studies.follow import _step_all
+from reports.paper.studies.replicates import TAIL_FIT_REPLICATES
 from reports.paper.studies.sampling import ESCAPE_BOX, uniform_box
 from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.stats.likelihood import fit_stretched_fixed, window_of
@@ -40,7 +41,6 @@ N_GRID = (50, 100, 200)
 TAIL_RANGES = ((1e-1, 1e-2), (1e-2, 1e-3))
 C1_RANGE = (1e-1, 1e-3)
 SIZES = {False: 100_000, True: 4000}
-BOOTSTRAP = 100
 GAUSSIAN = 2.0
 KAPPA_RANGE = (0.25, 8.0)
 
@@ -106,9 +106,9 @@ def gaussian_c1(x, level_hi=C1_RANGE[0], level_lo=C1_RANGE[1]):
 
 def _bootstrap(x, statistic, seed=SAMPLING_SEED):
     rng = np.random.default_rng(seed)
-    got = np.array([statistic(rng.choice(x, len(x))) for _ in range(BOOTSTRAP)])
+    got = np.array([statistic(rng.choice(x, len(x))) for _ in range(TAIL_FIT_REPLICATES)])
     got = got[np.isfinite(got)]
-    if len(got) <= BOOTSTRAP // 2:
+    if len(got) <= TAIL_FIT_REPLICATES // 2:
         return math.nan, math.nan
     return float(np.percentile(got, 2.5)), float(np.percentile(got, 97.5))
 

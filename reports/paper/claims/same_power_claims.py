@@ -34,11 +34,11 @@ from reports.paper.claims import rules as R
 from reports.paper.claims.register import make_claim
 from reports.paper.claims.window_family import MIN_BINS, window_label
 from reports.paper.claims.window_members import alpha_of, escapes_in
+from reports.paper.studies.replicates import INTERVAL_REPLICATES
 from reports.paper.studies.seeds import SAME_POWER_SEED
 from reports.stats.hazard import all_cause_survival, first_below, quantile
 
 STEP_DECADES = 0.25
-BOOTSTRAP = 200
 
 
 def chaotic_share(a, k):
@@ -143,7 +143,8 @@ def resampled(curve, rng):
     return dataclasses.replace(curve, escapes=draw[:k], censored=draw[k:])
 
 
-def quantile_slope_interval(curve_n, curve_t, levels, reps=BOOTSTRAP, seed=SAME_POWER_SEED):
+def quantile_slope_interval(curve_n, curve_t, levels, reps=INTERVAL_REPLICATES,
+                            seed=SAME_POWER_SEED):
     """95% percentile interval of ``quantile_slope`` over resampled curves."""
     rng = np.random.default_rng(seed)
     got = [quantile_slope(resampled(curve_n, rng), resampled(curve_t, rng), levels)

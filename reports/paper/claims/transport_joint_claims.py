@@ -28,6 +28,7 @@ from reports.paper.claims import rules as R
 from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.claims.register import make_claim
 from reports.paper.studies.joint_sample import from_followed, weighted_quantile
+from reports.paper.studies.replicates import INTERVAL_REPLICATES
 from reports.paper.studies.seeds import TRANSPORT_JOINT_SEED
 from reports.runs.survival import wilson
 from reports.stats.hazard import curve_probability, quantile
@@ -35,7 +36,6 @@ from reports.stats.hazard import curve_probability, quantile
 START_V_MAX = 4.0  # the paper's starts have 2 < v < 4
 MIN_PER_BIN = 100
 TAIL_ORBITS = 200
-BOOTSTRAP = 200
 TRANSPORTING = {"P12": (1, 1), "P21": (2, 0)}  # curve: (entry hole, exit index)
 
 
@@ -85,7 +85,7 @@ def level_fractions(tr, ij):
     return top, tail
 
 
-def same_level_members(tr, ij, reps=BOOTSTRAP, seed=TRANSPORT_JOINT_SEED):
+def same_level_members(tr, ij, reps=INTERVAL_REPLICATES, seed=TRANSPORT_JOINT_SEED):
     rng = np.random.default_rng(seed)
     out = []
     for name, fractions in zip(("top decades", "tail"), level_fractions(tr, ij), strict=True):
@@ -119,7 +119,7 @@ def _median_n_ratio(sample_ij, sample_11, lo, hi):
     return _median_n(a) / _median_n(b)
 
 
-def _ratio_bootstrap(s_ij, s_11, lo, hi, reps=BOOTSTRAP, seed=TRANSPORT_JOINT_SEED):
+def _ratio_bootstrap(s_ij, s_11, lo, hi, reps=INTERVAL_REPLICATES, seed=TRANSPORT_JOINT_SEED):
     """95% percentile interval of ``_median_n_ratio`` with both samples redrawn (Poisson
     bootstrap, ``JointSample.resampled``); NaN when fewer than half the draws give a ratio."""
     rng = np.random.default_rng(seed)

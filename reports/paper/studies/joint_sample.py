@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from reports.paper.studies.replicates import INTERVAL_REPLICATES
 from reports.paper.studies.seeds import JOINT_SEED
 from reports.runs.joint import load_joint
 from reports.runs.joint_file import JOINT_FILE
@@ -28,7 +29,6 @@ from reports.runs.scenes import parse_scene
 
 PER_DECADE = 4     # slopes over quarter decades of the binning variable
 MIN_PER_BIN = 20   # escapes a quarter decade needs to count
-BOOTSTRAP = 200
 
 
 @dataclass(frozen=True)
@@ -206,7 +206,7 @@ def binned_slope(x, y, w, x_lo, x_hi, q=0.5, per_decade=PER_DECADE, min_per_bin=
         np.asarray(w, dtype=float), q)
 
 
-def bootstrap_weights(weight, statistic, reps=BOOTSTRAP, seed=JOINT_SEED):
+def bootstrap_weights(weight, statistic, reps=INTERVAL_REPLICATES, seed=JOINT_SEED):
     """95% percentile interval of ``statistic(weights)`` over Poisson-redrawn weights (NaN
     when fewer than half of them give a number)."""
     rng = np.random.default_rng(seed)
@@ -217,7 +217,7 @@ def bootstrap_weights(weight, statistic, reps=BOOTSTRAP, seed=JOINT_SEED):
     return float(np.percentile(values, 2.5)), float(np.percentile(values, 97.5))
 
 
-def bootstrap_interval(sample, statistic, reps=BOOTSTRAP, seed=JOINT_SEED):
+def bootstrap_interval(sample, statistic, reps=INTERVAL_REPLICATES, seed=JOINT_SEED):
     """95% percentile interval of ``statistic(sample)`` over Poisson-bootstrap resamples (NaN
     when fewer than half of them give a number)."""
     rng = np.random.default_rng(seed)

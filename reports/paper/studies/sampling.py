@@ -8,10 +8,10 @@ import math
 import numpy as np
 
 import fastpath
+from reports.paper.studies.replicates import BLOCK_SD_REPLICATES
 from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.runs.chunk import check_sample
 
-BOOTSTRAP = 400
 ESCAPE_BOX = ((3.85, 4.15), (2.0, 4.0))  # the paper's escape start box: (phi range, v range)
 
 
@@ -45,7 +45,7 @@ def slope_fit(x, y):
     return float(slope), float(intercept)
 
 
-def bootstrap_blocks(blocks_num, blocks_den, stat, reps=BOOTSTRAP, seed=SAMPLING_SEED):
+def bootstrap_blocks(blocks_num, blocks_den, stat, reps=BLOCK_SD_REPLICATES, seed=SAMPLING_SEED):
     """Standard deviation of ``stat(mean curve)`` over resamplings of the particle blocks.
 
     ``blocks_num`` (blocks, k) sums, ``blocks_den`` (blocks, k) counts; ``stat`` maps the mean
