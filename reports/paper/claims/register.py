@@ -23,6 +23,12 @@ from reports.paper.claims.family import analyses_json
 from reports.paper.claims.register_entry import AGREE, entry_of
 from reports.paper.claims.register_section2 import section2_entries
 from reports.paper.claims.window_family import LATE_MEMBERS
+from reports.paper.studies.escape_regimes import (
+    HAZARD_FAST,
+    HAZARD_TENTH,
+    ONSET_TOLERANCE,
+    SURVIVORS_MIN,
+)
 from reports.paper.studies.followed_samples import ISLAND_COLLISIONS
 
 ISLAND_HOLES = ("0", "0.5", "1", "1.5")  # the paper's Fig. 2 caption
@@ -119,14 +125,14 @@ BETA_TOL = ("a form word holds if beta's 95% interval widened by its systematic 
 CLOSE_TOL = (f"'close to' a form: beta's widened interval within {R.BAND} of it: [0.4, 0.6] for "
              "the sqrt law; refuted if wholly outside")
 INTERMEDIATE = ("intermediate, the same orbits in both clocks: from t_D, where <v(t)> reaches "
-                f"its diffusive law t^(1/3) (local exponent within {R.pct(R.ONSET_TOLERANCE)}, "
+                f"its diffusive law t^(1/3) (local exponent within {R.pct(ONSET_TOLERANCE)}, "
                 "Fermi ensemble from the same start box), and the n where P(n) falls to P(t_D), "
                 "to where the discrete-time hazard first falls below "
-                f"{R.HAZARD_FAST} of its plateau (the chaotic population still holds 90% of the "
+                f"{HAZARD_FAST} of its plateau (the chaotic population still holds 90% of the "
                 "escapes) and the t where P(t) falls to that level; at least "
                 f"{R.MIN_ESCAPES_INTERMEDIATE} escapes")
 TAIL = ("late tail: from where the discrete-time hazard has fallen to "
-        f"{R.HAZARD_TENTH} of its plateau (the slow population holds 90% of the escapes) to the"
+        f"{HAZARD_TENTH} of its plateau (the slow population holds 90% of the escapes) to the"
         " last escape before the horizon;"
         f" at least {R.MIN_ESCAPES_TAIL} escapes")
 FAM_INSIDE = ("windows inside the intermediate regime, each fitted on its own: the regime's "
@@ -264,7 +270,7 @@ def _escape_entries():
             "matched survival levels: from the first level at or below the late tail's start "
             "level where the continuous-time curve is the non-accelerating population (the "
             "intermediate stretched law, extrapolated, explains at most "
-            f"{R.pct(R.CHAOTIC_GONE)} of its survivors), down to {R.SURVIVORS_MIN}/N",
+            f"{R.pct(R.CHAOTIC_GONE)} of its survivors), down to {SURVIVORS_MIN}/N",
             "'the same' rule on each member, a +- U_a against b +- U_b (U the 95% half-width): "
             f"confirmed if |a - b| + U <= {R.SAME} x their mean, refuted if |a - b| - U >= "
             f"{R.SAME_FAILS} x their mean, inconclusive otherwise; the slope against 1 with "

@@ -1,7 +1,10 @@
 """The decision rules of the paper's claims and the tolerances of its qualitative words.
 
 Every tolerance is defined here once; the register (``reports.paper.claims.register``) quotes them
-in each claim's ``rule`` and ``tolerance``. They were fixed from the words, before any verdict:
+in each claim's ``rule`` and ``tolerance``. The thresholds that place the regimes of an escape
+curve (diffusive onset, hazard fall, the fewest survivors a level rests on) belong to the study
+that places them, ``reports.paper.studies.escape_regimes``. They were fixed from the words,
+before any verdict:
 
 * A decay *form* is read on the stretched exponent beta of exp(-c x^beta), which holds all three
   laws: beta = 1 is the exponential, beta = 1/2 the paper's sqrt(t) law, beta -> 0 the power law
@@ -111,14 +114,7 @@ MIN_ESCAPES_TAIL = 100
 GOF_HOLDS = 0.05    # "well approximated" by a law: Pearson's chi^2 does not reject it at 5%
 GOF_FAILS = 0.001   # ... rejected beyond doubt (p <= 0.001)
 
-# regimes of the escape curves (reports.paper.studies.escape_regimes)
-ONSET_TOLERANCE = 0.1       # <v> within 10% of its diffusive exponent
-ONSET_SPAN_DECADES = 0.5    # local slopes of log<v> over half a decade
-HAZARD_FAST = 0.9           # intermediate regime ends: hazard below 0.9 of its plateau
-HAZARD_HALF = 0.5           # the slow population holds half the escapes
-HAZARD_TENTH = 0.1          # tail starts: hazard at a tenth of its plateau
 CHAOTIC_GONE = 0.1          # continuous tail: the intermediate law explains < 10% of survivors
-SURVIVORS_MIN = 100         # matched survival levels go down to 100/N
 
 # dynamics (reports.paper.claims.dynamics_claims)
 NEAR = 0.05           # "near eps = 0.24": within 5% of K_c/4

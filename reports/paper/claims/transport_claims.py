@@ -27,6 +27,7 @@ from reports.paper.claims.transport_joint_claims import (
 )
 from reports.paper.claims.well_approximated_claims import form_members, well_approximated_claim
 from reports.paper.claims.window_family import STEP
+from reports.paper.studies.escape_regimes import SURVIVORS_MIN
 from reports.runs.survival import wilson
 from reports.stats.analysis import fit_all, usable_range
 from reports.stats.hazard import all_cause_survival, curve_probability, first_below, quantile
@@ -88,7 +89,7 @@ def level_times(tr, clock, level):
 
 def strong_level(tr):
     """The level q = max(10^-6, 100/N) of "very strong"."""
-    return max(1e-6, R.SURVIVORS_MIN / particles_of(tr))
+    return max(1e-6, SURVIVORS_MIN / particles_of(tr))
 
 
 def strong_measure(tr, factor=1.0):
@@ -190,7 +191,7 @@ def long_lived_index(tr, clock):
 def long_lived_points(tr, clock="time", remaining=None):
     """Boundary indices from the long-lived time on, a quarter decade apart, while at least
     ``remaining`` (default SURVIVORS_MIN) entrants of hole 1 remain."""
-    remaining = R.SURVIVORS_MIN if remaining is None else remaining
+    remaining = SURVIVORS_MIN if remaining is None else remaining
     k, curves = long_lived_index(tr, clock)
     if k is None:
         return []
@@ -340,7 +341,7 @@ def clock_spread(tr):
             top = curve_probability(cn)[0]
             if top <= 0:
                 continue
-            low = max(top * 1e-4, R.SURVIVORS_MIN / cn.particles)
+            low = max(top * 1e-4, SURVIVORS_MIN / cn.particles)
             if low > top * 1e-3:  # fewer than two decades of levels: too short to compare
                 continue
             levels = np.geomspace(top / 10, low, int(4 * math.log10(top / 10 / low)) + 1)
@@ -370,7 +371,7 @@ def other_h_claim(h, transport, run):
     n = particles_of(transport[h])
     measures = [("top decades (median over levels)", clock_spread)]
     for mult in (1, 10):
-        q = mult * R.SURVIVORS_MIN / n
+        q = mult * SURVIVORS_MIN / n
         measures.append((f"tail, level {q:.2g}", lambda tr, q=q: tail_spread(tr, q)))
     members = []
     for name, measure in measures:

@@ -27,6 +27,7 @@ from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.claims.register import make_claim
+from reports.paper.studies.escape_regimes import SURVIVORS_MIN
 from reports.paper.studies.joint_sample import from_followed, weighted_quantile
 from reports.paper.studies.replicates import INTERVAL_REPLICATES
 from reports.paper.studies.seeds import TRANSPORT_JOINT_SEED
@@ -79,7 +80,7 @@ def level_fractions(tr, ij):
     n = tr[e]["collisions"][ij].particles
     tops = [curve_probability(tr[e]["collisions"][ij])[0],
             curve_probability(tr[1]["collisions"]["P11"])[0]]
-    floor = max(R.SURVIVORS_MIN / (n * t) for t in tops)
+    floor = max(SURVIVORS_MIN / (n * t) for t in tops)
     top = np.geomspace(1e-1, 1e-3, 9)
     tail = np.geomspace(100 * floor, floor, 9) if floor < 1e-3 else np.array([])
     return top, tail

@@ -3,7 +3,7 @@
 * Diffusive onset. The paper's argument for the sqrt(t) law needs the velocity to diffuse:
   <v(t)> ~ t^(1/3). ``diffusive_onset`` is the first point of the Fermi ensemble (the same eps
   and start box, ``reports.paper.studies.fermi_ensemble``) from which the slope of log<v> over the
-  next half decade (``rules.ONSET_SPAN_DECADES``) is within ``rules.ONSET_TOLERANCE`` (10%) of that
+  next half decade (``ONSET_SPAN_DECADES``) is within ``ONSET_TOLERANCE`` (10%) of that
   law's exponent: t_D. The intermediate regime is a set of orbits seen by both clocks: it starts at
   the survival level S_a = P(t_D), in discrete time at n_a where P(n) falls to S_a (the escape
   rate per collision needs no diffusion, only the orbits the continuous-time law speaks of).
@@ -32,13 +32,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from reports.paper.claims import rules as R
 from reports.stats.analysis import usable_range
 from reports.stats.hazard import all_cause_survival, first_below, hazard_fall
 
+ONSET_TOLERANCE = 0.1       # <v> within 10% of its diffusive exponent
+ONSET_SPAN_DECADES = 0.5    # local slopes of log<v> over half a decade
+HAZARD_FAST = 0.9           # intermediate regime ends: hazard below 0.9 of its plateau
+HAZARD_HALF = 0.5           # the slow population holds half the escapes
+HAZARD_TENTH = 0.1          # tail starts: hazard at a tenth of its plateau
+SURVIVORS_MIN = 100         # the fewest survivors a survival level rests on: levels down to 100/N
 
-def diffusive_onset(x, mean_v, exponent, tolerance=R.ONSET_TOLERANCE,
-                    span=R.ONSET_SPAN_DECADES):
+
+def diffusive_onset(x, mean_v, exponent, tolerance=ONSET_TOLERANCE,
+                    span=ONSET_SPAN_DECADES):
     """First x of the grid from which the slope of log<v> over the next ``span`` decades is
     within ``tolerance`` (relative) of ``exponent``; NaN if none."""
     x = np.asarray(x, dtype=np.float64)
@@ -100,8 +106,8 @@ def escape_windows(hole, curve_n, curve_t, onset_t):
     k_a = first_below(s_n, s_t[k_d]) if k_d is not None and k_d < len(s_t) else None
     onset_n = float(curve_n.x[k_a]) if k_a is not None else math.nan
     levels = {}
-    for name, factor in (("fast", R.HAZARD_FAST), ("half", R.HAZARD_HALF),
-                         ("tail", R.HAZARD_TENTH)):
+    for name, factor in (("fast", HAZARD_FAST), ("half", HAZARD_HALF),
+                         ("tail", HAZARD_TENTH)):
         k, plateau = hazard_fall(curve_n, onset_n, factor) if k_a is not None else (None,
                                                                                     math.nan)
         levels[name] = (k, float(s_n[k]) if k is not None else None)
@@ -118,7 +124,7 @@ def escape_windows(hole, curve_n, curve_t, onset_t):
         out.t["intermediate"] = _window(k_d, first_below(s_t, out.level_fast), curve_t)
     if level_tail is not None:
         out.n["tail"] = _window(levels["tail"][0], usable_range(curve_n)[1], curve_n)
-        floor = R.SURVIVORS_MIN / curve_n.particles
+        floor = SURVIVORS_MIN / curve_n.particles
         ends = [s[usable_range(c)[1]] for s, c in ((s_n, curve_n), (s_t, curve_t))]
         out.level_end = float(max(floor, *ends))
         for clock, curve, s in (("n", curve_n, s_n), ("t", curve_t, s_t)):

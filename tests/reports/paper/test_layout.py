@@ -1,5 +1,6 @@
 """reports/paper is laid out by what each module holds: every module in one of its subpackages,
-a figure module named after the file it writes, claims decided only in ``*_claims`` modules.
+a figure module named after the file it writes, claims decided only in ``*_claims`` modules, and
+the subpackages import one another in one direction only.
 
 Read from the sources (no module is run): a figure module's stems are the string literals it
 passes to ``save_figure``; a claim is decided where ``make_claim`` or ``Claim`` is called.
@@ -73,3 +74,45 @@ def test_claims_are_decided_only_in_the_claims_modules():
     misplaced = sorted(m for m in deciding - allowed
                        if not (m.startswith("claims/") and m.endswith("_claims.py")))
     assert misplaced == [], f"claims decided outside a claims/*_claims.py module: {misplaced}"
+
+
+# What each subpackage of reports/paper may import from reports.paper, read from the package:
+# studies compute, and nothing above them feeds back into a computation; checks and claims
+# judge the studies; figures draw the studies and mark what a claim decided (its verdict, its
+# windows); sections assemble all of them into the report.
+MAY_IMPORT = {
+    "studies": {"studies"},
+    "checks": {"studies", "checks"},
+    "claims": {"studies", "claims"},
+    "figures": {"studies", "claims", "figures"},
+    "sections": SUBPACKAGES,
+}
+
+
+def paper_imports(path):
+    """The subpackages of reports.paper the module at ``path`` imports (any import statement,
+    at module level or inside a function)."""
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            names = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
+        elif isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        else:
+            continue
+        for name in names:
+            parts = name.split(".")
+            if parts[:2] == ["reports", "paper"] and len(parts) > 2 and parts[2] in SUBPACKAGES:
+                found.add(parts[2])
+    return found
+
+
+def test_subpackages_import_only_downwards():
+    """Besides their own subpackage, studies import none of reports/paper (in particular no
+    claims: claims are built from studies, never the other way); checks and claims import only
+    studies; figures studies and claims; sections any of them."""
+    assert set(MAY_IMPORT) == SUBPACKAGES
+    upward = sorted(f"{p.relative_to(PAPER).as_posix()} imports {sorted(extra)}"
+                    for sub in SUBPACKAGES for p in modules(PAPER / sub)
+                    if (extra := paper_imports(p) - MAY_IMPORT[sub]))
+    assert upward == [], f"imports against the layering of reports/paper: {upward}"
