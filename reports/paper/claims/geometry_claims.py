@@ -14,8 +14,8 @@ from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.register import ISLAND_HOLES, SEA_HOLES, WIDTHS, make_claim
 from reports.paper.studies.islands import strip_fractions, velocity_period
+from reports.paper.studies.sampling import EPS
 
-EPS = 0.6
 ESCAPE_WIDTH = 0.3
 SAMPLES = {False: 2000, True: 200}
 VELOCITY_PERIODS = (1, 2)

@@ -25,8 +25,9 @@ from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.register import make_claim
 from reports.paper.studies.follow import follow
-from reports.paper.studies.followed_samples import EPS, SIZES, _rng, hole_lo
+from reports.paper.studies.followed_samples import MAX_COLLISIONS, SIZES, _rng, hole_lo
 from reports.paper.studies.islands import classify
+from reports.paper.studies.sampling import EPS
 from reports.paper.studies.seeds import FOLLOWED_SEED
 from reports.runs.scenes import load_scene
 from reports.runs.survival import wilson
@@ -36,7 +37,6 @@ SWEEP_WIDTHS = (0.2, 0.3, 0.6, 0.8, 1.4, 1.8)
 SWEEP_PARTICLES = 4_000_000  # per entry hole: 381 entrants left at the long-lived level 1e-4
 MANY = 0.5         # "many": at least half of the widths not shown
 MANY_FAILS = 1 / 6  # ... not many: at most one in six
-MAX_COLLISIONS = 100_000
 
 
 def sweep_scene():

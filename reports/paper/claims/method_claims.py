@@ -33,10 +33,9 @@ from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.register import make_claim
 from reports.paper.studies.replicates import INTERVAL_REPLICATES
-from reports.paper.studies.sampling import ESCAPE_BOX, uniform_box
+from reports.paper.studies.sampling import EPS, ESCAPE_BOX, uniform_box
 from reports.paper.studies.seeds import SAMPLING_SEED
 
-EPS = 0.6
 SIZES = {False: {"orbits": 200, "collisions": 50, "phase": 5000, "iterates": 200,
                  "overstep": 300},
          True: {"orbits": 20, "collisions": 20, "phase": 400, "iterates": 30, "overstep": 40}}

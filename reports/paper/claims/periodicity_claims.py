@@ -29,11 +29,11 @@ from reports.paper.claims import family as F
 from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.claims.register import make_claim
 from reports.paper.studies.replicates import INTERVAL_REPLICATES
+from reports.paper.studies.sampling import EPS
 from reports.paper.studies.seeds import SAMPLING_SEED
 
 STABILITY_EPS = (0.3, 0.6, 1.5)
 ORDERS = 4
-EPS = 0.6
 ORDERS_V = (1, 2, 4, 8, 16, 32, 64)
 PHASES = {False: 2000, True: 200}
 

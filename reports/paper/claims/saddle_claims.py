@@ -32,11 +32,10 @@ from reports.paper.claims.window_family import inside_windows, window_label
 from reports.paper.claims.window_members import window_fit
 from reports.paper.studies.follow import _step_all
 from reports.paper.studies.replicates import TAIL_FIT_REPLICATES
-from reports.paper.studies.sampling import ESCAPE_BOX, uniform_box
+from reports.paper.studies.sampling import EPS, ESCAPE_BOX, uniform_box
 from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.stats.likelihood import fit_stretched_fixed, window_of
 
-EPS = 0.6
 N_GRID = (50, 100, 200)
 TAIL_RANGES = ((1e-1, 1e-2), (1e-2, 1e-3))
 C1_RANGE = (1e-1, 1e-3)

@@ -35,7 +35,6 @@ from reports.stats.histogram import read_run
 from reports.stats.likelihood import window_of
 from reports.stats.regime_fit import window_detail
 
-START_V_MAX = 4.0  # the paper's starts have 2 < v < 4
 BIN_MARGIN = 10 ** (1 / 20)  # one bin of the runs' grid (20 per decade)
 FINITE_TIME_LEVELS = (0.1, 0.01)  # the last part of the decay: the last 10% (1%) of entrants
 FINITE_TIME_BINS = 5     # and at least five bins

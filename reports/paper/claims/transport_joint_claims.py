@@ -28,13 +28,13 @@ from reports.paper.claims import rules as R
 from reports.paper.claims.claim import CONFIRMED, INCONCLUSIVE, REFUTED
 from reports.paper.claims.register import make_claim
 from reports.paper.studies.escape_regimes import SURVIVORS_MIN
+from reports.paper.studies.followed_samples import TRANSPORT_V
 from reports.paper.studies.joint_sample import from_followed, weighted_quantile
 from reports.paper.studies.replicates import INTERVAL_REPLICATES
 from reports.paper.studies.seeds import TRANSPORT_JOINT_SEED
 from reports.runs.survival import wilson
 from reports.stats.hazard import curve_probability, quantile
 
-START_V_MAX = 4.0  # the paper's starts have 2 < v < 4
 MIN_PER_BIN = 100
 TAIL_ORBITS = 200
 TRANSPORTING = {"P12": (1, 1), "P21": (2, 0)}  # curve: (entry hole, exit index)
@@ -199,8 +199,8 @@ def expected_beyond(v, limit):
 
 def velocity_member(v, variant):
     """The "large velocities" rule on the largest velocities ``v`` of one sample."""
-    limit = R.LARGE_VELOCITY * START_V_MAX
-    low_limit = R.LARGE_VELOCITY_FAILS * START_V_MAX
+    limit = R.LARGE_VELOCITY * TRANSPORT_V[1]
+    low_limit = R.LARGE_VELOCITY_FAILS * TRANSPORT_V[1]
     total = len(v)
     if total == 0:
         return F.too_few(variant, "largest velocity")

@@ -16,10 +16,9 @@ from reports.paper.claims.transport_claims import long_lived_detail
 from reports.paper.figures.paper_fig3_transport import PAIRS
 from reports.paper.figures.style import band, caption, pyplot, save_figure
 from reports.paper.studies.paper_runs import read_manifest, run_summary
+from reports.runs.scenes import CLOCKS
 from reports.runs.survival import read_survival
 from reports.stats.hazard import curve_probability
-
-CLOCKS = ("collisions", "time")
 
 
 def figure_h1(run_dir, out_dir, transport, h="1"):

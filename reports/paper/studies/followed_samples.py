@@ -25,11 +25,10 @@ import numpy as np
 from fastpath.arithmetic.phase import TWO_PI
 from reports.paper.studies.follow import follow
 from reports.paper.studies.islands import classify
-from reports.paper.studies.sampling import ESCAPE_BOX, uniform_box
+from reports.paper.studies.sampling import EPS, ESCAPE_BOX, uniform_box
 from reports.paper.studies.seeds import FOLLOWED_SEED
 from reports.runs.scenes import load_scene
 
-EPS = 0.6
 HOLE_WIDTH = 0.3
 TRANSPORT_V = (2.0, 4.0)
 MAX_COLLISIONS = 100_000

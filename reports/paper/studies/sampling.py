@@ -12,6 +12,7 @@ from reports.paper.studies.replicates import BLOCK_SD_REPLICATES
 from reports.paper.studies.seeds import SAMPLING_SEED
 from reports.runs.chunk import check_sample
 
+EPS = 0.6  # the paper's eps, of its Figs. 1-4 and of the claims about them
 ESCAPE_BOX = ((3.85, 4.15), (2.0, 4.0))  # the paper's escape start box: (phi range, v range)
 
 
