@@ -21,7 +21,9 @@ gives tau_phi = a, tau_v = b with
 
 The Holmes map in its standard-map form: phi1 = phi + 2*v, v1 = v - 2*eps*sin(phi1), with
 DF = [[1, 2], [-c, 1 - 2*c]]; a step where v - 2*eps*sin(phi1) <= 0 (where Holmes' absolute value
-would act and the map is not smooth) is reported as NOT_DEPARTING.
+would act and the map is not smooth) is reported as NOT_DEPARTING. Its phase is the Holmes map's
+own (``fastpath.elastic.holmes.holmes_phase``, phi + 2*v reduced exactly), so where the step
+departs it is the Holmes map of the loops bit for bit.
 
 Phases are kept reduced to [0, 2*pi) with their sines and cosines carried along; the time since
 the start (the unreduced phase advance) is accumulated separately from the flight times.
@@ -37,6 +39,7 @@ from fastpath.arithmetic.phase import PI, TWO_PI, reduce_phase
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.elastic.collision import collide_from
 from fastpath.elastic.flight import GENERAL
+from fastpath.elastic.holmes import holmes_phase
 from fastpath.physics import Elastic, Holmes
 from fastpath.status import CONVERGED, NOT_DEPARTING
 
@@ -77,7 +80,7 @@ def _tangent_of_model(phi, sin_phi, cos_phi, v, physics):
 def _holmes_tangent(phi, sin_phi, cos_phi, v, physics):
     eps = physics.eps
     tau = 2.0 * v
-    phi1 = reduce_phase(phi + tau)
+    phi1 = holmes_phase(phi, v)
     s1, c1 = math.sin(phi1), math.cos(phi1)
     v1 = v - 2.0 * eps * s1
     c = 2.0 * eps * c1
