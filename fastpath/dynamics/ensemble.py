@@ -1,13 +1,24 @@
 """Velocities of many orbits: the values at given collision counts (velocity diffusion) and the
-first passage above a velocity (transport across a band). Thin wrappers of the parallel kernels
-``kernels.velocity_ensemble`` and ``kernels.first_passage``.
+first passage above a velocity (transport across a band).
+
+``velocities`` is the loop of the velocity moments (``fastpath.kernels.moments``, the orbits of
+``fastpath.orbit``) with each orbit's v_n recorded instead of summed: use it for per-orbit
+values, ``fastpath.moments`` for ensemble means over many particles (sums only, any
+description, time grids). Its Holmes map is the map itself, v1 = |v - 2*eps*sin(phi1)|.
+``first_passage`` steps ``kernels.step_tangent``, whose Holmes map is the standard-map form
+(an orbit stops NOT_DEPARTING where the absolute value would act).
 """
 
 import numpy as np
 
 from fastpath.inputs import departing, integer, model_physics
 from fastpath.inputs import real_scalar as real
+from fastpath.kernels.arrays import Flags, MomentGrid, MomentSums, Sample, Starts
+from fastpath.kernels.moments import moments_chunk
 from fastpath.status import STATUS_DTYPE
+
+THREAD_BLOCKS = 64  # blocks of orbits run in parallel by velocities (its results do not
+#                     depend on them)
 
 
 def _starts(phi, v, eps):
@@ -24,25 +35,26 @@ def _starts(phi, v, eps):
 
 
 def velocities(phi, v, eps, collisions, *, model="exact"):
-    """v of each orbit after each count in ``collisions`` (ascending positive integers).
+    """v of each orbit after each count in ``collisions`` (ascending positive integers), the
+    orbits of ``fastpath.orbit`` (module docstring).
 
     Returns (velocities (starts, len(collisions)), status per start): NaN after a flight that
-    stopped an orbit (status its FlightStatus code).
+    stopped an orbit (status its FlightStatus code, 0 for an orbit that got to the end).
     """
-    from fastpath.dynamics.kernels import velocity_ensemble
-
     eps = real("eps", eps)
     physics = model_physics(model, eps)
     phi, v = _starts(phi, v, eps)
     points = np.asarray(collisions, dtype=np.int64)
     if points.ndim != 1 or len(points) == 0 or points[0] < 1 or np.any(np.diff(points) <= 0):
         raise ValueError("collisions must be ascending positive integers")
-    out = np.full((len(phi), len(points)), np.nan)
-    done, status = np.zeros(len(phi), np.int64), np.zeros(len(phi), STATUS_DTYPE)
-    velocity_ensemble(phi, v, physics, points, out, done, status)
-    for i in range(len(phi)):
-        out[i, points > done[i]] = np.nan
-    return out, status
+    m = len(phi)
+    out = np.full((m, len(points)), np.nan)
+    flags = Flags.zeros(m)
+    moments_chunk(physics, Starts(phi=phi, v=v, t=np.zeros(m), n=np.zeros(m, np.int64)),
+                  MomentGrid(n=points, t=np.zeros(0), max_collisions=int(points[-1])), False,
+                  Sample.none(m), MomentSums.zeros(min(m, THREAD_BLOCKS), len(points), 0), flags,
+                  out)
+    return out, flags.status
 
 
 def first_passage(phi, v, eps, v_top, n, *, model="exact"):

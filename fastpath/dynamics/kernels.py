@@ -363,26 +363,6 @@ def separation_exponent(phi0, v0, physics, n, d0):
 
 
 @parallel_jit
-def velocity_ensemble(phi0, v0, physics, checkpoints, velocities, done, status):
-    """Velocities of each start at the collision counts ``checkpoints`` (diffusion of v)."""
-    for i in prange(len(phi0)):
-        phi = reduce_phase(phi0[i])
-        s, c = math.sin(phi), math.cos(phi)
-        v = v0[i]
-        j = 0
-        done[i], status[i] = checkpoints[len(checkpoints) - 1], CONVERGED
-        for k in range(1, checkpoints[len(checkpoints) - 1] + 1):
-            phi, s, c, v1, _, _, _, _, _, st = step_tangent(phi, s, c, v, physics)
-            if st != CONVERGED:
-                done[i], status[i] = k - 1, st
-                break
-            v = v1
-            if k == checkpoints[j]:
-                velocities[i, j] = v
-                j += 1
-
-
-@parallel_jit
 def first_passage(phi0, v0, physics, v_top, n, passage, status):
     """Collision count at which each orbit first has v >= v_top (-1: not within n)."""
     for i in prange(len(phi0)):

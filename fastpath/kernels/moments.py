@@ -23,6 +23,10 @@ before t: an impact's outgoing velocity, or after a sticking episode the detachm
 u(theta*) from t_detach on; during an episode (t_acc <= t < t_detach) it stays the last
 impact's (~ the plate's velocity at t_acc, where the relative velocity has gone to 0).
 
+Given a ``record`` array, each particle's v_n at the grid points of n_grid it reached is also
+written into its row: the velocities of many orbits at collision counts
+(``fastpath.dynamics.velocities``) are this loop's, with the sums left aside.
+
 The particles are split into ``len(count_n)`` fixed blocks of consecutive indices, each with its
 own row of sums, filled in particle order: the result is identical for any number of threads,
 and the spread over blocks gives the statistical uncertainty.
@@ -38,38 +42,45 @@ from fastpath.kernels.records import particle_buffers, sampled_collision, start_
 from fastpath.kernels.threads import over_threads
 from fastpath.status import CONVERGED
 
+NO_RECORD = np.empty((0, 0))  # moments_chunk keeps the sums only
 
-def moments_chunk(physics, starts, grid, as_step, sample, sums, flags):
+
+def moments_chunk(physics, starts, grid, as_step, sample, sums, flags, record=NO_RECORD):
     """Fill the block sums ``sums`` (``arrays.MomentSums``, added to; the caller zeroes them)
     for the particles ``starts`` (module docstring). as_step: each collision is
     ``fastpath.step``'s (the runs' velocity scenes, audited by ``step``) or, False, an orbit's
     (``fastpath.kernels.particle``). Flags and sample as ``fastpath.kernels.escape``; a resumed
-    particle (n > 0) starts at the grid point of its n, which is filled here."""
+    particle (n > 0) starts at the grid point of its n, which is filled here. ``record``: an
+    array (particles, len(grid.n)) that gets particle i's v_n in row i at the grid points it
+    reaches (the others are left as they are), or ``NO_RECORD``."""
     m = len(starts.phi)
     per_block = (m + len(sums.collisions) - 1) // len(sums.collisions)
     detach = detachment_of(physics)
 
     def run_group(first_block, end_block):
         _moments_blocks(physics, (first_block, end_block, per_block, as_step), starts, grid,
-                        sample, sums, flags, detach)
+                        sample, sums, flags, detach, record)
 
     over_threads(run_group, len(sums.collisions))
 
 
 @jit
-def _moments_blocks(physics, span, starts, grid, sample, sums, flags, detach):
+def _moments_blocks(physics, span, starts, grid, sample, sums, flags, detach, record):
     """Blocks first .. end-1 of ``moments_chunk``, span = (first, end, per_block, as_step)."""
     first, end, per_block, as_step = span
     m = len(starts.phi)
     for b in range(first, end):
         _moments_block(physics, (b, min(m, b * per_block), min(m, (b + 1) * per_block), as_step),
-                       starts, grid, sample, sums, flags, detach)
+                       starts, grid, sample, sums, flags, detach, record)
 
 
 @jit
-def _add_n(sums, b, jn, n, v, start, n_grid):
-    """Add v = v_n to the grid points n_grid[jn], ... equal to n; return the next jn."""
+def _add_n(sums, b, jn, n, v, start, n_grid, record, i):
+    """Add v = v_n to the grid points n_grid[jn], ... equal to n (and to particle i's row of
+    ``record``, if any); return the next jn."""
     while jn < len(n_grid) and n_grid[jn] == n:
+        if len(record):
+            record[i, jn] = v
         sums.count_n[b, jn] += 1
         sums.sum_v_n[b, jn] += v
         sums.sum_v2_n[b, jn] += v * v
@@ -89,7 +100,7 @@ def _add_t(sums, b, jt, until, v, t_grid):
 
 
 @jit
-def _moments_block(physics, span, starts, grid, sample, sums, flags, detach):
+def _moments_block(physics, span, starts, grid, sample, sums, flags, detach, record):
     """Particles first .. last-1 into block b's rows, span = (b, first, last, as_step)."""
     b, first, last, as_step = span
     n_grid, t_grid = grid.n, grid.t
@@ -104,7 +115,7 @@ def _moments_block(physics, span, starts, grid, sample, sums, flags, detach):
             continue
         n, v, t = starts.n[i], starts.v[i], starts.t[i]
         start = v
-        jn = _add_n(sums, b, np.searchsorted(n_grid, n), n, v, start, n_grid)
+        jn = _add_n(sums, b, np.searchsorted(n_grid, n), n, v, start, n_grid, record, i)
         jt = np.searchsorted(t_grid, t)
         while not ((n >= n_last and t > t_last) or n >= grid.max_collisions):
             status, _, kind, t_start, t_end = sampled_collision(state, physics, i, n, sample,
@@ -115,7 +126,7 @@ def _moments_block(physics, span, starts, grid, sample, sums, flags, detach):
             v, t = state[V], state[T]
             n += 1
             done += 1
-            jn = _add_n(sums, b, jn, n, v, start, n_grid)
+            jn = _add_n(sums, b, jn, n, v, start, n_grid, record, i)
             if kind == STUCK:
                 jt = _add_t(sums, b, jt, t_start, v, t_grid)
                 for j in range(jn, kn):
