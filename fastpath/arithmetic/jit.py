@@ -11,7 +11,7 @@ directory (``CACHE_ROOT``). numba reads that setting when a kernel is decorated,
 only for that moment and other libraries' caches stay where they were.
 
 Compile time (docs/performance.md). Nothing is compiled at import; a kernel compiles at its
-first call, for the argument types of that call. Three choices keep that short:
+first call, for the argument types of that call. Four choices keep that short:
 
 * ``inline_jit`` helpers (the straight-line code of the ensembles' lanes) are compiled once
   each and marked for LLVM to inline (``forceinline``: LLVM's ``alwaysinline``), so that the
@@ -22,6 +22,8 @@ first call, for the argument types of that call. Three choices keep that short:
   (``_one_specialisation_per_type``), not one specialisation per constant value.
 * ``typed_overload`` chooses an implementation when the caller is typed, so that a loop
   compiled for one model (``fastpath.kernels.particle``) compiles no other model's code.
+* No C-callable wrapper (``no_cfunc_wrapper``): numba otherwise builds one for every compiled
+  function, for passing it to C or as a first-class function value, which no kernel does.
 
 Two limits of numba that the kernels respect (numba 0.68 loses the writes otherwise, silently):
 inside a ``prange`` loop an array held in a tuple (``fastpath.kernels.arrays``) is written only
@@ -77,7 +79,7 @@ def _cached_njit(**options):
         numba.config.CACHE_DIR = CACHE_DIR
         try:
             dispatcher = numba.njit(cache=True, nogil=True, error_model="numpy",
-                                    **options)(function)
+                                    no_cfunc_wrapper=True, **options)(function)
         finally:
             numba.config.CACHE_DIR = saved
         return _one_specialisation_per_type(dispatcher)

@@ -36,6 +36,8 @@ phi1, v1, tau) of the picked collision, and with r < 1 the departure's carried e
 (``fastpath.dissipative.carried.CARRIED``), from which ``fastpath.carried_step`` repeats it.
 """
 
+import math
+
 import numpy as np
 
 from fastpath.arithmetic.jit import inline_jit, jit, typed_overload
@@ -54,7 +56,7 @@ from fastpath.kernels.particle import advance, departure_point, detachment_of
 from fastpath.kernels.records import flag, start_particle, store_carried, store_sample
 from fastpath.kernels.threads import over_threads
 from fastpath.physics import DISSIPATIVE, Dissipative, Elastic, model_of
-from fastpath.status import CONVERGED
+from fastpath.status import CONVERGED, UNCERTAIN
 
 LANES = 64  # particles in flight together in a group (a multiple of the vector width)
 
@@ -149,6 +151,53 @@ def _depart_of_model(physics, real, states, lane, i, starts, flags):
     return dissipative_departure
 
 
+def _dissipative_collision(physics, states, carried, lane, keep, detach, hole_lo):
+    """The collision of a dissipative lane (``fastpath.dissipative.carried.advance`` on its
+    state; its carried entries first copied if ``keep``): (status, tau, sticking kind,
+    t_start, phi1, v1, t1). Compiled for dissipative descriptions only: an elastic loop never
+    calls it (its lanes take the vectorised flight), so it compiles no dissipative code."""
+
+
+def _store_carried(physics, rows, s, carried):
+    """``fastpath.kernels.records.store_carried`` for a dissipative loop (not compiled for an
+    elastic one, which never calls it)."""
+
+
+def _departure_point(physics, state):
+    """``fastpath.kernels.particle.departure_point`` for a dissipative loop (not compiled for an
+    elastic one, which never calls it)."""
+
+
+@typed_overload(_dissipative_collision)
+def _dissipative_collision_of_model(physics, states, carried, lane, keep, detach, hole_lo):
+    if physics.instance_class is Elastic:
+        def not_called(physics, states, carried, lane, keep, detach, hole_lo):
+            return UNCERTAIN, math.nan, 0, math.nan, math.nan, math.nan, math.nan
+        return not_called
+
+    def dissipative_collision(physics, states, carried, lane, keep, detach, hole_lo):
+        state = states[lane]
+        if keep:
+            copy_carried(state, carried[lane])
+        status, _, tau, kind, t_start, _ = advance(state, physics, AUTO, True, detach, hole_lo)
+        return status, tau, kind, t_start, state[PHI], state[V], state[T]
+    return dissipative_collision
+
+
+@typed_overload(_store_carried)
+def _store_carried_of_model(physics, rows, s, carried):
+    if physics.instance_class is Elastic:
+        return lambda physics, rows, s, carried: None
+    return lambda physics, rows, s, carried: store_carried(rows, s, carried)
+
+
+@typed_overload(_departure_point)
+def _departure_point_of_model(physics, state):
+    if physics.instance_class is Elastic:
+        return lambda physics, state: (math.nan, math.nan, math.nan)
+    return lambda physics, state: departure_point(state)
+
+
 @inline_jit
 def _load_next(physics, lanes, lane, following, end, per_block, starts, sample, flags):
     """Fill the lane with the next particle that departs: (loaded, the next index);
@@ -213,12 +262,9 @@ def _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, f
             else:
                 kind, t_start = 0, 0.0
                 if dissipative:
-                    state = states[lane]
-                    if keep_carried and slot[lane] >= 0 and n[lane] < target[lane]:
-                        copy_carried(state, carried[lane])
-                    status, _, tau_l, kind, t_start, _ = advance(
-                        state, physics, AUTO, True, detach, hole_lo)
-                    phi1_l, v1_l, t1 = state[PHI], state[V], state[T]
+                    keep = keep_carried and slot[lane] >= 0 and n[lane] < target[lane]
+                    status, tau_l, kind, t_start, phi1_l, v1_l, t1 = _dissipative_collision(
+                        physics, states, carried, lane, keep, detach, hole_lo)
                     answered[lane] = False
                 elif answered[lane]:
                     phi1_l, v1_l, tau_l, status = phi1[lane], v1[lane], tau[lane], CONVERGED
@@ -240,9 +286,9 @@ def _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, f
                         store_sample(sample.rows, slot[lane], n[lane], (phi[lane], v[lane]),
                                      (phi1_l, v1_l, tau_l))
                         if dissipative and keep_carried:
-                            store_carried(sample.rows, slot[lane], carried[lane])
+                            _store_carried(physics, sample.rows, slot[lane], carried[lane])
                     if dissipative:
-                        phi[lane], v[lane], t[lane] = departure_point(states[lane])
+                        phi[lane], v[lane], t[lane] = _departure_point(physics, states[lane])
                     else:
                         phi[lane], v[lane], t[lane] = phi1_l, v1_l, t1
                     j = hole[lane] if answered[lane] else exit_hole(phi1_l, hole_lo, hole_width)

@@ -117,6 +117,10 @@ DISSIPATIVE_SOLVERS = ("fastpath.dissipative.drag.", "fastpath.dissipative.drag_
                        "fastpath.dissipative.carried.inelastic_advance",
                        "fastpath.dissipative.sticking.detachment",
                        "fastpath.dissipative.sticking.drag_", "fastpath.dissipative.sticking.accu")
+# a dissipative loop's handling of the carried state, which an elastic loop never runs
+DISSIPATIVE_STATE = ("fastpath.dissipative.carried.", "fastpath.kernels.records.store_carried",
+                     "fastpath.kernels.particle.step_advance",
+                     "fastpath.kernels.particle.departure_point")
 EXACT_SOLVERS = ("fastpath.elastic.concave.", "fastpath.elastic.lower_bound.",
                  "fastpath.elastic.lockstep.", "fastpath.elastic.collision.",
                  "fastpath.elastic.flight.solve_flight", "fastpath.elastic.flight.flight_from",
@@ -138,3 +142,4 @@ def test_imports_compile_nothing_and_each_model_compiles_its_own_code_only(tmp_p
     assert "fastpath.kernels.escape._escape_lanes" in escape
     assert "fastpath.elastic.concave.concave_flight" in escape  # the lanes' fallback
     assert not [name for name in escape if name.startswith(DISSIPATIVE_SOLVERS)]
+    assert not [name for name in escape if name.startswith(DISSIPATIVE_STATE)]
