@@ -163,7 +163,7 @@ def _store_carried(physics, rows, s, carried):
     elastic one, which never calls it)."""
 
 
-def _departure_point(physics, state):
+def _departure_point(state, physics):
     """``fastpath.kernels.particle.departure_point`` for a dissipative loop (not compiled for an
     elastic one, which never calls it)."""
 
@@ -192,10 +192,10 @@ def _store_carried_of_model(physics, rows, s, carried):
 
 
 @typed_overload(_departure_point)
-def _departure_point_of_model(physics, state):
+def _departure_point_of_model(state, physics):
     if physics.instance_class is Elastic:
-        return lambda physics, state: (math.nan, math.nan, math.nan)
-    return lambda physics, state: departure_point(state)
+        return lambda state, physics: (math.nan, math.nan, math.nan)
+    return lambda state, physics: departure_point(state)
 
 
 @inline_jit
@@ -288,7 +288,7 @@ def _escape_lanes(physics, span, starts, holes, horizon, bins, sample, counts, f
                         if dissipative and keep_carried:
                             _store_carried(physics, sample.rows, slot[lane], carried[lane])
                     if dissipative:
-                        phi[lane], v[lane], t[lane] = _departure_point(physics, states[lane])
+                        phi[lane], v[lane], t[lane] = _departure_point(states[lane], physics)
                     else:
                         phi[lane], v[lane], t[lane] = phi1_l, v1_l, t1
                     j = hole[lane] if answered[lane] else exit_hole(phi1_l, hole_lo, hole_width)
