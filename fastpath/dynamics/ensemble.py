@@ -4,9 +4,9 @@ first passage above a velocity (transport across a band).
 ``velocities`` is the loop of the velocity moments (``fastpath.kernels.moments``, the orbits of
 ``fastpath.orbit``) with each orbit's v_n recorded instead of summed: use it for per-orbit
 values, ``fastpath.moments`` for ensemble means over many particles (sums only, any
-description, time grids). Its Holmes map is the map itself, v1 = |v - 2*eps*sin(phi1)|.
-``first_passage`` steps ``kernels.step_tangent``, whose Holmes map is the standard-map form
-(an orbit stops NOT_DEPARTING where the absolute value would act).
+description, time grids). ``first_passage`` runs the same orbits (``fastpath.kernels.particle``)
+until v >= v_top. Their Holmes map is the map itself, v1 = |v - 2*eps*sin(phi1)|, not the
+standard-map form of the Jacobians (``kernels.step_tangent``).
 """
 
 import numpy as np

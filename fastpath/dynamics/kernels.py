@@ -37,12 +37,15 @@ from numba import prange
 from fastpath.arithmetic.jit import jit, parallel_jit, typed_overload
 from fastpath.arithmetic.phase import PI, TWO_PI, reduce_phase
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
+from fastpath.dissipative.carried import STATE_SIZE, V
 from fastpath.elastic.collision import collide_from
-from fastpath.elastic.flight import GENERAL
+from fastpath.elastic.flight import AUTO, GENERAL
 from fastpath.elastic.holmes import holmes_phase
+from fastpath.kernels.particle import advance, begin, detachment_of
 from fastpath.physics import Elastic, Holmes
 from fastpath.status import CONVERGED, NOT_DEPARTING
 
+NO_HOLES = np.empty(0)  # advance's hole edges: an orbit has none
 _NEAR = math.sqrt(UNIT_ROUNDOFF)  # relative step below which Newton is in its quadratic end game
 
 
@@ -364,20 +367,28 @@ def separation_exponent(phi0, v0, physics, n, d0):
 
 @parallel_jit
 def first_passage(phi0, v0, physics, v_top, n, passage, status):
-    """Collision count at which each orbit first has v >= v_top (-1: not within n)."""
+    """Collision count at which each orbit first has v >= v_top (-1: not within n), the orbits
+    of ``fastpath.orbit`` (``fastpath.kernels.particle``: its Holmes map folds, as the map
+    itself does, rather than stopping)."""
+    detach = detachment_of(physics)
     for i in prange(len(phi0)):
-        phi = reduce_phase(phi0[i])
-        s, c = math.sin(phi), math.cos(phi)
-        v = v0[i]
-        passage[i], status[i] = -1, CONVERGED
-        for k in range(1, n + 1):
-            phi, s, c, v, _, _, _, _, _, st = step_tangent(phi, s, c, v, physics)
-            if st != CONVERGED:
-                status[i] = st
-                break
-            if v >= v_top:
-                passage[i] = k
-                break
+        passage[i] = -1
+        status[i] = _first_passage(phi0[i], v0[i], physics, v_top, n, detach, passage, i)
+
+
+@jit
+def _first_passage(phi0, v0, physics, v_top, n, detach, passage, i):
+    """``first_passage`` of start i (written into passage[i]); its status."""
+    state = np.empty(STATE_SIZE)
+    status = begin(state, phi0, v0, 0.0, physics, False)
+    k = 0
+    while status == CONVERGED and k < n:
+        status, _, _, _, _, _ = advance(state, physics, AUTO, False, detach, NO_HOLES)
+        k += 1
+        if status == CONVERGED and state[V] >= v_top:
+            passage[i] = k
+            break
+    return status
 
 
 @parallel_jit

@@ -52,3 +52,26 @@ def test_the_holmes_velocities_fold_where_the_velocity_would_turn_negative():
     assert np.array_equal(vel[:, 0], v1)
     folded = v - 2.0 * EPS * np.sin(phi1) < 0.0
     assert folded.any()
+
+
+@pytest.mark.parametrize("model", ["exact", "holmes"])
+def test_first_passage_is_the_first_count_at_which_the_orbit_reaches_the_velocity(model):
+    """``first_passage`` runs the orbits of ``fastpath.orbit``: its count is the first n with
+    v_n >= v_top on that orbit, -1 where none within n collisions."""
+    phi, v = _starts(40, 4)
+    v_top, n = 5.0, 300
+    passage, status = fd.first_passage(phi, v, EPS, v_top, n, model=model)
+    assert (status == CONVERGED).all()
+    for i in range(len(phi)):
+        reached = np.flatnonzero(fastpath.orbit(phi[i], v[i], EPS, n, model=model).v[1:] >= v_top)
+        assert passage[i] == (reached[0] + 1 if len(reached) else -1)
+    assert (passage > 0).any() and (passage == -1).any()
+
+
+def test_the_holmes_first_passage_folds_where_the_velocity_would_turn_negative():
+    rng = np.random.default_rng(6)
+    phi, v = rng.uniform(0.0, 2.0 * np.pi, 200), rng.uniform(0.05, 1.0, 200)
+    leaves = v + EPS * np.sin(phi) > 0.0
+    passage, status = fd.first_passage(phi[leaves], v[leaves], EPS, 3.0, 400, model="holmes")
+    assert (status == CONVERGED).all()
+    assert (passage > 0).any()
