@@ -24,11 +24,10 @@ four fields (an ``Elastic`` one has drag 0, drag_law NONE, restitution 1), so th
 type-checks for every class. Build descriptions with ``elastic``, ``holmes``, ``dissipative`` or
 ``describe`` (which picks the class from the values).
 
-Where a new physics goes: a drag law gets a code here and its formulas in
-``fastpath.dissipative.drag`` (eta and its closed-form motion),
-``fastpath.dissipative.short_flight`` (the offsets of a short flight),
-``fastpath.dissipative.drag_flight`` (the solver's curvature and error bounds) and
-``fastpath.dissipative.sticking`` (riding and detachment); every flight solver, orbit loop and
+Where a new physics goes: a drag law gets a code and public name here and one module in
+``fastpath.dissipative.laws`` with every formula that depends on it (its deceleration, closed-form
+motion, short-flight offsets, solver bounds, riding and detachment), registered in that
+package's dispatch (its docstring lists the functions); every flight solver, orbit loop and
 kernel then takes it through the description.
 """
 

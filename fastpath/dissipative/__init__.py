@@ -4,7 +4,10 @@ from them (chattering, sticking to the plate, detachment). The description ``Dis
 
 Reading order:
 
-``drag``          the drag laws eta(V) and the particle's motion under drag in closed form; the gap.
+``laws``          one module per drag law eta(V) (``none``, ``linear``, ``quadratic``) with every
+                  formula that depends on the law, and the one dispatch on the law code.
+``special``       cancellation-free special functions of the laws' closed forms.
+``drag``          the particle's motion under drag with its rounding bounds; the gap.
 ``drag_flight``   one flight with drag: the first root of that gap.
 ``short_flight``  a short flight from a small relative velocity, in relative coordinates.
 ``impact``        impacts with restitution; the collision map with drag.

@@ -23,18 +23,18 @@ c_k = min(p(t_k), 0) + eps*cos(phi + t_k) (the particle's part frozen at its low
 plate's part with its Taylor remainder), all lowered by their rounding bounds
 (``fastpath.dissipative.drag.gap_state``); the same stop, polish, graze test and statuses. In the
 graze test the largest curvature after t is b = |eps| + max(p(t), 0) (p <= 0 and increasing, or
-p > 0 and decreasing; |eps| - 1 without drag) and the third derivative is bounded by |eps| + |p'|,
-with |p'| = eta'(V)*|p| <= k*|p(t)| (linear) or 2*k*max(|V(t)|, 1/sqrt(k))*|p(t)|
-(quadratic: V stays between V(t) and the terminal velocity).
+p > 0 and decreasing; |eps| - 1 without drag: the law's ``acceleration_sup``) and the third
+derivative is bounded by |eps| + |p'|, with the law's bound on |p'| = eta'(V)*|p| (``jerk_rate``
+of ``fastpath.dissipative.laws``: V stays between V(t) and the terminal velocity).
 
 Concave flights (Halley in a bracket, as ``fastpath.elastic.concave``). If 1 + eta(v) >= 0 then p is
 increasing, so on [0, t] d'' <= p(t) + |eps| = -m(t). A point t with m(t) > 0 certifies the gap
 concave on [0, t]: with d(0) = 0 < d'(0) there is at most one root in (0, t], so d(t) > E puts t
 before the first root and d(t) < -E after it (E the gap's rounding bound). Halley steps in the
 bracket [lo, hi] start, as in ``fastpath.elastic.concave``, for long flights (2*w0 >= 1 + |eps|) at
-the particle's own landing time to first order in the drag, 2*v*(1 - k*v/3) (linear) or 2*v*(1 -
-k*v**2/4) (quadratic; Y(2v) = -k*v**3*2/3 resp. -k*v**4/2 to first order, divided by |Y'(2v)| =
-v), when that correction is below a half; else at the root of w0*t - (1 + eta(v) -
+the particle's own landing time to first order in the drag, 2*v*(1 - D/3) with D/3 the law's
+relative shortening (``landing_drop``: k*v/3 linear, k*v**2/4 quadratic), when that correction
+is below a half; else at the root of w0*t - (1 + eta(v) -
 eps*cos(phi))*t**2/2 (the departure curvature frozen); while hi is not yet known (no point after
 the root), a step that would go backwards is replaced by the root of the local quadratic model d
 + d'*s + d''*s**2/2 (forward, d'' < 0). The first point where m(t) <= 0 (drag so strong or a
@@ -42,18 +42,19 @@ fall so long that the particle nears its terminal velocity: even |eps| < 1 then 
 gap and several roots) hands the flight to the lower-bound steps, which go on from the bracket's
 lower end with the iterations left.
 
-Linear drag near the root of a long descent (``tight_linear_bounds``). The rounding bounds of
-``fastpath.dissipative.drag.particle`` charge the rounding of the argument z = -k*t (a relative
-change of a few u of the time) with the largest |V'| and |V| of the whole flight, those at the
-departure (1 + k*v and v). After a fall of k*t >> 1 at the terminal velocity they are many
-orders of magnitude above the local ones: at k = 1000, v = 1e5 the bound on d' is 0.09 where
-|d'| = 0.03 at the root, and the steps, which lower d' by its bound, creep towards the point
-where d equals its bound with ratio R/(|d'| + R) and ran out of evaluations (MAX_ITERATIONS for
+Linear drag near the root of a long descent (``tight_gap_errors`` and ``tight_particle_errors`` of
+``fastpath.dissipative.laws.linear``; the other laws return the bounds they are given). The rounding
+bounds of ``fastpath.dissipative.drag.particle`` charge the rounding of the argument z = -k*t (a
+relative change of a few u of the time) with the largest |V'| and |V| of the whole flight, those at
+the departure (1 + k*v and v). After a fall of k*t >> 1 at the terminal velocity they are many
+orders of magnitude above the local ones: at k = 1000, v = 1e5 the bound on d' is 0.09 where |d'| =
+0.03 at the root, and the steps, which lower d' by its bound, creep towards the point where d equals
+its bound with ratio R/(|d'| + R) and ran out of evaluations (MAX_ITERATIONS for
 k*v >= 1e8). With linear drag the local values are exact: V' = -(1 + k*v)*exp(-k*t) is monotone,
 so over the perturbed times t*(1 + theta), |theta| <= 16u, |V'| <= |1 + k*v|*e*exp(2*|z|*u)
 with e = fl(exp(z)) (exp's rounding and z's included), and |Y'| = |V| <= |vel| + the velocity's
-own bound. The lower-bound steps and the descent's jumps with linear drag use the smaller of
-the two bounds (both are valid); the concave solver keeps ``particle``'s.
+own bound. The lower-bound steps and the descent's jumps use the smaller of the two bounds (both
+are valid); the concave solver keeps ``particle``'s.
 
 The long descent (``descent_jump``). Near the terminal velocity the lower-bound steps would crawl:
 their curvature bound is the plate's |eps| while the particle sinks by ~1/k per unit of time
@@ -71,14 +72,21 @@ import math
 
 from fastpath.arithmetic.jit import jit
 from fastpath.arithmetic.rotation import sin_cos_of_sum
-from fastpath.arithmetic.rounding import SUBNORMAL, UNIT_ROUNDOFF, plus_underflow
+from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.arithmetic.sincos import sin_cos
-from fastpath.dissipative.drag import ROUNDING_FACTOR, eta, gap_state, particle, phi1, phi2
+from fastpath.dissipative.drag import gap_state, particle
+from fastpath.dissipative.laws import (
+    acceleration_sup,
+    eta,
+    jerk_rate,
+    landing_drop,
+    tight_gap_errors,
+    tight_particle_errors,
+)
 from fastpath.elastic.concave import AFTER, AT_ROOT, BEFORE, halley
 from fastpath.elastic.flight import AUTO, departure_phase
 from fastpath.elastic.gap import departure, departure_verdict
 from fastpath.elastic.lower_bound import GOING_ON, GapBounds, lower_bound_step, next_point
-from fastpath.physics import LINEAR, NONE, QUADRATIC
 from fastpath.status import (
     CONVERGED,
     ITERATION_LIMIT,
@@ -140,7 +148,7 @@ def concave_drag_flight(phi, cos_phi, v, physics, w0, lo):
     eps, drag, law = physics.eps, physics.drag, physics.drag_law
     hi = math.inf
     t = 2.0 * w0 / (1.0 + eta(v, drag, law) - eps * cos_phi)
-    drop = drag * v if law == LINEAR else 0.75 * drag * v * v  # 3*(relative shortening)
+    drop = landing_drop(v, drag, law)  # 3*(relative shortening)
     if 2.0 * w0 >= 1.0 + abs(eps) and drop < 1.5:
         t = 2.0 * v * (1.0 - drop / 3.0)
     if not lo < t:
@@ -186,44 +194,13 @@ def drag_gap_bounds(phi, v, physics, t):
     velocity for the graze test."""
     eps, drag, law = physics.eps, physics.drag, physics.drag_law
     d, d1, _, d_err, d1_err, vel, v_err = gap_state(phi, v, eps, drag, law, t)
-    if law == LINEAR:
-        d_err, d1_err, v_err = tight_linear_bounds(phi, v, eps, drag, t, d, d1, vel, d_err,
-                                                   d1_err, v_err)
+    d_err, d1_err, v_err = tight_gap_errors(phi, v, eps, drag, law, t, d, d1, vel, d_err,
+                                            d1_err, v_err)
     theta = phi + t
     p_low = min(-1.0 - eta(vel + v_err, drag, law), 0.0) * (1.0 + 4.0 * _U)
     curvature = p_low + eps * math.cos(theta) - 4.0 * _U * abs(eps) * (1.0 + t)
     a = curvature_bound(vel, v_err, eps, drag, law)
     return GapBounds(d, d1, d_err, d1_err, curvature, -eps * math.sin(theta), eps, a), vel, v_err
-
-
-@jit
-def tight_linear_errors(v, k, t, vel, y_err, v_err):
-    """(Y_error, V_error) of ``particle`` at t with linear drag, the argument's rounding charged
-    with the local |V'| and |V| (module docstring); each the smaller of the two bounds."""
-    u = UNIT_ROUNDOFF
-    z = -k * t
-    e = math.exp(z)
-    local_rate = abs(1.0 + k * v) * (e * (1.0 + 2.0 * abs(z) * u + 8.0 * u) + SUBNORMAL)
-    p1 = phi1(z)
-    tight_v = ROUNDING_FACTOR * u * (abs(v) * e * (1.0 + abs(z)) + t * p1 + t * local_rate)
-    tight_y = ROUNDING_FACTOR * u * (abs(v) * t * p1 + t * t * phi2(z)
-                                     + t * (abs(vel) + tight_v))
-    return min(y_err, tight_y), min(v_err, tight_v)
-
-
-@jit
-def tight_linear_bounds(phi, v, eps, k, t, d, d1, vel, d_err, d1_err, v_err):
-    """(d_err, d1_err, v_err) of ``gap_state`` at t with linear drag and the particle's bounds
-    of ``tight_linear_errors`` (gap_state's plate terms and final sums as they are there); each
-    the smaller of the two."""
-    u = UNIT_ROUNDOFF
-    y_err, tight_v = tight_linear_errors(v, k, t, vel, math.inf, v_err)
-    # gap_state's final sums: 2u*(|Y| + |plate|) <= 2u*(|d| + 4|eps|), 2u*|V|
-    tight_d = plus_underflow(y_err + 4.0 * u * abs(eps) * min(t, 2.0) * (abs(phi) + t + 3.0)
-                             + 2.0 * u * (abs(d) + 4.0 * abs(eps)), 16.0 + 2.0 * abs(eps))
-    tight_d1 = plus_underflow(tight_v + 4.0 * u * abs(eps) * (1.0 + abs(phi) + t)
-                              + 2.0 * u * (abs(vel) + abs(d1) + abs(eps)), 16.0 + abs(eps))
-    return min(d_err, tight_d), min(d1_err, tight_d1), tight_v
 
 
 @jit
@@ -304,12 +281,10 @@ def descent_jump(v, physics, t, reach, budget):
 
 @jit
 def descent_particle(v, physics, t):
-    """``particle`` at t for the descent's jumps; with linear drag the bounds of
-    ``tight_linear_errors``."""
+    """``particle`` at t for the descent's jumps, with the law's ``tight_particle_errors``."""
     drag, law = physics.drag, physics.drag_law
     y, vel, y_err, v_err = particle(v, drag, law, t)
-    if law == LINEAR:
-        y_err, v_err = tight_linear_errors(v, drag, t, vel, y_err, v_err)
+    y_err, v_err = tight_particle_errors(v, drag, law, t, vel, y_err, v_err)
     return y, vel, y_err, v_err
 
 
@@ -322,17 +297,12 @@ def may_be_drag_graze(phi, physics, vel, v_err, t, r, d_err):
     p = -1.0 - eta(vel, drag, law)
     p_err = abs(eta(vel + v_err, drag, law) - eta(vel - v_err, drag, law)) + 4.0 * _U * abs(p)
     # sup of p after t: 0 (approached, p increasing) or p(t) (p > 0 decreasing); -1 without drag
-    convex_bound = abs(eps) + (max(p + p_err, 0.0) if drag > 0.0 and law != NONE else -1.0)
+    convex_bound = abs(eps) + acceleration_sup(p, p_err, drag, law)
     if convex_bound <= 0.0:
         return False  # concave for the rest of the flight: no dip
     curvature = p + p_err + eps * math.cos(phi + t) + 4.0 * _U * abs(eps) * (1.0 + t)
     p_size = abs(p) + p_err
-    if law == LINEAR:
-        jerk = abs(eps) + drag * p_size
-    elif law == QUADRATIC:
-        jerk = abs(eps) + 2.0 * max(drag * (abs(vel) + v_err), math.sqrt(drag)) * p_size
-    else:
-        jerk = abs(eps)
+    jerk = abs(eps) + jerk_rate(vel, v_err, drag, law, p_size)
     if curvature < 0.0 and r < 0.0 and 2.0 * d_err * jerk < -r * -curvature:
         return False
     return r > -2.0 * math.sqrt(4.0 * convex_bound * d_err)

@@ -36,29 +36,17 @@ gap is proportional to w*t or smaller (no v*t formed and subtracted):
     d(t)  = w*t + (Y(t) - v*t) + eps*(cos(phi)*2*sin(t/2)**2 - sin(phi)*S3(t)),
     d'(t) = w + (V(t) - v) + eps*(cos(phi)*sin(t) - sin(phi)*2*sin(t/2)**2),
 
-with the particle's offsets from uniform motion (the closed forms of
-``fastpath.dissipative.drag``, rewritten):
+with the particle's offsets Y - v*t and V - v from uniform motion: the closed forms of the law,
+rewritten so that no v*t is formed (``offset`` of its module in ``fastpath.dissipative.laws``).
 
-linear, z = -k*t:  Y - v*t = -(1 + k*v)*t**2*phi2(z),   V - v = -(1 + k*v)*t*phi1(z);
-quadratic, s = sqrt(k), x = s*t, L(y) = (log1p(y) - y)/y**2 (series for |y| < 1/2):
-  rising (v > 0, t <= t_top): g = t*(v*sinc(x) - (t/2)*sinc(x/2)**2),
-      Y - v*t = -v*t*S3(x)/x - (t**2/2)*sinc(x/2)**2 + k*g**2*L(k*g),
-      V - v = -t*tanc(x)*(1 + k*v**2)/(1 + k*v*t*tanc(x));
-  falling (v <= 0): G = t*((t/2)*sinhc(x/2)**2 - v*sinhc(x)),
-      Y - v*t = -((t**2/2)*sinhc(x/2)**2 - v*t*S3h(x)/x) - k*G**2*L(k*G),  S3h(x) = sinh(x) - x,
-      V - v = -t*tanhc(x)*(1 - k*v**2)/(1 - k*v*t*tanhc(x));
-  after the top (v > 0, t > t_top): the rising offset at t_top plus the fall from rest over
-      t - t_top, minus v*(t - t_top) (v <= t_top*(1 + k*v**2) there: a term of the gap's own
-      size t**2, not a cancellation of larger ones).
-
-When it applies (``drag_short_window``): with a = 1 + eta(v) - eps*cos(phi) (lowered by its
-rounding bound), h = 4w/a, the curvature d''(s) = p(V(s)) + eps*cos(phi + s), p = -1 - eta,
-satisfies d''(s) <= -a + (|J| + D)*s + |eps|*s**2/2 with J = -eps*sin(phi) and the drift of the
-particle's acceleration |p(V(s)) - p(v)| <= D*s: V moves monotonically towards terminal, so
-|V(s) - v| <= s*|p(v)|, and D = k*|p(v)| (linear), 2k*(|v| + h*|p(v)|)*|p(v)| (quadratic: eta'
-= 2k|V|). The test m_h = a - (|J| + D)*h - |eps|*h**2/2 >= a/2, h <= 1, sqrt(k)*h <= 1/2 makes d
-strictly concave on [0, h]: one root in (0, 2w/m_h], Newton from there moves monotonically onto
-it (as without drag).
+When it applies (``drag_short_window``): with a = 1 + eta(v) - eps*cos(phi) (lowered by its rounding
+bound), h = 4w/a, the curvature d''(s) = p(V(s)) + eps*cos(phi + s), p = -1 - eta, satisfies d''(s)
+<= -a + (|J| + D)*s + |eps|*s**2/2 with J = -eps*sin(phi) and the drift of the particle's
+acceleration |p(V(s)) - p(v)| <= D*s: V moves monotonically towards terminal, so |V(s) - v| <=
+s*|p(v)|, and D the law's ``window_drift`` (k*|p(v)| linear, 2k*(|v| + h*|p(v)|)*|p(v)| quadratic:
+eta' = 2k|V|). The test m_h = a - (|J| + D)*h - |eps|*h**2/2 >= a/2, h <= 1, sqrt(k)*h <= 1/2 makes
+d strictly concave on [0, h]: one root in (0, 2w/m_h], Newton from there moves monotonically onto it
+(as without drag).
 
 ``short_window`` and ``short_flight`` take the physics description: drag == 0 runs the formulas
 without drag (bit for bit those of a drag-free orbit), drag > 0 those with it.
@@ -68,23 +56,9 @@ import math
 
 from fastpath.arithmetic.jit import jit
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
-from fastpath.dissipative.drag import eta, phi1, phi2, sinc, sinhc, tanc, tanhc
-from fastpath.physics import LINEAR
+from fastpath.dissipative.laws import eta, offset, window_drift
+from fastpath.dissipative.special import SERIES_LIMIT, s3
 from fastpath.status import ITERATION_LIMIT
-
-SERIES_LIMIT = 1.0  # the Taylor series below are good to < u for t <= 1 (10th term < 1e-21)
-
-
-@jit
-def s3(t):
-    """t - sin(t) = t**3/6 - t**5/120 + ... (series for t <= 1, cancellation-free)."""
-    if t > SERIES_LIMIT:
-        return t - math.sin(t)
-    x = t * t
-    s = 1.0 - x / 420.0
-    for k in (342.0, 272.0, 210.0, 156.0, 110.0, 72.0, 42.0, 20.0):
-        s = 1.0 - x / k * s
-    return t * x / 6.0 * s
 
 
 @jit
@@ -136,75 +110,9 @@ def elastic_short_window(sin_phi, cos_phi, w, eps):
 
 
 @jit
-def s3h(x):
-    """sinh(x) - x = x**3/6 + x**5/120 + ... (series for x <= 1)."""
-    if x > SERIES_LIMIT:
-        return math.sinh(x) - x
-    y = x * x
-    s = 1.0 + y / 420.0
-    for n in (342.0, 272.0, 210.0, 156.0, 110.0, 72.0, 42.0, 20.0):
-        s = 1.0 + y / n * s
-    return x * y / 6.0 * s
-
-
-@jit
-def log_rest(y):
-    """(log1p(y) - y)/y**2 = -1/2 + y/3 - y**2/4 + ... (series for |y| < 1/2, 60 terms)."""
-    if abs(y) >= 0.5:
-        return (math.log1p(y) - y) / (y * y)
-    total = 0.0
-    for n in range(61, 1, -1):
-        total = (1.0 if n % 2 == 1 else -1.0) / n + y * total
-    return total
-
-
-@jit
-def _rising_offset(v, k, t):
-    s = math.sqrt(k)
-    x = s * t
-    ratio = s3(x) / x if x > 0.0 else 0.0
-    g = t * (v * sinc(x) - 0.5 * t * sinc(0.5 * x) ** 2)
-    dy = -v * t * ratio - 0.5 * t * t * sinc(0.5 * x) ** 2 + k * g * g * log_rest(k * g)
-    tc = t * tanc(x)
-    dv = -tc * (1.0 + k * v * v) / (1.0 + k * v * tc)
-    return dy, dv
-
-
-@jit
-def _falling_offset(v, k, t):
-    s = math.sqrt(k)
-    x = s * t
-    ratio = s3h(x) / x if x > 0.0 else 0.0
-    big_g = t * (0.5 * t * sinhc(0.5 * x) ** 2 - v * sinhc(x))
-    dy = -(0.5 * t * t * sinhc(0.5 * x) ** 2 - v * t * ratio) - k * big_g * big_g * log_rest(
-        k * big_g)
-    th = t * tanhc(x)
-    dv = -th * (1.0 - k * v * v) / (1.0 - k * v * th)
-    return dy, dv
-
-
-@jit
-def particle_offset(v, k, law, t):
-    """(Y(t) - v*t, V(t) - v) with drag (module docstring), for s*t <= 1."""
-    if law == LINEAR:
-        z = -k * t
-        p = 1.0 + k * v
-        return -p * t * t * phi2(z), -p * t * phi1(z)
-    if v <= 0.0:
-        return _falling_offset(v, k, t)
-    top = v * math.atan(math.sqrt(k) * v) / (math.sqrt(k) * v)
-    if t <= top:
-        return _rising_offset(v, k, t)
-    dy_top, _ = _rising_offset(v, k, top)
-    rest = t - top
-    dy_fall, v_fall = _falling_offset(0.0, k, rest)
-    return dy_top + dy_fall - v * rest, v_fall - v
-
-
-@jit
 def drag_relative_gap(sin_phi, cos_phi, w, v, eps, k, law, t):
     """(d(t), d'(t)) in relative coordinates (module docstring)."""
-    dy, dv = particle_offset(v, k, law, t)
+    dy, dv = offset(v, k, law, t)
     v2 = 2.0 * math.sin(0.5 * t) ** 2
     d = w * t + dy + eps * (cos_phi * v2 - sin_phi * s3(t))
     d1 = w + dv + eps * (cos_phi * math.sin(t) - sin_phi * v2)
@@ -220,7 +128,7 @@ def drag_short_window(sin_phi, cos_phi, w, v, eps, k, law):
         return 0.0
     h = 4.0 * w / a
     p = abs(1.0 + e_v)
-    drift = k * p if law == LINEAR else 2.0 * k * (abs(v) + h * p) * p
+    drift = window_drift(v, k, law, h, p)
     m_h = a - (abs(eps * sin_phi) + drift) * h - 0.5 * abs(eps) * h * h
     if not (h <= SERIES_LIMIT and math.sqrt(k) * h <= 0.5 and m_h >= 0.5 * a):
         return 0.0

@@ -49,7 +49,7 @@ exceed its rounding bound, and continues with the certified lower-bound steps fr
 (``fastpath.elastic.lower_bound`` from t = t_c). Where d(t_c) ~ (8/3)*(|eps| - 1)**2
 is within rounding (|eps| - 1 below ~1e-10) the flight is UNCERTAIN.
 
-With drag (eta of ``fastpath.dissipative.drag``).
+With drag (eta of the law's module in ``fastpath.dissipative.laws``).
 
 Riding. A particle riding the plate moves with it: velocity u = -eps*sin(theta), acceleration
 -eps*cos(theta). Its free acceleration is -1 - eta(u), so the plate pushes it with the force
@@ -60,39 +60,19 @@ Riding. A particle riding the plate moves with it: velocity u = -eps*sin(theta),
 and it stays while a >= 0; it detaches where a falls through 0 (f rises through 1). Without
 drag f = eps*cos(theta) (above).
 
-Linear drag, eta(u) = k*u: f = eps*(cos(theta) + k*sin(theta)) = E*cos(theta - beta) for
-eps > 0, E = eps*sqrt(1 + k**2), beta = atan(k) (for eps < 0 the same with theta - beta - pi).
-So the particle can detach iff |eps|*sqrt(1 + k**2) > 1, i.e. eps**2*(1 + k**2) > 1: drag
-makes even |eps| <= 1 detach when |eps| > 1/sqrt(1 + k**2) (the drag on the plate's upward
-motion adds to the plate's deceleration). At equality f touches 1 without crossing: never.
-The detachment phase (f increasing through 1) is, with alpha = arccos(1/E) = atan(sqrt(E**2 - 1)),
+Each law's f, the condition for detaching and the detachment phase theta'* and ride-curvature
+window t_c in the frame e = |eps|, theta' = theta (eps > 0) or theta - pi (eps < 0), are in its
+module of ``fastpath.dissipative.laws`` (``detach_discriminant``, ``detachment_frame``): linear
+drag in closed form, f = E*cos(theta - beta), E = |eps|*sqrt(1 + k**2), beta = atan(k) (so drag
+makes even |eps| <= 1 detach when |eps| > 1/sqrt(1 + k**2): the drag on the plate's upward
+motion adds to the plate's deceleration); quadratic drag by bisection on the one root of
+f = 1 on the rising side of its unimodal period. k -> 0 gives 2*pi - arccos(1/eps) and
+pi - arccos(1/|eps|).
 
-    theta* = beta - alpha (eps > 0),   theta* = beta + pi - alpha (eps < 0),   mod 2*pi,
-
-k -> 0 gives 2*pi - arccos(1/eps) and pi - arccos(1/|eps|). f falls back through 1 at
-theta* + 2*alpha: the ride-curvature window t_c = 2*alpha.
-
-Quadratic drag, eta(u) = k*u*|u|: in the frame e = |eps|, theta' = theta (eps > 0) or
-theta - pi (eps < 0), f = e*cos(theta') + k*e**2*sin(theta')*|sin(theta')|. With c = cos(theta'):
-on sin >= 0 f = e*c + k*e**2*(1 - c**2) (largest k*e**2 + 1/(4k) at c = 1/(2ke) if 2ke > 1, else
-e at c = 1); on sin < 0 f <= e*c <= e. So max f = e if 2ke <= 1, else k*e**2 + 1/(4k) and
-
-    max f - 1 = ((2ke - 1)**2 - 4k*(1 - e)) / (4k)       (2ke > 1),
-
-so the particle can detach iff e > 1 (2ke <= 1) or (2ke - 1)**2 > 4k*(1 - e) (2ke > 1), the
-latter true for every e >= 1 and for some e < 1. f is unimodal per period: f' = sin*(2ke**2*c - e)
-on sin > 0, |sin|*(e + 2ke**2*c) on sin < 0, increasing from its minimum at theta'_min =
--arccos(-1/(2ke)) to its maximum at theta'_max = arccos(1/(2ke)) (2ke > 1; else from -pi to 0).
-The detachment phase is the one root of f = 1 in [theta'_min, theta'_max], and the end of the
-ride curvature window the one root in [theta'_max, theta'_min + 2*pi]: both by bisection to
-adjacent floats (``_bisect``), the sign of f - 1 taken only where it exceeds the rounding bound
-of f, F = 4u*(e + k*e**2)*(1 + |theta'|) (libm's sin and cos within an ulp, the argument
-exact); the root is then within F/|f'(theta*)| + 2 ulps of the computed one.
-
-Deciding "never detaches". The sign of the discriminant (E**2 - 1 = (e - 1)*(e + 1) + (e*k)**2,
-resp. (2ke - 1)**2 - 4k*(1 - e) or e - 1) is taken against its rounding bound (``detach_kind``):
-DETACHES, NEVER, or UNDECIDED within rounding (the threshold itself, |eps|*sqrt(1 + k**2) = 1
-to ~1e-15); an accumulation with UNDECIDED stops the orbit as UNCERTAIN.
+Deciding "never detaches". The sign of the law's discriminant (linear: E**2 - 1 = (e - 1)*(e + 1)
++ (e*k)**2; quadratic: (2ke - 1)**2 - 4k*(1 - e) or e - 1) is taken against its rounding bound
+(``detach_kind``): DETACHES, NEVER, or UNDECIDED within rounding (the threshold itself,
+|eps|*sqrt(1 + k**2) = 1 to ~1e-15); an accumulation with UNDECIDED stops the orbit as UNCERTAIN.
 
 Departure from detachment. At theta* the relative velocity x = d' is 0 and d'' = 0. With the
 free particle V = u + x, x' = d'' = -a(theta* + t) + (eta(u) - eta(u + x)). At any first return
@@ -102,11 +82,11 @@ and the gap d > 0 on (0, t_c]. The flight starts its certified lower-bound steps
 (``fastpath.dissipative.drag_flight.lower_bound_drag_flight``) once d(t_c) exceeds its rounding
 bound (the float state (theta*, u(theta*)) stands for the exact one, as without drag).
 
-Accumulation tail with drag. Near accumulation at phase theta the relative motion x obeys
-x'' = A + J*t - c*x' + (second order), with A = -a(theta), J = dA/dt = c*eps*cos(theta) -
-eps*sin(theta), c = eta'(u) (k, resp. 2k|u|). One flight from x' = w: x = w*t - a*t**2/2 -
-c*(w*t**2/2 - a*t**3/6) + J*t**3/6 lasts tau0*(1 - c*tau0/6) + J*tau0**2/(3a) (tau0 = 2w/a) and
-returns with -w*(1 - c*tau0/3) + J*tau0**2/6. Summing over the impacts (w_k ~ r**k w), the
+Accumulation tail with drag. Near accumulation at phase theta the relative motion x obeys x'' = A +
+J*t - c*x' + (second order), with A = -a(theta), J = dA/dt = c*eps*cos(theta) - eps*sin(theta), c =
+eta'(u) (the law's ``tail_terms``: k linear, 2k|u| quadratic). One flight from x' = w: x = w*t -
+a*t**2/2 - c*(w*t**2/2 - a*t**3/6) + J*t**3/6 lasts tau0*(1 - c*tau0/6) + J*tau0**2/(3a) (tau0 =
+2w/a) and returns with -w*(1 - c*tau0/3) + J*tau0**2/6. Summing over the impacts (w_k ~ r**k w), the
 drag part gives -c*tau0**2*[r/(3(1 - r)**2(1 + r)) + 1/(6(1 - r**2))] = -c*T0**2/6, so
 
     T = T0 + J*T0**2/(3a) - c*T0**2/6 + R,     T0 = 2w/(a*(1 - r)),
@@ -128,12 +108,14 @@ from fastpath.arithmetic.jit import jit
 from fastpath.arithmetic.phase import PI, PI_LOW, TWO_PI, TWO_PI_LOW, centre_phase, reduce_phase
 from fastpath.arithmetic.rotation import sin_cos_of_sum
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
-from fastpath.dissipative.drag import eta, gap_state
+from fastpath.dissipative import laws
+from fastpath.dissipative.drag import gap_state
 from fastpath.dissipative.drag_flight import lower_bound_drag_flight
+from fastpath.dissipative.laws import detach_discriminant, eta, tail_terms
 from fastpath.dissipative.short_flight import departure_deceleration
 from fastpath.elastic.gap import gap, gap_error
 from fastpath.elastic.lower_bound import lower_bound_flight
-from fastpath.physics import DISSIPATIVE, LINEAR, QUADRATIC, model_of
+from fastpath.physics import DISSIPATIVE, model_of
 from fastpath.status import CONVERGED, UNCERTAIN
 
 TAIL_Q = UNIT_ROUNDOFF  # sum the tail once its second-order size q is <= u (docstring)
@@ -235,27 +217,9 @@ def riding_force(sin_theta, cos_theta, eps, k, law):
 
 
 @jit
-def _f_frame(x, e, k, law):
-    """f in the eps > 0 frame: e*cos(x) + k*e*sin(x) (linear), + k*e**2*sin(x)*|sin(x)| (quad.)."""
-    s = math.sin(x)
-    if law == LINEAR:
-        return e * (math.cos(x) + k * s)
-    return e * math.cos(x) + k * e * e * s * abs(s)
-
-
-@jit
 def detach_kind(eps, k, law):
     """DETACHES, NEVER or UNDECIDED (module docstring: the discriminant against its rounding)."""
-    e = abs(eps)
-    if law == LINEAR:
-        x, y = (e - 1.0) * (e + 1.0), (e * k) * (e * k)
-        g, bound = x + y, 8.0 * UNIT_ROUNDOFF * (abs(x) + y)
-    elif law == QUADRATIC and 2.0 * k * e > 1.0:
-        m = 2.0 * k * e - 1.0
-        x, y = m * m, 4.0 * k * (1.0 - e)
-        g, bound = x - y, 8.0 * UNIT_ROUNDOFF * (2.0 * k * e * abs(m) + x + abs(y))
-    else:
-        g, bound = e - 1.0, 0.0  # e - 1 is exact for e in [1/2, 2] and of the right sign beyond
+    g, bound = detach_discriminant(abs(eps), k, law)
     if g > bound:
         return DETACHES
     if g < -bound:
@@ -264,48 +228,12 @@ def detach_kind(eps, k, law):
 
 
 @jit
-def _bisect(lo, hi, e, k, law, rising):
-    """Root of f - 1 in [lo, hi] (frame), f increasing (rising) or decreasing there: bisection to
-    adjacent floats, stopping early where |f - 1| is within its rounding bound."""
-    sign = 1.0 if rising else -1.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if not (lo < mid < hi):
-            break
-        g = sign * (_f_frame(mid, e, k, law) - 1.0)
-        if abs(g) <= 4.0 * UNIT_ROUNDOFF * (e + k * e * e) * (1.0 + abs(mid)):
-            return mid
-        if g < 0.0:
-            lo = mid
-        else:
-            hi = mid
-    return 0.5 * (lo + hi)
-
-
-@jit
-def _quadratic_extrema(e, k):
-    """(theta'_min, theta'_max) of f in the frame (module docstring), theta'_min < theta'_max."""
-    if 2.0 * k * e > 1.0:
-        c = 1.0 / (2.0 * k * e)
-        return -math.acos(-c), math.acos(c)
-    return -PI, 0.0
-
-
-@jit
 def detachment_frame(eps, k, law):
     """(theta'*, t_c) in the eps > 0 frame: detachment phase and ride-curvature window; NaN if the
     particle never detaches (or the decision is within rounding)."""
     if detach_kind(eps, k, law) != DETACHES:
         return math.nan, math.nan
-    e = abs(eps)
-    if law == LINEAR:
-        x, y = (e - 1.0) * (e + 1.0), (e * k) * (e * k)
-        alpha = math.atan(math.sqrt(x + y))
-        return math.atan(k) - alpha, 2.0 * alpha
-    lo, hi = _quadratic_extrema(e, k)
-    theta = _bisect(lo, hi, e, k, law, True)
-    end = _bisect(hi, lo + TWO_PI, e, k, law, False)
-    return theta, end - theta
+    return laws.detachment_frame(abs(eps), k, law)
 
 
 @jit
@@ -349,10 +277,7 @@ def drag_accumulation_tail(sin_theta, cos_theta, w, eps, k, law, r):
     a_low = a - 8.0 * UNIT_ROUNDOFF * (1.0 + abs(eps) * 14.0 + abs(eta(u, k, law)))
     if not (a_low > 0.0 and w > 0.0 and r < 1.0):
         return math.nan
-    if law == LINEAR:
-        c, a2, p2 = k, abs(eps) * (1.0 + k), 0.0
-    else:
-        c, a2, p2 = 2.0 * k * abs(u), abs(eps) + 2.0 * k * eps * eps, 2.0 * k
+    c, a2, p2 = tail_terms(eps, k, law, u)
     jerk = c * eps * cos_theta - eps * sin_theta
     t0 = 2.0 * w / (a * (1.0 - r))
     q = t0 * t0 * (jerk * jerk / (a * a) + abs(jerk) * c / a + c * c + a2 / a + p2 * a)

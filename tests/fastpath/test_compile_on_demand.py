@@ -111,7 +111,8 @@ SCRIPT = textwrap.dedent("""
 
 # the solvers of the other models (prefixes of compiled functions' names); a loop may still
 # compile small helpers of their modules (the departure check, the state array's entries)
-DISSIPATIVE_SOLVERS = ("fastpath.dissipative.drag.", "fastpath.dissipative.drag_flight.",
+DISSIPATIVE_SOLVERS = ("fastpath.dissipative.laws.", "fastpath.dissipative.special.",
+                       "fastpath.dissipative.drag.", "fastpath.dissipative.drag_flight.",
                        "fastpath.dissipative.short_flight.", "fastpath.dissipative.impact.",
                        "fastpath.dissipative.carried.advance",
                        "fastpath.dissipative.carried.inelastic_advance",

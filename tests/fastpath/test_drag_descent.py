@@ -87,7 +87,8 @@ STRONG = [(phi, v, eps, k) for phi in (0.5, 2.5) for eps in (0.6, -0.9)
 def test_linear_drag_descents_with_k_v_up_to_1e11_converge(phi, v, eps, k):
     """At k*v >= 1e8 the flight's rounding bound on d' (charged with |V'| at the departure,
     1 + k*v) exceeded |d'| at the root and the steps crept towards it; with the local bound
-    (``tight_linear_bounds``) they converge, within the solver's bound of verify's root."""
+    (``fastpath.dissipative.laws.linear.tight_gap_errors``) they converge, within the solver's
+    bound of verify's root."""
     res = fastpath.flight(phi, v, eps, drag=k)
     assert res.status == fastpath.FlightStatus.CONVERGED, res
     ref = verify.flight_time(phi, v, eps, dps=30, drag=k)

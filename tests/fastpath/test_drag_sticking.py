@@ -36,7 +36,8 @@ from mpmath import mp
 import fastpath
 from fastpath.arithmetic.phase import centre_phase
 from fastpath.dissipative.drag import gap_state
-from fastpath.dissipative.short_flight import drag_short_window, particle_offset
+from fastpath.dissipative.laws import offset
+from fastpath.dissipative.short_flight import drag_short_window
 from fastpath.dissipative.sticking import (
     DETACHES,
     NEVER,
@@ -320,7 +321,7 @@ def test_moments_with_drag_and_restitution_count_every_particle(law):
 
 
 @pytest.mark.parametrize("law", ["linear", "quadratic"])
-def test_particle_offset_is_cancellation_free(law):
+def test_short_flight_offset_is_cancellation_free(law):
     """(Y - v*t, V - v) of drag_short_flight against 100 digits for tiny and moderate t, v of
     either sign and near 0 (the quadratic's top inside the flight). Bound: a few roundings of
     each term of the formulas (module docstring): 32u*(t**2 + k*|v|*t**3 + k*v**2*t**2 + t*|v|*
@@ -334,7 +335,7 @@ def test_particle_offset_is_cancellation_free(law):
         v = float(rng.choice([-1, 1])) * 10 ** rng.uniform(-14, 0.3)
         if k * t * t > 0.25:
             continue
-        dy, dv = particle_offset(v, k, LAW[law], t)
+        dy, dv = offset(v, k, LAW[law], t)
         with mp.workdps(ref.DPS):
             y, vel = ref.motion(mp.mpf(v), mp.mpf(k), law, mp.mpf(t))
             err_y = abs(mp.mpf(dy) - (y - mp.mpf(v) * t))
