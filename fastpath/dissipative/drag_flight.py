@@ -86,7 +86,14 @@ from fastpath.dissipative.laws import (
 from fastpath.elastic.concave import AFTER, AT_ROOT, BEFORE, halley
 from fastpath.elastic.flight import AUTO, departure_phase
 from fastpath.elastic.gap import departure, departure_verdict
-from fastpath.elastic.lower_bound import GOING_ON, GapBounds, lower_bound_step, next_point
+from fastpath.elastic.lower_bound import (
+    GapBounds,
+    LowerBoundModel,
+    lower_bound_model,
+    lower_bound_step,
+    lower_bound_steps,
+)
+from fastpath.physics import Dissipative
 from fastpath.status import (
     CONVERGED,
     ITERATION_LIMIT,
@@ -124,7 +131,7 @@ def drag_flight(phi, sin_phi, cos_phi, v, physics, w0_error, method=AUTO):
             sin1, cos1 = sin_cos_of_sum(phi, tau)
             return tau, sin1, cos1, iterations, status
         used, lo = iterations, tau  # not certified concave: lower-bound steps from its lo
-    tau, iterations, status = lower_bound_drag_flight(phi, v, physics, lo, used)
+    tau, iterations, status = lower_bound_steps(phi, v, physics, lo, used)
     sin1, cos1 = sin_cos_of_sum(phi, tau)
     return tau, sin1, cos1, iterations, status
 
@@ -203,29 +210,31 @@ def drag_gap_bounds(phi, v, physics, t):
     return GapBounds(d, d1, d_err, d1_err, curvature, -eps * math.sin(theta), eps, a), vel, v_err
 
 
-@jit
-def lower_bound_drag_flight(phi, v, physics, t, used):
-    """(tau, evaluations, status) by certified lower-bound steps from t (a certified lower bound,
-    the departure's step), counting ``used`` evaluations already spent: the iteration of
-    ``fastpath.elastic.lower_bound`` with ``drag_gap_bounds`` and ``may_be_drag_graze``, and
-    the descent's jumps (``descent_jump``) while the particle is above the plate's reach."""
-    reach = plate_reach(math.cos(phi), physics.eps)
-    concave = falls_concave(v, physics)
-    evaluations = used
-    while evaluations < ITERATION_LIMIT:
-        if concave:
-            t, jumped = descent_jump(v, physics, t, reach, ITERATION_LIMIT - evaluations)
-            evaluations += jumped
-        if evaluations >= ITERATION_LIMIT:
-            break
-        evaluations += 1
-        bounds, vel, v_err = drag_gap_bounds(phi, v, physics, t)
-        d, r, d_err = bounds.gap, bounds.rate, bounds.gap_error
-        grazes = d <= d_err and may_be_drag_graze(phi, physics, vel, v_err, t, r, d_err)
-        t, status = next_point(t, bounds, grazes)
-        if status != GOING_ON:
-            return t, evaluations, status
-    return t, ITERATION_LIMIT, MAX_ITERATIONS
+def drag_bounds_at(phi, v, physics, t):
+    """``bounds_at`` of ``fastpath.elastic.lower_bound`` with drag: ``drag_gap_bounds`` and
+    ``may_be_drag_graze``."""
+    bounds, vel, v_err = drag_gap_bounds(phi, v, physics, t)
+    grazes = bounds.gap <= bounds.gap_error and may_be_drag_graze(
+        phi, physics, vel, v_err, t, bounds.rate, bounds.gap_error)
+    return bounds, grazes
+
+
+def descent_of(phi, v, physics):
+    """``jumps_of`` with drag: (the plate's reach c, whether the height falls concave), what
+    ``descent_jump`` needs."""
+    return plate_reach(math.cos(phi), physics.eps), falls_concave(v, physics)
+
+
+def drag_jump(v, physics, t, jumps, budget):
+    """``jump`` with drag: the descent's jump (``descent_jump``) where the height falls
+    concave, else none."""
+    reach, concave = jumps
+    if concave:
+        return descent_jump(v, physics, t, reach, budget)
+    return t, 0
+
+
+lower_bound_model(Dissipative, LowerBoundModel(drag_bounds_at, descent_of, drag_jump))
 
 
 @jit

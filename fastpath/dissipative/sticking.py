@@ -79,7 +79,7 @@ free particle V = u + x, x' = d'' = -a(theta* + t) + (eta(u) - eta(u + x)). At a
 of x to 0 at t0 in (0, t_c) (x > 0 before, just after 0 x ~ J*t**2/2 > 0, J = -a'(theta*) > 0)
 x'(t0) = -a(theta* + t0) > 0, a contradiction: so x > 0 on (0, t_c) for every increasing eta,
 and the gap d > 0 on (0, t_c]. The flight starts its certified lower-bound steps at t_c
-(``fastpath.dissipative.drag_flight.lower_bound_drag_flight``) once d(t_c) exceeds its rounding
+(``fastpath.elastic.lower_bound.lower_bound_steps``) once d(t_c) exceeds its rounding
 bound (the float state (theta*, u(theta*)) stands for the exact one, as without drag).
 
 Accumulation tail with drag. Near accumulation at phase theta the relative motion x obeys x'' = A +
@@ -110,7 +110,7 @@ from fastpath.arithmetic.rotation import sin_cos_of_sum
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.dissipative import laws
 from fastpath.dissipative.drag import gap_state
-from fastpath.dissipative.drag_flight import lower_bound_drag_flight
+from fastpath.dissipative.drag_flight import lower_bound_steps  # with the drag's model registered
 from fastpath.dissipative.laws import detach_discriminant, eta, tail_terms
 from fastpath.dissipative.short_flight import departure_deceleration
 from fastpath.elastic.gap import gap, gap_error
@@ -264,7 +264,7 @@ def drag_detachment(physics):
     d, _, _, d_err, _, _, _ = gap_state(phi, v, eps, k, law, t_c)
     if not d > d_err:
         return math.nan, 0, UNCERTAIN, theta_star, v, kind
-    tau, iterations, status = lower_bound_drag_flight(phi, v, physics, t_c, 0)
+    tau, iterations, status = lower_bound_steps(phi, v, physics, t_c, 0)
     return tau, iterations, status, theta_star, v, kind
 
 

@@ -61,9 +61,10 @@ where its bound E overflows (v > 5e153) is within rounding of the root and is re
 import math
 from typing import NamedTuple
 
-from fastpath.arithmetic.jit import jit
+from fastpath.arithmetic.jit import jit, typed_overload
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.elastic.gap import gap, gap_error, gap_rate, rate_error
+from fastpath.physics import NONE, Elastic
 from fastpath.status import CONVERGED, ITERATION_LIMIT, MAX_ITERATIONS, OVERFLOW, UNCERTAIN
 
 _GROWTH_ROUNDS = 4  # rounds of growing H in the local step
@@ -194,21 +195,115 @@ def next_point(t, bounds, grazes):
 
 @jit
 def lower_bound_flight(phi, v, eps, t):
-    """(tau, evaluations, status) by certified lower-bound steps from t; phi reduced.
+    """(tau, evaluations, status) by certified lower-bound steps from t without drag; phi
+    reduced: ``lower_bound_steps`` for the elastic description with amplitude eps.
 
     t: a time certified to lie before the first root: the step from the departure,
     2*w0/(1 + |eps|), or a later point where d > 0 is known, as after a detachment
-    (``fastpath.dissipative.sticking``). With drag the same iteration runs in
-    ``fastpath.dissipative.drag_flight.lower_bound_drag_flight``.
+    (``fastpath.dissipative.sticking``).
     """
-    for k in range(1, ITERATION_LIMIT + 1):
-        bounds = elastic_gap_bounds(phi, v, eps, t)
-        grazes = bounds.gap <= bounds.gap_error and may_be_graze(phi, eps, t, bounds.rate,
-                                                                 bounds.gap_error)
+    return lower_bound_steps(phi, v, Elastic(eps, 0.0, NONE, 1.0), t, 0)
+
+
+@jit
+def lower_bound_steps(phi, v, physics, t, used):
+    """(tau, evaluations, status) by certified lower-bound steps from t, a time certified to lie
+    before the first root, counting ``used`` evaluations already spent: the one iteration of the
+    paper's steps, for every description (with drag ``fastpath.dissipative.drag_flight``).
+
+    Each round: the model's ``jump`` (a certified later start, paid for from the same budget of
+    ITERATION_LIMIT evaluations), then one evaluation, ``bounds_at`` (the ``GapBounds`` at t and
+    whether a zero gap there may be a graze), and the shared ``next_point``. What a model
+    changes are these two and ``jumps_of`` (what its jumps need, computed once per flight),
+    chosen by the description's class when numba compiles this loop (``lower_bound_model``):
+    the loop compiled for ``Elastic`` holds only the elastic bounds, and its jump (none: zero
+    evaluations, the start unchanged) folds away.
+    """
+    jumps = jumps_of(phi, v, physics)
+    evaluations = used
+    while evaluations < ITERATION_LIMIT:
+        t, jumped = jump(v, physics, t, jumps, ITERATION_LIMIT - evaluations)
+        evaluations += jumped
+        if evaluations >= ITERATION_LIMIT:
+            break
+        evaluations += 1
+        bounds, grazes = bounds_at(phi, v, physics, t)
         t, status = next_point(t, bounds, grazes)
         if status != GOING_ON:
-            return t, k, status
+            return t, evaluations, status
     return t, ITERATION_LIMIT, MAX_ITERATIONS
+
+
+class LowerBoundModel(NamedTuple):
+    """What one class of description gives ``lower_bound_steps``: three plain functions with the
+    parameters of ``bounds_at``, ``jumps_of`` and ``jump``, compiled by numba into the loop
+    (and called as they are where the loop runs as plain Python)."""
+
+    bounds_at: object
+    jumps_of: object
+    jump: object
+
+
+_MODELS = {}  # description class: its LowerBoundModel
+
+
+def lower_bound_model(cls, model):
+    """Register the ``LowerBoundModel`` of the descriptions of class ``cls`` (``Elastic`` below;
+    ``Dissipative`` in ``fastpath.dissipative.drag_flight``, which elastic code never imports)."""
+    _MODELS[cls] = model
+
+
+def bounds_at(phi, v, physics, t):
+    """(``GapBounds`` at t, whether a gap within rounding of zero there may be a graze)."""
+    return _MODELS[type(physics)].bounds_at(phi, v, physics, t)
+
+
+def jumps_of(phi, v, physics):
+    """What the model's jumps need, computed once per flight."""
+    return _MODELS[type(physics)].jumps_of(phi, v, physics)
+
+
+def jump(v, physics, t, jumps, budget):
+    """(t', evaluations): a certified later start than t (t itself where none applies), at most
+    ``budget`` evaluations."""
+    return _MODELS[type(physics)].jump(v, physics, t, jumps, budget)
+
+
+@typed_overload(bounds_at)
+def _bounds_at_of_model(phi, v, physics, t):
+    return _MODELS[physics.instance_class].bounds_at
+
+
+@typed_overload(jumps_of)
+def _jumps_of_model(phi, v, physics):
+    return _MODELS[physics.instance_class].jumps_of
+
+
+@typed_overload(jump)
+def _jump_of_model(v, physics, t, jumps, budget):
+    return _MODELS[physics.instance_class].jump
+
+
+def elastic_bounds_at(phi, v, physics, t):
+    """``bounds_at`` without drag: ``elastic_gap_bounds`` and ``may_be_graze``."""
+    eps = physics.eps
+    bounds = elastic_gap_bounds(phi, v, eps, t)
+    grazes = bounds.gap <= bounds.gap_error and may_be_graze(phi, eps, t, bounds.rate,
+                                                             bounds.gap_error)
+    return bounds, grazes
+
+
+def no_jumps(phi, v, physics):
+    """``jumps_of`` without drag: nothing."""
+    return None
+
+
+def no_jump(v, physics, t, jumps, budget):
+    """``jump`` without drag: none, no evaluation."""
+    return t, 0
+
+
+lower_bound_model(Elastic, LowerBoundModel(elastic_bounds_at, no_jumps, no_jump))
 
 
 @jit
