@@ -6,9 +6,10 @@ Every expected value here follows from the docstrings' rules and exact float ari
 chosen so that the compared quantities are exact), or from an error bound derived below from the
 unit roundoff u = 2**-53 and checked against mpmath; none is copied from the program's output.
 Several tests call ``lower_bound_flight``'s plain-Python body (``py_func``; the function itself
-under NUMBA_DISABLE_JIT, with ``elastic_gap_bounds`` and ``next_point`` as plain Python too) with
-``gap`` and ``certified_step`` wrapped, to count the evaluations and to see the lower models each
-step is given; every other callee is the kernel itself (compiled unless NUMBA_DISABLE_JIT).
+under NUMBA_DISABLE_JIT, with ``lower_bound_steps``, ``elastic_gap_bounds`` and ``next_point`` as
+plain Python too) with ``gap`` and ``certified_step`` wrapped, to count the evaluations and to
+see the lower models each step is given; every other callee is the kernel itself (compiled
+unless NUMBA_DISABLE_JIT).
 
 ``may_be_graze``'s tests ``curvature < 0`` and ``r < 0`` are not pinned at +-0: there the
 shortcut's third condition reads 2*d_err < -r*(-curvature/|eps|) = +-0 (or NaN), false for every
@@ -16,8 +17,11 @@ d_err >= 0, so ``<`` and ``<=`` give the same answer (d_err = gap_error(t) >= 0 
 and lower_bound_flight only visits t > 0).
 """
 
+import ast
 import importlib
+import inspect
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -28,9 +32,16 @@ import fastpath
 from fastpath.arithmetic.sincos import sin_cos
 from fastpath.elastic.flight import AUTO, GENERAL, LOWER_BOUND, departure_phase, flight_from
 from fastpath.elastic.gap import departure, gap, gap_error, gap_rate, rate_error
-from fastpath.elastic.lower_bound import GapBounds, elastic_gap_bounds, first_root, may_be_graze
+from fastpath.elastic.lower_bound import (
+    GapBounds,
+    elastic_gap_bounds,
+    first_root,
+    lower_bound_steps,
+    may_be_graze,
+)
 from fastpath.elastic.lower_bound import lower_bound_flight as _lower_bound_flight
 from fastpath.elastic.lower_bound import polish as _polish
+from fastpath.physics import Dissipative, Elastic, dissipative, elastic
 from fastpath.status import (
     CONVERGED,
     ITERATION_LIMIT,
@@ -75,7 +86,9 @@ def _traced_flight(monkeypatch, phi, v, eps, w0):
 
     monkeypatch.setattr(flight_module, "gap", counted_gap)
     monkeypatch.setattr(flight_module, "certified_step", seen_step)
-    for name in ("elastic_gap_bounds", "next_point"):  # their bodies call the two above
+    # the loop and the callees whose bodies call the two above, as plain Python (the loop's
+    # model functions, ``bounds_at`` ..., are plain Python already)
+    for name in ("lower_bound_steps", "elastic_gap_bounds", "next_point"):
         monkeypatch.setattr(flight_module, name, _py(getattr(flight_module, name)))
     result = _py(_lower_bound_flight)(phi, v, eps, 2.0 * w0 / (1.0 + abs(eps)))
     monkeypatch.undo()
@@ -438,3 +451,64 @@ def test_the_gap_bounds_are_named_by_what_they_hold():
     assert bounds.jerk == -eps * math.sin(phi + t)
     assert (bounds.eps, bounds.curvature_bound) == (eps, 1.0 + abs(eps))
     assert bounds.curvature < -1.0 + eps * math.cos(phi + t)
+
+
+# --- one loop of lower-bound steps for every description ---
+
+FASTPATH = Path(fastpath.__file__).resolve().parent
+
+
+def _callers(name):
+    """(module path, innermost function) of every call of ``name`` in fastpath's sources."""
+    found = []
+
+    def visit(node, where, path):
+        if isinstance(node, ast.FunctionDef):
+            where = node.name
+        if isinstance(node, ast.Call):
+            called = node.func.attr if isinstance(node.func, ast.Attribute) else getattr(
+                node.func, "id", None)
+            if called == name:
+                found.append((path, where))
+        for child in ast.iter_child_nodes(node):
+            visit(child, where, path)
+
+    for path in sorted(FASTPATH.rglob("*.py")):
+        visit(ast.parse(path.read_text()), None, path.relative_to(FASTPATH).as_posix())
+    return found
+
+
+def test_one_loop_takes_the_lower_bound_steps_of_every_description():
+    """The certified step is taken in one place: ``next_point`` is called once, by
+    ``lower_bound_steps`` (the elastic and the drag flights run that loop), and the step itself,
+    ``certified_step``, by ``next_point`` only."""
+    assert _callers("next_point") == [("elastic/lower_bound.py", "lower_bound_steps")]
+    assert _callers("certified_step") == [("elastic/lower_bound.py", "next_point")]
+
+
+def test_each_description_class_that_flies_registers_its_model_of_the_loop():
+    """The loop's model functions of ``Elastic`` and ``Dissipative`` descriptions (the classes
+    whose flights take lower-bound steps) take the parameters of the functions they stand for
+    (numba compiles the registered function in their place)."""
+    models = flight_module._MODELS
+    assert set(models) == {Elastic, Dissipative}
+    for model in models.values():
+        for name in ("bounds_at", "jumps_of", "jump"):
+            stub = inspect.signature(getattr(flight_module, name)).parameters
+            assert inspect.signature(getattr(model, name)).parameters.keys() == stub.keys(), name
+
+
+@pytest.mark.parametrize("physics", [elastic(2.0), dissipative(2.0, 0.01, 1, 1.0)],
+                         ids=["elastic", "linear drag"])
+def test_evaluations_already_used_count_against_the_one_budget(physics):
+    """``used`` evaluations spent before the steps (the drag's concave solver hands over its
+    count) come out of the same ITERATION_LIMIT: a flight that takes k evaluations from a start
+    reports k + used, and with none left it ends MAX_ITERATIONS at its start, unevaluated."""
+    phi, v, t = 0.5, 2.0, 1e-3  # w0 = 2 + 2*sin(0.5) > 0: d > 0 on (0, 1e-3]
+    tau, k, status = lower_bound_steps(phi, v, physics, t, 0)
+    assert status == CONVERGED and 1 < k < ITERATION_LIMIT - 10
+    assert lower_bound_steps(phi, v, physics, t, 10) == (tau, k + 10, CONVERGED)
+    short, evaluations, status = lower_bound_steps(phi, v, physics, t, ITERATION_LIMIT - k + 1)
+    assert (evaluations, status) == (ITERATION_LIMIT, MAX_ITERATIONS) and t < short < tau
+    assert lower_bound_steps(phi, v, physics, t, ITERATION_LIMIT) == (t, ITERATION_LIMIT,
+                                                                       MAX_ITERATIONS)
