@@ -15,8 +15,9 @@ which holds too but is looser). Since a(t) only shrinks (in the usual case) the
 lower-bound steps take a(t_k) at each iterate: past the top of a fast flight with quadratic drag
 a(t) is ~1 + |eps| instead of 1 + k*v**2 + |eps|.
 
-Lower-bound steps (the iteration ``next_point`` of ``fastpath.elastic.lower_bound``, with the gap
-and bounds of ``drag_gap_bounds`` and the graze test ``may_be_drag_graze``): from t_k with d_k > 0
+Lower-bound steps (the loop ``lower_bound_steps`` of ``fastpath.elastic.lower_bound``, with the
+gap and bounds of ``drag_gap_bounds``, the graze test ``may_be_drag_graze`` and the descent's
+jumps, registered below for ``Dissipative`` descriptions): from t_k with d_k > 0
 and slope r_k the paper's step with a(t_k), and the local step of
 ``fastpath.elastic.lower_bound.certified_step`` with
 c_k = min(p(t_k), 0) + eps*cos(phi + t_k) (the particle's part frozen at its lower bound, the

@@ -218,6 +218,14 @@ def lower_bound_steps(phi, v, physics, t, used):
     chosen by the description's class when numba compiles this loop (``lower_bound_model``):
     the loop compiled for ``Elastic`` holds only the elastic bounds, and its jump (none: zero
     evaluations, the start unchanged) folds away.
+
+    The choice is an overload (``fastpath.arithmetic.jit.typed_overload``) of each of the three
+    on the description's class, as ``fastpath.kernels.particle`` chooses a model's collision:
+    made when the loop is typed, so no branch at run time and no other class's code compiled.
+    The functions come from a table of ``LowerBoundModel`` by class, which each model's module
+    fills (``fastpath.dissipative.drag_flight`` the ``Dissipative`` row: elastic code never
+    imports dissipative code), and which the three functions read as plain Python too, so the
+    loop runs uncompiled (``py_func``) for every class as it does compiled.
     """
     jumps = jumps_of(phi, v, physics)
     evaluations = used
