@@ -512,3 +512,12 @@ def test_evaluations_already_used_count_against_the_one_budget(physics):
     assert (evaluations, status) == (ITERATION_LIMIT, MAX_ITERATIONS) and t < short < tau
     assert lower_bound_steps(phi, v, physics, t, ITERATION_LIMIT) == (t, ITERATION_LIMIT,
                                                                        MAX_ITERATIONS)
+
+
+@pytest.mark.parametrize("physics", [elastic(2.0), dissipative(2.0, 0.01, 1, 1.0)],
+                         ids=["elastic", "linear drag"])
+def test_the_loop_as_plain_python_takes_the_compiled_loops_steps(physics):
+    """The model table is read by the plain-Python loop too (its callees compiled): the same
+    flight, bit for bit, as the loop compiled for the class."""
+    phi, v, t = 0.5, 2.0, 1e-3
+    assert _py(lower_bound_steps)(phi, v, physics, t, 3) == lower_bound_steps(phi, v, physics, t, 3)
