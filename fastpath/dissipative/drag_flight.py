@@ -212,16 +212,12 @@ def drag_gap_bounds(phi, v, physics, t):
 
 
 def drag_bounds_at(phi, v, physics, t):
-    """``bounds_at`` of ``fastpath.elastic.lower_bound`` with drag: ``drag_gap_bounds``, and
-    the particle's velocity (V(t), its error) for the graze test."""
+    """``bounds_at`` of ``fastpath.elastic.lower_bound`` with drag: ``drag_gap_bounds`` and
+    ``may_be_drag_graze``."""
     bounds, vel, v_err = drag_gap_bounds(phi, v, physics, t)
-    return bounds, (vel, v_err)
-
-
-def drag_grazes_at(phi, physics, t, bounds, particle):
-    """``grazes_at`` with drag: ``may_be_drag_graze``."""
-    vel, v_err = particle
-    return may_be_drag_graze(phi, physics, vel, v_err, t, bounds.rate, bounds.gap_error)
+    grazes = bounds.gap <= bounds.gap_error and may_be_drag_graze(
+        phi, physics, vel, v_err, t, bounds.rate, bounds.gap_error)
+    return bounds, grazes
 
 
 def descent_of(phi, v, physics):
@@ -239,8 +235,7 @@ def drag_jump(v, physics, t, jumps, budget):
     return t, 0
 
 
-lower_bound_model(Dissipative, LowerBoundModel(drag_bounds_at, drag_grazes_at, descent_of,
-                                               drag_jump))
+lower_bound_model(Dissipative, LowerBoundModel(drag_bounds_at, descent_of, drag_jump))
 
 
 @jit

@@ -212,20 +212,19 @@ def lower_bound_steps(phi, v, physics, t, used):
     paper's steps, for every description (with drag ``fastpath.dissipative.drag_flight``).
 
     Each round: the model's ``jump`` (a certified later start, paid for from the same budget of
-    ITERATION_LIMIT evaluations), then one evaluation, ``bounds_at`` (the ``GapBounds`` at t),
-    where the gap is within rounding of zero ``grazes_at`` (whether it may be a graze), and the
-    shared ``next_point``. What a model changes are these three and ``jumps_of`` (what its
-    jumps need, computed once per flight),
+    ITERATION_LIMIT evaluations), then one evaluation, ``bounds_at`` (the ``GapBounds`` at t and
+    whether a zero gap there may be a graze), and the shared ``next_point``. What a model
+    changes are these two and ``jumps_of`` (what its jumps need, computed once per flight),
     chosen by the description's class when numba compiles this loop (``lower_bound_model``):
     the loop compiled for ``Elastic`` holds only the elastic bounds, and its jump (none: zero
     evaluations, the start unchanged) folds away.
 
-    The choice is an overload (``fastpath.arithmetic.jit.typed_overload``) of each of the four
+    The choice is an overload (``fastpath.arithmetic.jit.typed_overload``) of each of the three
     on the description's class, as ``fastpath.kernels.particle`` chooses a model's collision:
     made when the loop is typed, so no branch at run time and no other class's code compiled.
     The functions come from a table of ``LowerBoundModel`` by class, which each model's module
     fills (``fastpath.dissipative.drag_flight`` the ``Dissipative`` row: elastic code never
-    imports dissipative code), and which the four functions read as plain Python too, so the
+    imports dissipative code), and which the three functions read as plain Python too, so the
     loop runs uncompiled (``py_func``) for every class as it does compiled.
     """
     jumps = jumps_of(phi, v, physics)
@@ -236,8 +235,7 @@ def lower_bound_steps(phi, v, physics, t, used):
         if evaluations >= ITERATION_LIMIT:
             break
         evaluations += 1
-        bounds, particle = bounds_at(phi, v, physics, t)
-        grazes = bounds.gap <= bounds.gap_error and grazes_at(phi, physics, t, bounds, particle)
+        bounds, grazes = bounds_at(phi, v, physics, t)
         t, status = next_point(t, bounds, grazes)
         if status != GOING_ON:
             return t, evaluations, status
@@ -245,12 +243,11 @@ def lower_bound_steps(phi, v, physics, t, used):
 
 
 class LowerBoundModel(NamedTuple):
-    """What one class of description gives ``lower_bound_steps``: four plain functions with the
-    parameters of ``bounds_at``, ``grazes_at``, ``jumps_of`` and ``jump``, compiled by numba into
-    the loop (and called as they are where the loop runs as plain Python)."""
+    """What one class of description gives ``lower_bound_steps``: three plain functions with the
+    parameters of ``bounds_at``, ``jumps_of`` and ``jump``, compiled by numba into the loop
+    (and called as they are where the loop runs as plain Python)."""
 
     bounds_at: object
-    grazes_at: object
     jumps_of: object
     jump: object
 
@@ -265,14 +262,8 @@ def lower_bound_model(cls, model):
 
 
 def bounds_at(phi, v, physics, t):
-    """(``GapBounds`` at t, what the graze test needs beyond them: the particle at t)."""
+    """(``GapBounds`` at t, whether a gap within rounding of zero there may be a graze)."""
     return _MODELS[type(physics)].bounds_at(phi, v, physics, t)
-
-
-def grazes_at(phi, physics, t, bounds, particle):
-    """Whether a gap within rounding of zero at t may be a near-tangent dip, given the
-    ``bounds`` and ``particle`` of ``bounds_at`` there."""
-    return _MODELS[type(physics)].grazes_at(phi, physics, t, bounds, particle)
 
 
 def jumps_of(phi, v, physics):
@@ -291,11 +282,6 @@ def _bounds_at_of_model(phi, v, physics, t):
     return _MODELS[physics.instance_class].bounds_at
 
 
-@typed_overload(grazes_at)
-def _grazes_at_of_model(phi, physics, t, bounds, particle):
-    return _MODELS[physics.instance_class].grazes_at
-
-
 @typed_overload(jumps_of)
 def _jumps_of_model(phi, v, physics):
     return _MODELS[physics.instance_class].jumps_of
@@ -307,13 +293,12 @@ def _jump_of_model(v, physics, t, jumps, budget):
 
 
 def elastic_bounds_at(phi, v, physics, t):
-    """``bounds_at`` without drag: ``elastic_gap_bounds``; the graze test needs no more."""
-    return elastic_gap_bounds(phi, v, physics.eps, t), None
-
-
-def elastic_grazes_at(phi, physics, t, bounds, particle):
-    """``grazes_at`` without drag: ``may_be_graze``."""
-    return may_be_graze(phi, physics.eps, t, bounds.rate, bounds.gap_error)
+    """``bounds_at`` without drag: ``elastic_gap_bounds`` and ``may_be_graze``."""
+    eps = physics.eps
+    bounds = elastic_gap_bounds(phi, v, eps, t)
+    grazes = bounds.gap <= bounds.gap_error and may_be_graze(phi, eps, t, bounds.rate,
+                                                             bounds.gap_error)
+    return bounds, grazes
 
 
 def no_jumps(phi, v, physics):
@@ -326,8 +311,7 @@ def no_jump(v, physics, t, jumps, budget):
     return t, 0
 
 
-lower_bound_model(Elastic, LowerBoundModel(elastic_bounds_at, elastic_grazes_at, no_jumps,
-                                           no_jump))
+lower_bound_model(Elastic, LowerBoundModel(elastic_bounds_at, no_jumps, no_jump))
 
 
 @jit

@@ -493,7 +493,7 @@ def test_each_description_class_that_flies_registers_its_model_of_the_loop():
     models = flight_module._MODELS
     assert set(models) == {Elastic, Dissipative}
     for model in models.values():
-        for name in ("bounds_at", "grazes_at", "jumps_of", "jump"):
+        for name in ("bounds_at", "jumps_of", "jump"):
             stub = inspect.signature(getattr(flight_module, name)).parameters
             assert inspect.signature(getattr(model, name)).parameters.keys() == stub.keys(), name
 
