@@ -97,6 +97,8 @@ def _one_specialisation_per_type(dispatcher):
     calls are typed with the values' types (``numba.core.types.unliteral``): one compilation
     where there were up to six.
     """
+    if numba.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1: numba returns the plain function
+        return dispatcher
     typed_call = dispatcher.get_call_template
 
     def get_call_template(args, kws):
