@@ -11,7 +11,7 @@ directory (``CACHE_ROOT``). numba reads that setting when a kernel is decorated,
 only for that moment and other libraries' caches stay where they were.
 
 Compile time (docs/performance.md). Nothing is compiled at import; a kernel compiles at its
-first call, for the argument types of that call. Four choices keep that short:
+first call, for the argument types of that call. Five choices keep that short:
 
 * ``inline_jit`` helpers (the straight-line code of the ensembles' lanes) are compiled once
   each and marked for LLVM to inline (``forceinline``: LLVM's ``alwaysinline``), so that the
@@ -19,7 +19,12 @@ first call, for the argument types of that call. Four choices keep that short:
   again at every call site (four evaluations of a flight, each with its sines): most of the
   escape kernel's compile time.
 * A call from compiled code is typed with the plain types of its arguments
-  (``_one_specialisation_per_type``), not one specialisation per constant value.
+  (``_called_from_compiled_code``), not one specialisation per constant value.
+* A kernel has two dispatchers: the one Python calls, and one for compiled callers
+  (``COMPILED_CALLERS``), compiled to optimised LLVM IR only, which its callers link and inline:
+  no CPython wrapper, no machine code of its own, nothing written to the cache (a caller's cached
+  machine code holds it). numba otherwise makes all three for every function it compiles,
+  helpers included: about a third of a cold start.
 * ``typed_overload`` chooses an implementation when the caller is typed, so that a loop
   compiled for one model (``fastpath.kernels.particle``) compiles no other model's code.
 * No C-callable wrapper (``no_cfunc_wrapper``): numba otherwise builds one for every compiled
@@ -49,7 +54,10 @@ from pathlib import Path
 
 import numba
 import numpy as np
-from numba.core import types
+from numba.core import sigutils, types
+from numba.core.compiler import CompilerBase, DefaultPassBuilder
+from numba.core.compiler_machinery import register_pass
+from numba.core.typed_passes import NativeLowering
 from numba.extending import overload
 
 
@@ -73,22 +81,89 @@ CACHE_ROOT = _cache_root()  # the caches of every version of fastpath's sources
 CACHE_DIR = _cache_dir()
 
 
+def _cached_dispatcher(function, options):
+    saved = numba.config.CACHE_DIR
+    numba.config.CACHE_DIR = CACHE_DIR
+    try:
+        return numba.njit(cache=True, nogil=True, error_model="numpy", no_cfunc_wrapper=True,
+                          **options)(function)
+    finally:
+        numba.config.CACHE_DIR = saved
+
+
+@register_pass(mutates_CFG=True, analysis_only=False)
+class _LoweringForCompiledCallers(NativeLowering):
+    """numba's lowering without machine code: the function's LLVM IR, optimised, for compiled
+    callers to link and inline; nothing is made that Python could call."""
+
+    _name = "lowering_for_compiled_callers"
+
+    def run_pass(self, state):
+        state.flags.no_compile = True
+        super().run_pass(state)
+        library = state.library
+        library._finalize_final_module = functools.partial(_ir_only, library)
+        entry = _not_callable_from_python(state.func_id.func_qualname)
+        state.targetctx.insert_user_function(entry, state.cr.fndesc, [library])
+        state.cr = state.cr._replace(cfunc=entry)
+        return True
+
+
+def _ir_only(library):
+    """``CodeLibrary._finalize_final_module`` without adding the module to the execution engine
+    (which would make its machine code): the optimised module is only linked into callers."""
+    library._finalize_dynamic_globals()
+    library._verify_declare_only_symbols()
+    library._finalized = True
+
+
+def _not_callable_from_python(name):
+    def entry(*args, **kws):
+        raise TypeError(f"{name} is compiled for compiled callers only")
+    return entry
+
+
+class _CompilerForCompiledCallers(CompilerBase):
+    def define_pipelines(self):
+        pm = DefaultPassBuilder.define_nopython_pipeline(self.state)
+        pm.passes = [(_LoweringForCompiledCallers if p is NativeLowering else p, d)
+                     for p, d in pm.passes]
+        pm.finalize()
+        return [pm]
+
+
+COMPILED_CALLERS = "_for_compiled_callers"  # the name's suffix of a kernel's second dispatcher
+
+
 def _cached_njit(**options):
     def decorate(function):
-        saved = numba.config.CACHE_DIR
-        numba.config.CACHE_DIR = CACHE_DIR
-        try:
-            dispatcher = numba.njit(cache=True, nogil=True, error_model="numpy",
-                                    no_cfunc_wrapper=True, **options)(function)
-        finally:
-            numba.config.CACHE_DIR = saved
-        return _one_specialisation_per_type(dispatcher)
+        dispatcher = _cached_dispatcher(function, options)
+        if numba.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1: numba returns the plain function
+            return dispatcher
+        for_compiled_callers = numba.njit(
+            nogil=True, error_model="numpy", no_cfunc_wrapper=True, no_cpython_wrapper=True,
+            pipeline_class=_CompilerForCompiledCallers, **options,
+        )(_renamed(function, COMPILED_CALLERS))
+
+        def add_overload(cres):  # never callable from Python (``_LoweringForCompiledCallers``)
+            for_compiled_callers.overloads[tuple(cres.signature.args)] = cres
+
+        for_compiled_callers.add_overload = add_overload
+        return _called_from_compiled_code(dispatcher, for_compiled_callers)
 
     return decorate
 
 
-def _one_specialisation_per_type(dispatcher):
-    """Have compiled callers type their calls of ``dispatcher`` with plain types.
+def _called_from_compiled_code(dispatcher, for_compiled_callers):
+    """Have compiled callers of ``dispatcher`` call ``for_compiled_callers`` (the same function
+    compiled without a CPython wrapper), with the plain types of their arguments.
+
+    The wrapper, which converts Python objects to native values and back, is about half of a
+    small function's compile time, and only a call from Python needs it: most kernels are
+    called from other kernels only. A specialisation that the Python-facing dispatcher has
+    already compiled (a kernel called from Python first) is used as it is, so a kernel called
+    both ways compiles once for each way at most. Both are the same code with the same options:
+    the same numbers either way.
 
     numba types a constant argument (``collide(phi, v, eps, GENERAL)``, an evaluation index 1,
     2, 3) as a literal of its value and compiles the callee once for each value; a variable of
@@ -97,15 +172,25 @@ def _one_specialisation_per_type(dispatcher):
     calls are typed with the values' types (``numba.core.types.unliteral``): one compilation
     where there were up to six.
     """
-    if numba.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1: numba returns the plain function
-        return dispatcher
-    typed_call = dispatcher.get_call_template
+    own_call_template, own_overload = dispatcher.get_call_template, dispatcher.get_overload
+
+    def compiled_for_python(args):
+        return tuple(args) in dispatcher.overloads
 
     def get_call_template(args, kws):
-        return typed_call(tuple(types.unliteral(a) for a in args),
-                          {k: types.unliteral(v) for k, v in kws.items()})
+        args = tuple(types.unliteral(a) for a in args)
+        kws = {k: types.unliteral(v) for k, v in kws.items()}
+        if compiled_for_python(dispatcher._compiler.fold_argument_types(args, kws)[1]):
+            return own_call_template(args, kws)
+        return for_compiled_callers.get_call_template(args, kws)
 
-    dispatcher.get_call_template = get_call_template
+    def get_overload(sig):
+        if compiled_for_python(sigutils.normalize_signature(sig)[0]):
+            return own_overload(sig)
+        return for_compiled_callers.get_overload(sig)
+
+    dispatcher.get_call_template, dispatcher.get_overload = get_call_template, get_overload
+    dispatcher.for_compiled_callers = for_compiled_callers
     return dispatcher
 
 
@@ -131,8 +216,8 @@ def parallel_jit(function):
     loops have no reductions), so the numbers are the same, and a first small call (the README's
     quick start) pays no parallel compile. The compiled dispatchers are the wrapper's
     ``kernel`` and ``serial_kernel``."""
-    kernel = _cached_njit(parallel=True)(function)
-    serial_kernel = _cached_njit()(_renamed(function, "_serial"))
+    kernel = _cached_dispatcher(function, {"parallel": True})
+    serial_kernel = _cached_dispatcher(_renamed(function, "_serial"), {})
 
     @functools.wraps(function)
     def call(*args):
@@ -165,7 +250,8 @@ def typed_overload(function, prefer_literal=False):
     that the decorated function returns for the argument types is what compiled callers of
     ``function`` run (the choice is made when they are typed; with ``prefer_literal`` a
     constant argument is seen as its value, ``numba.core.types.Literal``)."""
-    return overload(function, jit_options={"error_model": "numpy"},
+    return overload(function, jit_options={"error_model": "numpy", "no_cpython_wrapper": True,
+                                           "no_cfunc_wrapper": True},
                     prefer_literal=prefer_literal)
 
 

@@ -79,8 +79,9 @@ SCRIPT = textwrap.dedent("""
 
     class Record(event.Listener):
         def on_start(self, e):
-            d = e.data["dispatcher"]
-            compiled.append(f"{d.py_func.__module__}.{d.py_func.__qualname__}")
+            d = e.data["dispatcher"]  # a kernel's dispatcher for compiled callers by its name
+            name = d.py_func.__qualname__.removesuffix("_for_compiled_callers")
+            compiled.append(f"{d.py_func.__module__}.{name}")
 
         def on_end(self, e):
             pass
@@ -144,3 +145,63 @@ def test_imports_compile_nothing_and_each_model_compiles_its_own_code_only(tmp_p
     assert "fastpath.elastic.concave.concave_flight" in escape  # the lanes' fallback
     assert not [name for name in escape if name.startswith(DISSIPATIVE_SOLVERS)]
     assert not [name for name in escape if name.startswith(DISSIPATIVE_STATE)]
+
+
+TWO_WAYS = textwrap.dedent("""
+    import json, os
+    import numba.core.event as event
+    compiled = []
+
+    class Record(event.Listener):
+        def on_start(self, e):
+            d = e.data["dispatcher"]
+            compiled.append(f"{d.py_func.__module__}.{d.py_func.__qualname__}")
+
+        def on_end(self, e):
+            pass
+
+    event.register("numba:compile", Record())
+    import fastpath
+    from fastpath.arithmetic.jit import CACHE_DIR
+    from fastpath.elastic import concave, flight
+    result = {"tau": fastpath.flight_time(4.0, 3.0, 0.6)}
+    result["first"] = list(compiled)
+    result["python signatures"] = {"solve_flight": len(flight.solve_flight.signatures),
+                                   "concave_flight": len(concave.concave_flight.signatures)}
+    twin = concave.concave_flight.for_compiled_callers
+    try:
+        twin.get_overload(twin.signatures[0])(4.0, 0.0, 1.0, 3.0, 0.6, 0.0)
+        result["twin called"] = "returned"
+    except TypeError as error:
+        result["twin called"] = str(error)
+    del compiled[:]
+    fastpath.flight([0.0, 1.0, 2.0], 3.0, 0.6)  # compiled code that calls solve_flight
+    result["second"] = list(compiled)
+    result["cached"] = sorted(name for _, _, names in os.walk(CACHE_DIR) for name in names
+                              if name.endswith(".nbi"))
+    print(json.dumps(result))
+""")
+
+
+@pytest.mark.slow
+def test_helpers_compile_for_compiled_callers_only_and_a_python_kernel_serves_both(tmp_path):
+    """A kernel called only from compiled code gets no CPython wrapper, no machine code and no
+    cache file (its compiled callers hold it), cannot be called from Python, and gives the same
+    flight; one compiled for Python first is what compiled callers then use (no second
+    compilation)."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"), PYTHONPATH=str(ROOT))
+    done = subprocess.run([sys.executable, "-c", TWO_WAYS], cwd=tmp_path, env=env,
+                          capture_output=True, text=True, timeout=1200)
+    assert done.returncode == 0, done.stderr[-3000:]
+    result = json.loads(done.stdout.splitlines()[-1])
+    assert result["tau"] == fastpath.flight_time(4.0, 3.0, 0.6)
+    assert "fastpath.elastic.flight.solve_flight" in result["first"]
+    assert ("fastpath.elastic.concave.concave_flight_for_compiled_callers"
+            in result["first"])
+    assert result["python signatures"] == {"solve_flight": 1, "concave_flight": 0}
+    assert "compiled callers only" in result["twin called"]
+    assert "fastpath.api._flights_serial" in result["second"]
+    assert not [name for name in result["second"] if "solve_flight" in name]
+    assert any(name.startswith("flight.solve_flight-") for name in result["cached"])
+    assert not [name for name in result["cached"] if "compiled_callers" in name]
+    assert not [name for name in result["cached"] if name.startswith("concave.")]
