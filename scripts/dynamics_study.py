@@ -1,6 +1,6 @@
 """Compute the full dynamics study (``reports.paper.studies.dynamics_study.FULL``) and write it to
-``docs/report/dynamics/study.json`` (atomically), which the report's dynamics section reads and
-re-checks a sample of.
+``reports/paper/studies/dynamics_study.json`` (atomically; the package installs it), which the
+report's dynamics section reads and re-checks a sample of.
 
 Cost (2 cores shared with other work): about 25 minutes, mostly the multiprecision Greene
 crossings (periods 610 to 1597 of six curves, ~11 minutes), the certified high-period orbits
@@ -21,7 +21,8 @@ from pathlib import Path
 from reports.paper.studies.dynamics_study import FULL, QUICK, run
 from reports.runs.rundir import write_atomic
 
-DEFAULT = Path(__file__).resolve().parent.parent / "docs" / "report" / "dynamics" / "study.json"
+DEFAULT = (Path(__file__).resolve().parent.parent / "reports" / "paper" / "studies"
+           / "dynamics_study.json")
 
 
 def main(argv=None):

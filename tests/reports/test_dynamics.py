@@ -1,10 +1,13 @@
 """The report's dynamics section: the claim schema, the figures, the rules on hand-made data.
 
-The rule tests run on the committed study (docs/report/dynamics/study.json) with one field
-broken by hand; the tests of the whole section (figures, re-checks) are slow."""
+The rule tests run on the committed study (reports/paper/studies/dynamics_study.json) with one
+field broken by hand; the tests of the whole section (figures, re-checks) are slow."""
 
 import copy
+import fnmatch
 import json
+import tomllib
+from pathlib import Path
 
 import pytest
 
@@ -19,6 +22,19 @@ from reports.paper.studies.dynamics_study import QUICK, run
 def study():
     """The committed study (the section's own input)."""
     return json.loads(dynamics.STUDY.read_text(encoding="utf-8"))
+
+
+def test_the_committed_study_is_installed_with_the_package():
+    """The section reads the study from inside the reports package, and the package data names
+    it, so that an installed copy (``pip install .``) re-checks the committed study instead of
+    recomputing it for half an hour."""
+    package = Path(dynamics.__file__).resolve().parents[2]
+    assert dynamics.STUDY.is_file() and not dynamics.STUDY.is_symlink()
+    assert dynamics.STUDY.is_relative_to(package)
+    pyproject = tomllib.loads((package.parent / "pyproject.toml").read_text(encoding="utf-8"))
+    data = pyproject["tool"]["setuptools"]["package-data"]
+    module = ".".join(dynamics.STUDY.parent.relative_to(package.parent).parts)
+    assert any(fnmatch.fnmatch(dynamics.STUDY.name, pattern) for pattern in data[module])
 
 
 @pytest.fixture(scope="module")

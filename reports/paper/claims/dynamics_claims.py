@@ -1,7 +1,7 @@
 """The paper's Section 2 statements and its Lyapunov remark decided on the dynamics study
-(``reports.paper.studies.dynamics_study``; the committed ``docs/report/dynamics/study.json``),
-through the register (``reports.paper.claims.register_section2``): each claim the agreement of its
-family.
+(``reports.paper.studies.dynamics_study``; the committed
+``reports/paper/studies/dynamics_study.json``), through the register
+(``reports.paper.claims.register_section2``): each claim the agreement of its family.
 
 Members (the study's fields; tolerances ``NEAR``, ``LOWEST_MARGIN``, ``SIGMAS`` and the words'
 bounds of ``reports.paper.claims.rules``):

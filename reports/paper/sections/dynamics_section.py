@@ -1,9 +1,11 @@
 r"""The report's dynamics section: the paper's Section 2 statements and its Lyapunov remark.
 
 ``dynamics_section(out_dir, quick, echo)`` reads the committed study
-``docs/report/dynamics/study.json`` (``scripts/dynamics_study.py`` writes it; about 10 minutes)
-and re-checks a sample of it here (certified orbits recomputed, float crossings and the first
-collisions of the Lyapunov orbits recomputed bit for bit); without the file it computes the
+``reports/paper/studies/dynamics_study.json``, installed with the package
+(``scripts/dynamics_study.py`` writes it, in about 25 minutes; ``docs/report/dynamics/study.json``
+links to it), and re-checks a sample of it here (certified orbits recomputed, float crossings
+and the first collisions of the Lyapunov orbits recomputed bit for bit); without the file it
+computes the
 study (``QUICK`` sizes with ``quick``). A failed re-check turns the claims resting on that part
 ``inconclusive``. It writes four figures and returns the markdown and the claims (``Claim``s of
 the register, decided in ``reports.paper.claims.dynamics_claims``).
@@ -36,8 +38,9 @@ from reports.paper.studies.dynamics_study import (
 )
 from reports.paper.studies.sampling import ESCAPE_BOX
 
-STUDY = Path(__file__).resolve().parents[3] / "docs" / "report" / "dynamics" / "study.json"
-RUN = "docs/report/dynamics/study.json"
+# the committed study, installed with the package (docs/report/dynamics/study.json links to it)
+STUDY = Path(__file__).resolve().parents[1] / "studies" / "dynamics_study.json"
+RUN = "reports/paper/studies/dynamics_study.json"
 
 # --- loading and re-checking -------------------------------------------------------------------
 

@@ -23,7 +23,7 @@ collisions):
   accelerator blocks of the Holmes map by period, and velocity diffusion exponents.
 
 Sizes: ``QUICK`` (seconds, for tests) and ``FULL`` (minutes; ``scripts/dynamics_study.py``
-writes it to ``docs/report/dynamics/study.json``).
+writes it to ``reports/paper/studies/dynamics_study.json``).
 """
 
 from __future__ import annotations
