@@ -10,7 +10,7 @@ from fastpath.arithmetic.phase import reduce_phase
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.dissipative.carried import CARRIED, carried_collide
 from fastpath.elastic.collision import collide
-from fastpath.elastic.flight import METHODS, departure_of, solve_flight
+from fastpath.elastic.flight import METHODS, departure_of
 from fastpath.elastic.gap import departure_verdict
 from fastpath.elastic.holmes import holmes_collide
 from fastpath.inputs import float_inputs, integer, model_physics, physics_options, scalar_inputs
@@ -173,7 +173,10 @@ def _flight_arrays(phi, v, eps, code, described):
 
 def _scalar_flight(scalars, code, described):
     if described is None:
-        return solve_flight(*scalars, code)
+        # the flight of ``step`` (``collide`` takes it from ``solve_flight``'s arithmetic, bit for
+        # bit): a scalar flight and a scalar step share one compiled kernel
+        _, _, tau, iterations, status = collide(*scalars, code)
+        return tau, iterations, status
     return flight_of(scalars[0], scalars[1], with_eps(described, scalars[2]), code)
 
 

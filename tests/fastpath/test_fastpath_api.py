@@ -248,3 +248,28 @@ def test_public_docstrings_name_their_parameters(func):
     doc = func.__doc__
     for name in inspect.signature(func).parameters:
         assert name in doc, (func.__name__, name)
+
+
+def test_a_scalar_flight_is_the_flight_solver_and_the_array_call_bit_for_bit():
+    """``flight_time`` and scalar ``flight`` (which run ``step``'s compiled collision) give
+    ``solve_flight``'s tau, iterations and status, and the array call's, for both methods and
+    every kind of departure: concave, several roots (eps > 1), huge phases, non-departures."""
+    from fastpath.elastic.flight import METHODS, solve_flight
+
+    rng = np.random.default_rng(31)
+    n = 400
+    phi = np.concatenate([rng.uniform(-10.0, 10.0, n - 4), [1e12, -3e9, 4.0, 1.0]])
+    v = np.concatenate([rng.uniform(0.01, 40.0, n - 4), [2.0, 5.0, 0.0, -1.0]])
+    eps = np.concatenate([rng.choice([0.1, 0.6, 1.0, 1.5, 3.0, 7.0], n - 4), [0.6, 2.5, 0.6, 0.6]])
+    for method, code in METHODS.items():
+        arrays = fastpath.flight(phi, v, eps, method=method)
+        for i in range(n):
+            one = fastpath.flight(phi[i], v[i], eps[i], method=method)
+            solved = solve_flight(phi[i], v[i], eps[i], code)
+            got = (one.tau, one.iterations, int(one.status))
+            np.testing.assert_equal(got, solved)
+            np.testing.assert_equal(got, (arrays.tau[i], arrays.iterations[i], arrays.status[i]))
+            if method == "auto" and one.status == fastpath.FlightStatus.CONVERGED:
+                assert fastpath.flight_time(phi[i], v[i], eps[i]) == one.tau
+    statuses = {fastpath.FlightStatus(s) for s in fastpath.flight(phi, v, eps).status}
+    assert {fastpath.FlightStatus.CONVERGED, fastpath.FlightStatus.NOT_DEPARTING} <= statuses
