@@ -21,10 +21,11 @@ first call, for the argument types of that call. Five choices keep that short:
 * A call from compiled code is typed with the plain types of its arguments
   (``_called_from_compiled_code``), not one specialisation per constant value.
 * A kernel has two dispatchers: the one Python calls, and one for compiled callers
-  (``COMPILED_CALLERS``), compiled to optimised LLVM IR only, which its callers link and inline:
-  no CPython wrapper, no machine code of its own, nothing written to the cache (a caller's cached
-  machine code holds it). numba otherwise makes all three for every function it compiles,
-  helpers included: about a third of a cold start.
+  (``COMPILED_CALLERS``), compiled to LLVM IR only, which its callers link and inline: no
+  CPython wrapper, no machine code of its own, nothing written to the cache (a caller's cached
+  machine code holds it), and LLVM's module passes (inlining among them) left to the module of
+  the kernel Python calls, which runs them once over everything it links. numba otherwise does
+  all of this for every function it compiles, helpers included: about a third of a cold start.
 * ``typed_overload`` chooses an implementation when the caller is typed, so that a loop
   compiled for one model (``fastpath.kernels.particle``) compiles no other model's code.
 * No C-callable wrapper (``no_cfunc_wrapper``): numba otherwise builds one for every compiled
@@ -93,8 +94,8 @@ def _cached_dispatcher(function, options):
 
 @register_pass(mutates_CFG=True, analysis_only=False)
 class _LoweringForCompiledCallers(NativeLowering):
-    """numba's lowering without machine code: the function's LLVM IR, optimised, for compiled
-    callers to link and inline; nothing is made that Python could call."""
+    """numba's lowering without machine code: the function's LLVM IR (after the function
+    passes) for compiled callers to link and inline; nothing is made that Python could call."""
 
     _name = "lowering_for_compiled_callers"
 
@@ -103,6 +104,7 @@ class _LoweringForCompiledCallers(NativeLowering):
         super().run_pass(state)
         library = state.library
         library._finalize_final_module = functools.partial(_ir_only, library)
+        library._optimize_final_module = _module_passes_left_to_the_caller
         entry = _not_callable_from_python(state.func_id.func_qualname)
         state.targetctx.insert_user_function(entry, state.cr.fndesc, [library])
         state.cr = state.cr._replace(cfunc=entry)
@@ -111,10 +113,16 @@ class _LoweringForCompiledCallers(NativeLowering):
 
 def _ir_only(library):
     """``CodeLibrary._finalize_final_module`` without adding the module to the execution engine
-    (which would make its machine code): the optimised module is only linked into callers."""
+    (which would make its machine code): the module is only linked into callers. This and
+    ``_LoweringForCompiledCallers`` use numba's private lowering and library methods (as of
+    numba 0.68); ``tests/fastpath/test_compile_on_demand.py`` fails if they change."""
     library._finalize_dynamic_globals()
     library._verify_declare_only_symbols()
     library._finalized = True
+
+
+def _module_passes_left_to_the_caller():
+    """The module passes (inlining among them) run once, on the caller's linked module."""
 
 
 def _not_callable_from_python(name):
