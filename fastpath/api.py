@@ -10,7 +10,7 @@ from fastpath.arithmetic.phase import reduce_phase
 from fastpath.arithmetic.rounding import UNIT_ROUNDOFF
 from fastpath.dissipative.carried import CARRIED, carried_collide
 from fastpath.elastic.collision import collide
-from fastpath.elastic.flight import METHODS, departure_of
+from fastpath.elastic.flight import AUTO, METHODS, departure_of
 from fastpath.elastic.gap import departure_verdict
 from fastpath.elastic.holmes import holmes_collide
 from fastpath.inputs import float_inputs, integer, model_physics, physics_options, scalar_inputs
@@ -269,7 +269,7 @@ def step(phi, v, eps, *, drag=DEFAULT_DRAG, drag_law=DEFAULT_DRAG_LAW,
     scalars = scalar_inputs(phi=phi, v=v, eps=eps)
     if scalars is not None:
         if described is None:
-            phi1, v1, tau, _, status = collide(*scalars)
+            phi1, v1, tau, _, status = collide(*scalars, AUTO)
         else:
             phi1, v1, tau, _, status = step_of(*scalars[:2], with_eps(described, scalars[2]))
         if status != CONVERGED:

@@ -87,7 +87,7 @@ def _step(phi, v, physics):
 def _step_of_model(phi, v, physics):
     if physics.instance_class is Dissipative:
         return lambda phi, v, physics: dissipative_collide(phi, v, physics)
-    return lambda phi, v, physics: collide(phi, v, physics.eps)
+    return lambda phi, v, physics: collide(phi, v, physics.eps, AUTO)
 
 
 @jit

@@ -163,10 +163,10 @@ TWO_WAYS = textwrap.dedent("""
     event.register("numba:compile", Record())
     import fastpath
     from fastpath.arithmetic.jit import CACHE_DIR
-    from fastpath.elastic import concave, flight
-    result = {"tau": fastpath.flight_time(4.0, 3.0, 0.6)}
+    from fastpath.elastic import collision, concave
+    result = {"tau": fastpath.flight_time(4.0, 3.0, 0.6)}  # runs step's collision
     result["first"] = list(compiled)
-    result["python signatures"] = {"solve_flight": len(flight.solve_flight.signatures),
+    result["python signatures"] = {"collide": len(collision.collide.signatures),
                                    "concave_flight": len(concave.concave_flight.signatures)}
     twin = concave.concave_flight.for_compiled_callers
     try:
@@ -175,7 +175,7 @@ TWO_WAYS = textwrap.dedent("""
     except TypeError as error:
         result["twin called"] = str(error)
     del compiled[:]
-    fastpath.flight([0.0, 1.0, 2.0], 3.0, 0.6)  # compiled code that calls solve_flight
+    fastpath.step([0.0, 1.0, 2.0], 3.0, 0.6)  # compiled code that calls collide
     result["second"] = list(compiled)
     result["cached"] = sorted(name for _, _, names in os.walk(CACHE_DIR) for name in names
                               if name.endswith(".nbi"))
@@ -195,13 +195,13 @@ def test_helpers_compile_for_compiled_callers_only_and_a_python_kernel_serves_bo
     assert done.returncode == 0, done.stderr[-3000:]
     result = json.loads(done.stdout.splitlines()[-1])
     assert result["tau"] == fastpath.flight_time(4.0, 3.0, 0.6)
-    assert "fastpath.elastic.flight.solve_flight" in result["first"]
+    assert "fastpath.elastic.collision.collide" in result["first"]
     assert ("fastpath.elastic.concave.concave_flight_for_compiled_callers"
             in result["first"])
-    assert result["python signatures"] == {"solve_flight": 1, "concave_flight": 0}
+    assert result["python signatures"] == {"collide": 1, "concave_flight": 0}
     assert "compiled callers only" in result["twin called"]
-    assert "fastpath.api._flights_serial" in result["second"]
-    assert not [name for name in result["second"] if "solve_flight" in name]
-    assert any(name.startswith("flight.solve_flight-") for name in result["cached"])
+    assert "fastpath.api._steps_serial" in result["second"]
+    assert not [name for name in result["second"] if ".collide" in name]
+    assert any(name.startswith("collision.collide-") for name in result["cached"])
     assert not [name for name in result["cached"] if "compiled_callers" in name]
     assert not [name for name in result["cached"] if name.startswith("concave.")]
