@@ -180,9 +180,12 @@ def compile_kernels(plan, threads, progress):
 WARM_UP_N = 10  # collisions of the one particle that compiles the kernels
 # compile times of this machine, by ``_compile_key``: the last one measured (the expected one)
 COMPILE_TIMES = Path(CACHE_ROOT) / "compile_times.json"
-# the same, measured with an empty numba cache on the 2-core machine of docs/performance.md:
-# what a first compile is expected to take where this machine has none recorded
-REFERENCE_COMPILE_S = {}
+# the same, measured with an empty numba cache on the 2-core machine of docs/performance.md
+# (AMD EPYC, 2026-11-28: paper-escape, paper-phase-space, dissipation-saturation): what a
+# first compile is expected to take where this machine has none recorded
+REFERENCE_COMPILE_S = {"escape kernel, elastic model": 15.0,
+                       "portrait kernel, elastic model": 11.0,
+                       "moments kernel, dissipative model": 15.0}
 
 
 class _CompileNotice(numba_event.Listener):

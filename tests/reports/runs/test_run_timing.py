@@ -92,3 +92,14 @@ def test_an_empty_numba_cache_compiles_apart_from_the_run(tmp_path):
     print(f"compile {record['compile_s']} s, compute {record['compute_s']} s")
     assert record["compile_s"] > 10 * record["compute_s"]
     assert f"kernels compiled in {record['compile_s']:.1f} s" in proc.stdout
+
+
+def test_every_builtin_scene_has_an_expected_first_compile_time():
+    """A new user's first run of any built-in scene says how long compiling will take (the
+    2-core reference), not only that it is a first run."""
+    from reports.runs.scenes import builtin_scenes, load_scene
+
+    for name in builtin_scenes():
+        key = driver._compile_key(load_scene(name))
+        assert key in driver.REFERENCE_COMPILE_S, (name, key)
+        assert driver.REFERENCE_COMPILE_S[key] > 0
