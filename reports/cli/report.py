@@ -31,8 +31,8 @@ def add_parser(subparsers):
         "report", help="speed, work-precision, hard cases, the paper's figures, physics checks")
     report.add_argument("--out", default=DEFAULT_OUT, help=f"output folder (default {DEFAULT_OUT})")
     report.add_argument("--particles", type=count, default=None,
-                        help="particles per curve of the ensemble runs (default: sized to finish"
-                        " in about 10 minutes on 2 cores)")
+                        help="particles per curve of the ensemble runs (default: 10^6; the"
+                        " whole report then takes about 19 minutes on 2 cores)")
     report.add_argument("--quick", action="store_true", help="tiny sizes, for a smoke test")
     report.add_argument("--compare", action="append", default=[], metavar="MODULE:FUNCTION",
                         help="add your flight_time(phi, v, eps) to the comparison (repeatable)")
