@@ -82,12 +82,15 @@ CACHE_ROOT = _cache_root()  # the caches of every version of fastpath's sources
 CACHE_DIR = _cache_dir()
 
 
+# every kernel's options (module docstring); the caching and wrappers differ by dispatcher
+KERNEL_OPTIONS = {"nogil": True, "error_model": "numpy", "no_cfunc_wrapper": True}
+
+
 def _cached_dispatcher(function, options):
     saved = numba.config.CACHE_DIR
     numba.config.CACHE_DIR = CACHE_DIR
     try:
-        return numba.njit(cache=True, nogil=True, error_model="numpy", no_cfunc_wrapper=True,
-                          **options)(function)
+        return numba.njit(cache=True, **KERNEL_OPTIONS, **options)(function)
     finally:
         numba.config.CACHE_DIR = saved
 
@@ -143,21 +146,27 @@ class _CompilerForCompiledCallers(CompilerBase):
 COMPILED_CALLERS = "_for_compiled_callers"  # the name's suffix of a kernel's second dispatcher
 
 
+def _dispatcher_for_compiled_callers(function, options):
+    """``function``'s dispatcher for compiled callers (``_LoweringForCompiledCallers``), under
+    its own name (``COMPILED_CALLERS``) and never cached: its compilations are kept for typing
+    and linking only, out of numba's table of what Python can call."""
+    dispatcher = numba.njit(no_cpython_wrapper=True, pipeline_class=_CompilerForCompiledCallers,
+                            **KERNEL_OPTIONS, **options)(_renamed(function, COMPILED_CALLERS))
+
+    def add_overload(cres):
+        dispatcher.overloads[tuple(cres.signature.args)] = cres
+
+    dispatcher.add_overload = add_overload
+    return dispatcher
+
+
 def _cached_njit(**options):
     def decorate(function):
         dispatcher = _cached_dispatcher(function, options)
         if numba.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1: numba returns the plain function
             return dispatcher
-        for_compiled_callers = numba.njit(
-            nogil=True, error_model="numpy", no_cfunc_wrapper=True, no_cpython_wrapper=True,
-            pipeline_class=_CompilerForCompiledCallers, **options,
-        )(_renamed(function, COMPILED_CALLERS))
-
-        def add_overload(cres):  # never callable from Python (``_LoweringForCompiledCallers``)
-            for_compiled_callers.overloads[tuple(cres.signature.args)] = cres
-
-        for_compiled_callers.add_overload = add_overload
-        return _called_from_compiled_code(dispatcher, for_compiled_callers)
+        return _called_from_compiled_code(dispatcher,
+                                          _dispatcher_for_compiled_callers(function, options))
 
     return decorate
 
@@ -188,7 +197,7 @@ def _called_from_compiled_code(dispatcher, for_compiled_callers):
     def get_call_template(args, kws):
         args = tuple(types.unliteral(a) for a in args)
         kws = {k: types.unliteral(v) for k, v in kws.items()}
-        if compiled_for_python(dispatcher._compiler.fold_argument_types(args, kws)[1]):
+        if compiled_for_python(dispatcher.fold_argument_types(args, kws)[1]):
             return own_call_template(args, kws)
         return for_compiled_callers.get_call_template(args, kws)
 
@@ -258,8 +267,7 @@ def typed_overload(function, prefer_literal=False):
     that the decorated function returns for the argument types is what compiled callers of
     ``function`` run (the choice is made when they are typed; with ``prefer_literal`` a
     constant argument is seen as its value, ``numba.core.types.Literal``)."""
-    return overload(function, jit_options={"error_model": "numpy", "no_cpython_wrapper": True,
-                                           "no_cfunc_wrapper": True},
+    return overload(function, jit_options={**KERNEL_OPTIONS, "no_cpython_wrapper": True},
                     prefer_literal=prefer_literal)
 
 

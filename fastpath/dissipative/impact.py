@@ -39,7 +39,7 @@ def dissipative_collide(phi, v, physics):
     root carried as an unevaluated sum, ``fastpath.elastic.landing``)."""
     eps, drag, restitution = physics.eps, physics.drag, physics.restitution
     if drag == 0.0 and restitution == 1.0:
-        return collide(phi, v, eps)
+        return collide(phi, v, eps, AUTO)
     centred, phase_error = departure_phase(phi)
     sin_phi, cos_phi = sin_cos(centred)  # as collide: the same flight when drag == 0
     if drag == 0.0:
