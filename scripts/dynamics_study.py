@@ -18,11 +18,10 @@ import json
 import sys
 from pathlib import Path
 
-from reports.paper.studies.dynamics_study import FULL, QUICK, run
+from reports.paper.studies.dynamics_study import COMMITTED, FULL, QUICK, run
 from reports.runs.rundir import write_atomic
 
-DEFAULT = (Path(__file__).resolve().parent.parent / "reports" / "paper" / "studies"
-           / "dynamics_study.json")
+DEFAULT = COMMITTED
 
 
 def main(argv=None):

@@ -30,6 +30,7 @@ from reports.paper.figures.dynamics_eps_c import eps_c_figure
 from reports.paper.figures.dynamics_lyapunov import lyapunov_figure
 from reports.paper.figures.dynamics_residue import residue_figure
 from reports.paper.studies.dynamics_study import (
+    COMMITTED,
     FULL,
     K_C_QUARTER,
     QUICK,
@@ -38,9 +39,8 @@ from reports.paper.studies.dynamics_study import (
 )
 from reports.paper.studies.sampling import ESCAPE_BOX
 
-# the committed study, installed with the package (docs/report/dynamics/study.json links to it)
-STUDY = Path(__file__).resolve().parents[1] / "studies" / "dynamics_study.json"
-RUN = "reports/paper/studies/dynamics_study.json"
+STUDY = COMMITTED
+RUN = STUDY.relative_to(STUDY.parents[3]).as_posix()  # as the report names it
 
 # --- loading and re-checking -------------------------------------------------------------------
 

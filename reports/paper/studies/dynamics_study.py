@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -99,6 +100,10 @@ class Sizes:
     diffusion_particles: int
     diffusion_collisions: int
 
+
+# the committed FULL study, package data beside this module (docs/report/dynamics/study.json
+# links to it); ``scripts/dynamics_study.py`` writes it, the report's dynamics section reads it
+COMMITTED = Path(__file__).resolve().with_name("dynamics_study.json")
 
 QUICK = Sizes(
     fixed_m=(1,), fixed_eps=(-0.2, 0.3, 0.99, 1.01), two_m=(1,), two_points=12,
