@@ -120,16 +120,29 @@ def _median_n_ratio(sample_ij, sample_11, lo, hi):
     return _median_n(a) / _median_n(b)
 
 
-def _ratio_bootstrap(s_ij, s_11, lo, hi, reps=INTERVAL_REPLICATES, seed=TRANSPORT_JOINT_SEED):
-    """95% percentile interval of ``_median_n_ratio`` with both samples redrawn (Poisson
-    bootstrap, ``JointSample.resampled``); NaN when fewer than half the draws give a ratio."""
+def _ratio_bootstraps(s_ij, s_11, windows, reps=INTERVAL_REPLICATES, seed=TRANSPORT_JOINT_SEED):
+    """95% percentile interval of ``_median_n_ratio`` in each window (lo, hi) of t, with both
+    samples redrawn (Poisson bootstrap, ``JointSample.resampled``); NaN when fewer than half the
+    draws give a ratio. Every window's bootstrap starts from the same seed, so one set of draws
+    serves them all: each redrawn sample is cut to the window directly (the escapes in it that
+    the draw kept, in their order), the sample ``resampled(rng).select(window)`` would give."""
     rng = np.random.default_rng(seed)
-    got = np.array([_median_n_ratio(s_ij.resampled(rng), s_11.resampled(rng), lo, hi)
-                    for _ in range(reps)])
-    got = got[np.isfinite(got)]
-    if len(got) <= reps // 2:
-        return math.nan, math.nan
-    return float(np.percentile(got, 2.5)), float(np.percentile(got, 97.5))
+    inside = [((s_ij.t >= lo) & (s_ij.t < hi), (s_11.t >= lo) & (s_11.t < hi))
+              for lo, hi in windows]
+    got = np.empty((len(windows), reps))
+    for k in range(reps):
+        w_ij = rng.poisson(s_ij.weight).astype(np.float64)
+        w_11 = rng.poisson(s_11.weight).astype(np.float64)
+        kept_ij, kept_11 = w_ij > 0, w_11 > 0
+        for i, ((lo, hi), (in_ij, in_11)) in enumerate(zip(windows, inside, strict=True)):
+            got[i, k] = _median_n_ratio(s_ij._keep(kept_ij & in_ij, w_ij),
+                                        s_11._keep(kept_11 & in_11, w_11), lo, hi)
+    out = []
+    for row in got:
+        row = row[np.isfinite(row)]
+        out.append((math.nan, math.nan) if len(row) <= reps // 2 else
+                   (float(np.percentile(row, 2.5)), float(np.percentile(row, 97.5))))
+    return out
 
 
 def same_time_members(ij, joint, latest=2):
@@ -147,9 +160,10 @@ def same_time_members(ij, joint, latest=2):
     if not bins:
         return [F.too_few("same time", "median collisions, ratio")]
     out = []
-    for lo_t, hi_t, _ in bins[-latest:]:
+    windows = [(lo_t, hi_t) for lo_t, hi_t, _ in bins[-latest:]]
+    for (lo_t, hi_t), (lo, hi_) in zip(windows, _ratio_bootstraps(s_ij, s_11, windows),
+                                       strict=True):
         value = _median_n_ratio(s_ij, s_11, lo_t, hi_t)
-        lo, hi_ = _ratio_bootstrap(s_ij, s_11, lo_t, hi_t)
         variant = f"same time, t in [{lo_t:.3g}, {hi_t:.3g})"
         if math.isfinite(lo) and math.isfinite(hi_):
             out.append(F.word_member(variant, "median collisions, ratio", value, lo, hi_,
