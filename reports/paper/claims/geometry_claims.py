@@ -13,7 +13,7 @@ import math
 from reports.paper.claims import family as F
 from reports.paper.claims import rules as R
 from reports.paper.claims.register import ISLAND_HOLES, SEA_HOLES, WIDTHS, make_claim
-from reports.paper.studies.islands import strip_fractions, velocity_period
+from reports.paper.studies.islands import strips_together, velocity_period
 from reports.paper.studies.sampling import EPS
 
 ESCAPE_WIDTH = 0.3
@@ -35,25 +35,38 @@ def share_member(strip, count, holds, fails, what, part=""):
                                           holds, fails)])[0]
 
 
-def strips(lo, hi, m_samples):
-    return [strip_fractions(lo, hi, EPS, m_samples, m=m) for m in VELOCITY_PERIODS]
+def strips_of(phase_ranges, m_samples):
+    """Per (lo, hi) of ``phase_ranges``, its strip in each of ``VELOCITY_PERIODS`` from
+    ``m_samples`` random starts, all classified together
+    (``reports.paper.studies.islands.strips_together``: the same strips, one orbit loop)."""
+    got = strips_together([(lo, hi, m) for lo, hi in phase_ranges for m in VELOCITY_PERIODS],
+                          EPS, m_samples)
+    k = len(VELOCITY_PERIODS)
+    return [got[i * k:(i + 1) * k] for i in range(len(phase_ranges))]
+
+
+def _escape_strip(hole):
+    """The phase range whose strips decide fig2-hole-phi_c=``hole``."""
+    c = float(hole)
+    if hole in ISLAND_HOLES:
+        return c - 1.5 * ESCAPE_WIDTH, c + 1.5 * ESCAPE_WIDTH
+    return c - ESCAPE_WIDTH / 2, c + ESCAPE_WIDTH / 2
 
 
 def escape_hole_claims(quick=False):
     """fig2-hole-phi_c=X for the six escape holes."""
     m = SAMPLES[bool(quick)]
     out = []
-    for h in ISLAND_HOLES + SEA_HOLES:
-        c = float(h)
+    holes = ISLAND_HOLES + SEA_HOLES
+    for h, hole_strips in zip(holes, strips_of([_escape_strip(h) for h in holes], m),
+                              strict=True):
         if h in ISLAND_HOLES:
             members = [share_member(s, s.large, R.OVER_OR_NEAR, R.OVER_OR_NEAR_FAILS,
-                                    "on the large island")
-                       for s in strips(c - 1.5 * ESCAPE_WIDTH, c + 1.5 * ESCAPE_WIDTH, m)]
+                                    "on the large island") for s in hole_strips]
             what = "strip widened by one hole width, share on the large island"
         else:
             members = [share_member(s, s.regular, R.ALMOST_ENTIRELY, R.ALMOST_ENTIRELY_FAILS,
-                                    "on islands")
-                       for s in strips(c - ESCAPE_WIDTH / 2, c + ESCAPE_WIDTH / 2, m)]
+                                    "on islands") for s in hole_strips]
             what = "the hole's strip, share on islands"
         out.append(make_claim(f"fig2-hole-phi_c={h}", f"{what}: {F.family_text(members)}.",
                               analyses=members, particles_per_curve=m))
@@ -64,10 +77,11 @@ def transport_hole_claims(quick=False):
     """sec4-holes and sec4-hole-2 for the four widths."""
     m = SAMPLES[bool(quick)]
     both, hole2 = [], []
-    for w in WIDTHS:
-        h = float(w)
-        for s1, s2 in zip(strips(-h / 2, h / 2, m), strips(math.pi - h / 2, math.pi + h / 2, m),
-                          strict=True):
+    ranges = [r for w in WIDTHS for r in ((-float(w) / 2, float(w) / 2),
+                                          (math.pi - float(w) / 2, math.pi + float(w) / 2))]
+    got = strips_of(ranges, m)
+    for i, w in enumerate(WIDTHS):
+        for s1, s2 in zip(got[2 * i], got[2 * i + 1], strict=True):
             both += [share_member(s1, s1.regular, R.BOTH, R.BOTH_FAILS, "on islands",
                                   f"h = {w}, hole 1 islands"),
                      share_member(s1, s1.samples - s1.regular, R.BOTH, R.BOTH_FAILS,

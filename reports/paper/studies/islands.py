@@ -66,8 +66,16 @@ def classify(phi, v, eps, collisions=CLASSIFY_COLLISIONS, m=1):
     """``Classified`` starts (module docstring); "on the large island" is the island around
     (0, pi m), locked to a mean flight time of 2 pi m. Starts that do not leave the plate
     (v + eps sin(phi) <= 0) are chaotic by definition here (they are not island orbits)."""
-    phi = np.asarray(phi, dtype=np.float64)
-    v = np.asarray(v, dtype=np.float64)
+    return classify_together([(phi, v, m)], eps, collisions)[0]
+
+
+def classify_together(starts, eps, collisions=CLASSIFY_COLLISIONS):
+    """``classify`` of several sets of starts, ``starts`` a list of (phi, v, m): every orbit is
+    its own, so each set is classified as ``classify`` would alone, but all of them move in one
+    loop over one array (one call of the kernel per collision, not one per set)."""
+    sizes = [len(np.atleast_1d(p)) for p, _, _ in starts]
+    phi = np.concatenate([np.asarray(p, dtype=np.float64).ravel() for p, _, _ in starts])
+    v = np.concatenate([np.asarray(w, dtype=np.float64).ravel() for _, w, _ in starts])
     ok = v + eps * np.sin(phi) > 1e-9
     p, w = phi[ok], v[ok]
     v_lo, v_hi = w.copy(), w.copy()
@@ -82,13 +90,20 @@ def classify(phi, v, eps, collisions=CLASSIFY_COLLISIONS, m=1):
         np.minimum(c_lo, c, out=c_lo)
         np.maximum(c_hi, c, out=c_hi)
     regular = np.zeros(len(phi), bool)
-    large = np.zeros(len(phi), bool)
-    reg = v_hi - v_lo < REGULAR_BAND
-    regular[ok] = reg
-    large[ok] = reg & (np.abs(t / collisions - TWO_PI * m) < LOCK_TOLERANCE * TWO_PI * m)
+    regular[ok] = v_hi - v_lo < REGULAR_BAND
+    mean_flight = np.full(len(phi), math.nan)
+    mean_flight[ok] = t / collisions
     lo, hi = np.full(len(phi), math.nan), np.full(len(phi), math.nan)
     lo[ok], hi[ok] = c_lo, c_hi
-    return Classified(regular, large, lo, hi)
+    out, first = [], 0
+    for size, (_, _, m) in zip(sizes, starts, strict=True):
+        part = slice(first, first + size)
+        first += size
+        reg = regular[part]
+        # a start that does not leave the plate is not regular, so never on the island
+        large = reg & (np.abs(mean_flight[part] - TWO_PI * m) < LOCK_TOLERANCE * TWO_PI * m)
+        out.append(Classified(reg, large, lo[part], hi[part]))
+    return out
 
 
 @dataclass
@@ -122,11 +137,19 @@ class Strip:
 def strip_fractions(lo, hi, eps, samples=2000, seed=0, m=1):
     """``Strip`` of the phases [lo, hi] (taken mod 2 pi) x velocity_period(m) from uniform random
     starts."""
-    rng = np.random.default_rng(seed)
-    phi = np.mod(rng.uniform(lo, hi, samples), TWO_PI)
-    v = rng.uniform(*velocity_period(m), samples)
-    cls = classify(phi, v, eps, m=m)
-    return Strip(float(lo), float(hi), samples, int(cls.regular.sum()), int(cls.large.sum()), m)
+    return strips_together([(lo, hi, m)], eps, samples, seed)[0]
+
+
+def strips_together(strips, eps, samples=2000, seed=0):
+    """``strip_fractions`` of each (lo, hi, m) of ``strips``, each from its own starts, their
+    orbits classified in one loop (``classify_together``)."""
+    starts = []
+    for lo, hi, m in strips:
+        rng = np.random.default_rng(seed)
+        starts.append((np.mod(rng.uniform(lo, hi, samples), TWO_PI),
+                       rng.uniform(*velocity_period(m), samples), m))
+    return [Strip(float(lo), float(hi), samples, int(cls.regular.sum()), int(cls.large.sum()), m)
+            for (lo, hi, m), cls in zip(strips, classify_together(starts, eps), strict=True)]
 
 
 def box_starts(phi_box, v_box, samples, seed=0):
@@ -135,4 +158,5 @@ def box_starts(phi_box, v_box, samples, seed=0):
     return np.mod(rng.uniform(*phi_box, samples), TWO_PI), rng.uniform(*v_box, samples)
 
 
-__all__ = ["box_starts", "centred", "classify", "strip_fractions"]
+__all__ = ["box_starts", "centred", "classify", "classify_together", "strip_fractions",
+           "strips_together"]

@@ -289,12 +289,16 @@ def test_very_strong_p11_outlives_the_others_by_a_decade_and_fails_at_twice(rati
 # ---- where the holes are ---------------------------------------------------------------------
 
 def fake_strips(monkeypatch, shares):
-    """strip_fractions replaced: ``shares(lo, hi)`` -> (regular share, large-island share), the
+    """strips_together replaced: ``shares(lo, hi)`` -> (regular share, large-island share), the
     same in every velocity period."""
-    def strips(lo, hi, eps, samples, m=1):
-        regular, large = shares(lo, hi)
-        return Strip(lo, hi, samples, round(regular * samples), round(large * samples), m)
-    monkeypatch.setattr(geometry_claims, "strip_fractions", strips)
+    def strips(specs, eps, samples, seed=0):
+        out = []
+        for lo, hi, m in specs:
+            regular, large = shares(lo, hi)
+            out.append(Strip(lo, hi, samples, round(regular * samples), round(large * samples),
+                             m))
+        return out
+    monkeypatch.setattr(geometry_claims, "strips_together", strips)
 
 
 @pytest.mark.parametrize(("sea_islands", "verdict"), [
