@@ -70,7 +70,8 @@ def dissipation_markdown(d, image):
         f"eps = {d.eps:g}, {d.particles:,} particles from the paper's escape start box, no "
         f"holes, the same starts for every physics; {verified_text(d.verification)} "
         f"(dissipative orbits). Plateau V_sat = mean of <v_n> over the log-spaced grid points "
-        f"with n in [{d.window[0]:g}, {d.window[1]:g}]. {d.seconds:.0f} s.",
+        f"with n in [{d.window[0]:g}, {d.window[1]:g}]. "
+        + (f"Source: {d.source}." if d.source else f"Computed here in {d.seconds:.0f} s."),
         "",
         *rows,
         "",

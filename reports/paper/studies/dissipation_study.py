@@ -33,6 +33,15 @@ uncorrelated phases (<u> = 0, <u^2> = eps^2/2) make the stationary second moment
 <v^2> = r^2 <v^2> + (1 + r)^2 eps^2/2, i.e. <v^2> = (1 + r)*eps^2/(2*(1 - r)), and a fixed
 shape of the velocity distribution gives V_sat ~ (1 - r)^(-1/2).
 
+The committed study. The full study takes about 3 minutes on 2 cores (1000 orbits of 10^4
+collisions at eps = 2 per physics, mostly the paper's lower-bound steps); it is committed as
+package data (``COMMITTED``, written by ``scripts/dissipation_study.py``). A report reads it and
+re-checks it (``recheck``): one curve of each kind of physics (``RECHECKED``), the verify spot
+check and the velocity strip are recomputed and must equal the committed numbers bit for bit;
+if anything differs the whole study is computed instead, and the report says so
+(``Dissipation.source``). The re-check's moments run in a background thread beside the
+report's other work (``start_dissipation_study``). ``--quick`` sizes are always computed.
+
 The velocity strip (``velocity_strip``; claim ``dissipation-velocity-strip``). The one
 published scaling statement with numbers we could read: J. J. Barroso, M. V. Carneiro,
 E. E. N. Macau, Phys. Rev. E 79, 026206 (2009), abstract: chaotic orbits of the inelastic
@@ -55,10 +64,13 @@ that no velocity of the study's orbits leaves it, and by how much the orbits sta
 
 from __future__ import annotations
 
-import functools
+import dataclasses
+import json
 import math
+import threading
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -154,6 +166,7 @@ class Dissipation:
     strip_max: list = None  # max |v_n| over STRIP_ORBITS orbits, per 1 - r (velocity strip)
     strip_orbits: int = 0
     strip_halves: list = None  # the same over each half of the orbits, per 1 - r
+    source: str = ""  # where the numbers come from (``start_dissipation_study``)
 
 
 def plateau(n, mean_v, lo, hi):
@@ -220,42 +233,252 @@ def _beta_systematic(n, x, curves, window):
     return 0.5 * (max(betas) - min(betas)) if betas else math.nan
 
 
-@functools.lru_cache(maxsize=2)
-def dissipation_study(quick=False):
-    """Run the study (cached: figure and claims share it); see the module docstring."""
+def _curves_of_study():
+    """(label, physics keywords) of every curve, in the study's order: the elastic reference,
+    restitution per 1 - r, drag per (law, k)."""
+    return ([("elastic", {})]
+            + [(f"1 - r = {x:g}", {"restitution": 1.0 - x}) for x in STUDY["one_minus_r"]]
+            + [(f"{law} drag k = {k:g}", {"drag": k, "drag_law": law})
+               for law, ks in STUDY["drag"].items() for k in ks])
+
+
+def _study_moments(quick, only=None):
+    """The study's starts, grid and <v_n> curves with the stuck fractions (``only``: just the
+    curves of these labels, no stuck fractions): ``fastpath.moments`` and numpy only (no
+    mpmath; the GIL released while the kernels run), so that it may run in a background thread
+    (``start_dissipation_study``). Returns ((phi0, v0, n, window, curves, sticking), seconds)."""
+    t0 = time.perf_counter()
     cfg = STUDY[bool(quick)]
     eps = STUDY["eps"]
-    t0 = time.perf_counter()
     rng = np.random.default_rng(SAMPLING_SEED)
     m = cfg["particles"]
     phi0, v0 = uniform_box(rng, ESCAPE_BOX, m)
     n = np.unique(np.round(np.logspace(0, math.log10(cfg["n_max"]), 41)).astype(np.int64))
-    nf = n.astype(float)
     window = (cfg["n_max"] / 10.0, float(cfg["n_max"]))
-    elastic = _curve("elastic", {}, phi0, v0, eps, n, window)
+    curves = [_curve(label, physics, phi0, v0, eps, n, window)
+              for label, physics in _curves_of_study() if only is None or label in only]
+    sticking = []
+    for r in STUDY["sticking_r"] if only is None else ():
+        mom = moments(phi0, v0, STUDY["sticking_eps"], n, blocks=BLOCKS, restitution=r)
+        sticking.append((r, float(mom.stuck_n.sum(axis=0)[-1]) / m, m))
+    return (phi0, v0, n, window, curves, sticking), time.perf_counter() - t0
+
+
+def _spot_check(phi0, v0, quick):
+    """The verify spot check of the dissipative orbits (``verify_sample``: mpmath, whose
+    precision is process-wide: never beside other mpmath code in another thread)."""
+    cfg = STUDY[bool(quick)]
+    omr = STUDY["one_minus_r"]
+    starts = list(zip(phi0[:2], v0[:2], strict=True))
+    physics_list = [{"restitution": 1.0 - omr[0]}, {"restitution": 1.0 - omr[-1]},
+                    {"drag": STUDY["drag"]["linear"][-1], "drag_law": "linear"},
+                    {"drag": STUDY["drag"]["quadratic"][-1], "drag_law": "quadratic"}]
+    return verify_sample(starts, STUDY["eps"], min(cfg["n_max"], 3000), cfg["verify"],
+                         physics_list=physics_list)
+
+
+def _strip(phi0, v0, quick):
+    """(orbits, max |v_n| per 1 - r over each half of them) for the velocity strip."""
+    k = STRIP_ORBITS[bool(quick)]
+    return k, strip_maxima(phi0[:k], v0[:k], STUDY["eps"], STUDY["one_minus_r"],
+                           STUDY[bool(quick)]["n_max"])
+
+
+def _finished_study(quick, parts, seconds):
+    """The study from ``_study_moments``'s parts: the exponent with its bootstrap and
+    systematic errors, the verify spot check (mpmath: in the calling thread) and the strip."""
+    t0 = time.perf_counter()
+    phi0, v0, n, window, curves, sticking = parts
+    elastic = curves[0]
+    rest = curves[1:1 + len(STUDY["one_minus_r"])]
+    drag = curves[1 + len(STUDY["one_minus_r"]):]
+    nf = n.astype(float)
     omr = np.array(STUDY["one_minus_r"])
-    rest = [_curve(f"1 - r = {x:g}", {"restitution": 1.0 - x}, phi0, v0, eps, n, window)
-            for x in omr]
-    drag = [_curve(f"{law} drag k = {k:g}", {"drag": k, "drag_law": law}, phi0, v0, eps, n,
-                   window)
-            for law, ks in STUDY["drag"].items() for k in ks]
     beta, amp = exponent(omr, [c.plateau for c in rest])
     stacked_num = np.hstack([c.sum_v for c in rest])
     stacked_den = np.hstack([c.count for c in rest])
     beta_err = bootstrap_blocks(stacked_num, stacked_den, _beta_of_stacked(nf, omr, window))
     beta_sys = _beta_systematic(nf, omr, rest, window)
-    sticking = []
-    for r in STUDY["sticking_r"]:
-        mom = moments(phi0, v0, STUDY["sticking_eps"], n, blocks=BLOCKS, restitution=r)
-        sticking.append((r, float(mom.stuck_n.sum(axis=0)[-1]) / m, m))
-    starts = list(zip(phi0[:2], v0[:2], strict=True))
-    physics_list = [{"restitution": 1.0 - omr[0]}, {"restitution": 1.0 - omr[-1]},
-                    {"drag": STUDY["drag"]["linear"][-1], "drag_law": "linear"},
-                    {"drag": STUDY["drag"]["quadratic"][-1], "drag_law": "quadratic"}]
-    ver = verify_sample(starts, eps, min(cfg["n_max"], 3000), cfg["verify"],
-                        physics_list=physics_list)
-    k = STRIP_ORBITS[bool(quick)]
-    halves = strip_maxima(phi0[:k], v0[:k], eps, omr, cfg["n_max"])
-    return Dissipation(eps, m, nf, window, elastic, rest, drag, omr, beta, beta_err, beta_sys,
-                       math.exp(amp) if math.isfinite(amp) else math.nan, sticking, ver,
-                       time.perf_counter() - t0, [max(h) for h in halves], k, halves)
+    ver = _spot_check(phi0, v0, quick)
+    k, halves = _strip(phi0, v0, quick)
+    return Dissipation(STUDY["eps"], len(phi0), nf, window, elastic, rest, drag, omr, beta,
+                       beta_err, beta_sys, math.exp(amp) if math.isfinite(amp) else math.nan,
+                       sticking, ver, seconds + time.perf_counter() - t0,
+                       [max(h) for h in halves], k, halves)
+
+
+# --- the committed study ------------------------------------------------------------------------
+
+# the full study (``STUDY[False]``), package data beside this module, written by
+# scripts/dissipation_study.py; the report re-checks part of it (``recheck``) instead of
+# spending its minutes on it again
+COMMITTED = Path(__file__).resolve().with_name("dissipation_study.json")
+# the curves a re-check recomputes: one of each kind of physics
+RECHECKED = ("elastic", f"1 - r = {STUDY['one_minus_r'][-1]:g}",
+             f"linear drag k = {STUDY['drag']['linear'][-1]:g}",
+             f"quadratic drag k = {STUDY['drag']['quadratic'][-1]:g}")
+_ARRAY = "__array__"
+
+
+def _plain(value):
+    """``value`` as JSON: arrays as {__array__: dtype, data: list}, tuples as lists."""
+    if isinstance(value, np.ndarray):
+        return {_ARRAY: str(value.dtype), "data": value.tolist()}
+    if isinstance(value, (np.floating, np.integer)):
+        return value.item()
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def _typed(value):
+    if isinstance(value, dict) and _ARRAY in value:
+        return np.array(value["data"], dtype=value[_ARRAY])
+    if isinstance(value, dict):
+        return {k: _typed(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_typed(v) for v in value]
+    return value
+
+
+def to_json(study):
+    """The study as JSON text (floats written exactly, NaN as NaN; one line: most of it is the
+    per-block sums)."""
+    return json.dumps(_plain(dataclasses.asdict(study))) + "\n"
+
+
+def _curve_of(d):
+    return Curve(**_typed(d))
+
+
+def from_json(text):
+    """The ``Dissipation`` that ``to_json`` wrote."""
+    d = json.loads(text)
+    curves = {name: d.pop(name) for name in ("elastic", "restitution", "drag")}
+    d = _typed(d)
+    d["window"] = tuple(d["window"])
+    d["sticking"] = [tuple(x) for x in d["sticking"]]
+    d["strip_halves"] = [tuple(x) for x in d["strip_halves"]]
+    return Dissipation(elastic=_curve_of(curves["elastic"]),
+                       restitution=[_curve_of(c) for c in curves["restitution"]],
+                       drag=[_curve_of(c) for c in curves["drag"]], **d)
+
+
+def same_numbers(a, b):
+    """Whether two values hold the same numbers bit for bit (NaN equal to NaN): arrays,
+    dataclasses, containers, floats."""
+    if dataclasses.is_dataclass(a):
+        return type(a) is type(b) and same_numbers(dataclasses.asdict(a), dataclasses.asdict(b))
+    if isinstance(a, dict):
+        return isinstance(b, dict) and a.keys() == b.keys() and all(
+            same_numbers(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)):
+        return isinstance(b, (list, tuple)) and len(a) == len(b) and all(
+            same_numbers(x, y) for x, y in zip(a, b, strict=True))
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return np.array_equal(np.asarray(a), np.asarray(b), equal_nan=True)
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a):
+        return math.isnan(b)
+    return a == b
+
+
+def recheck(committed, parts, quick=False):
+    """Compare the committed study with ``parts`` recomputed now (``_study_moments`` of the
+    ``RECHECKED`` curves), the spot check and the strip recomputed here: [] if every number is
+    the same bit for bit, else what differs."""
+    phi0, v0, n, window, curves, _ = parts
+    stored = {c.label: c for c in [committed.elastic, *committed.restitution, *committed.drag]}
+    differ = []
+    if not (same_numbers(n.astype(float), committed.n) and tuple(window) == committed.window):
+        differ.append("the grid")
+    for c in curves:
+        if c.label not in stored or not same_numbers(c, stored[c.label]):
+            differ.append(f"the curve {c.label}")
+    if not same_numbers(_spot_check(phi0, v0, quick), committed.verification):
+        differ.append("the verify spot check")
+    k, halves = _strip(phi0, v0, quick)
+    if not (k == committed.strip_orbits and same_numbers(halves, committed.strip_halves)):
+        differ.append("the velocity strip")
+    return differ
+
+
+_STUDIES = {}  # quick -> Dissipation: figure and claims share one study
+
+
+def _committed_for(quick):
+    """The committed study's file for this size, if there is one (the full size only)."""
+    return COMMITTED if not quick and COMMITTED.is_file() else None
+
+
+def dissipation_study(quick=False, echo=None):
+    """The study (cached; module docstring): for the full size the committed one
+    (``COMMITTED``) where its re-check passes, else computed here."""
+    return start_dissipation_study(quick, echo, background=False)()
+
+
+def start_dissipation_study(quick=False, echo=None, background=True):
+    """Begin the study; returns a function that finishes it in the calling thread and
+    returns the ``Dissipation``.
+
+    At the full size with the committed study present, what begins is its re-check: the
+    ``RECHECKED`` curves recomputed; ``finish`` compares them, the verify spot check and the
+    strip with the committed numbers and returns the committed study (``source`` says so), or
+    computes the whole study if anything differs. Otherwise the whole study begins.
+
+    ``background``: the moments (``_study_moments``, most of the time) run in a daemon thread
+    while the caller goes on (a report's claims, mostly on one core), so an interrupted
+    report does not wait for them; the spot check stays in the caller's thread, since mpmath's
+    precision is process-wide.
+    """
+    quick = bool(quick)
+    echo = echo or (lambda _msg: None)
+    if quick in _STUDIES:
+        return lambda: _STUDIES[quick]
+    path = _committed_for(quick)
+    committed = None if path is None else from_json(path.read_text(encoding="utf-8"))
+    only = RECHECKED if committed is not None else None
+    box = {}
+
+    def work():
+        try:
+            box["parts"] = _study_moments(quick, only)
+        except BaseException as err:  # handed to the caller of finish()
+            box["error"] = err
+
+    thread = threading.Thread(target=work, name="dissipation-moments", daemon=True)
+    if background:
+        thread.start()
+    else:
+        work()
+
+    def finish():
+        if quick in _STUDIES:
+            return _STUDIES[quick]
+        if background:
+            thread.join()
+        if "error" in box:
+            raise box["error"]
+        parts, seconds = box["parts"]
+        if committed is None:
+            _STUDIES[quick] = _finished_study(quick, parts, seconds)
+            return _STUDIES[quick]
+        t0 = time.perf_counter()
+        differ = recheck(committed, parts, quick)
+        seconds += time.perf_counter() - t0
+        if differ:
+            echo(f"dissipation: the committed study {path.name} is not what this code "
+                 f"computes ({', '.join(differ)} differ): computing the whole study")
+            study = _finished_study(quick, *_study_moments(quick))
+            study.source = (f"computed here: the committed study differs from this code's in "
+                            f"{', '.join(differ)}")
+        else:
+            study = dataclasses.replace(committed, source=(
+                f"the committed study (`{path.name}`, {committed.seconds:.0f} s to "
+                f"compute), re-checked here in {seconds:.0f} s: the curves "
+                f"{', '.join(RECHECKED)}, the verify spot check and the velocity strip "
+                "recomputed, the same bit for bit"))
+        _STUDIES[quick] = study
+        return study
+    return finish

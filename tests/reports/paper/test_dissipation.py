@@ -1,6 +1,7 @@
 """The dissipation section: its estimators on curves of known shape, its verdict rules, and a
 small ensemble that must saturate (restitution) or stick (eps <= 1). No timing asserted."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -171,3 +172,151 @@ def test_bench_dissipative_rows_make_every_collision():
     assert all(made == 2000 and ns > 0 for ns, made in best.values())
     table = dissipative_table(best, 2000, 2.0, 1)
     assert "| elastic |" in table and "| 1.00 |" in table
+
+
+def _fields(study):
+    """The study's numbers, the time it took left out."""
+    out = {}
+    for name, value in vars(study).items():
+        if name == "seconds":
+            continue
+        if isinstance(value, list) and value and isinstance(value[0], Curve):
+            value = [_fields(c) for c in value]
+        elif isinstance(value, Curve):
+            value = _fields(value)
+        out[name] = value
+    return out
+
+
+def _same(a, b):
+    if isinstance(a, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b, strict=True))
+    if isinstance(a, np.ndarray):
+        return np.array_equal(a, b, equal_nan=True)
+    if isinstance(a, float):
+        return a == b or (math.isnan(a) and math.isnan(b))
+    return a == b
+
+
+@pytest.mark.slow
+def test_the_study_begun_in_the_background_is_the_study_computed_in_line(monkeypatch):
+    from reports.paper.studies import dissipation_study as study
+
+    monkeypatch.setattr(study, "_STUDIES", {})
+    in_line = study.dissipation_study(True)
+    study._STUDIES.clear()
+    finish = study.start_dissipation_study(True)
+    background = finish()
+    assert background is not in_line
+    assert _same(_fields(background), _fields(in_line))
+    assert study.dissipation_study(True) is background  # one study for figure and claims
+
+
+def test_an_error_in_the_background_reaches_the_caller(monkeypatch):
+    from reports.paper.studies import dissipation_study as study
+
+    def broken(quick, only=None):
+        raise ValueError("moments failed")
+
+    monkeypatch.setattr(study, "_STUDIES", {})
+    monkeypatch.setattr(study, "_study_moments", broken)
+    finish = study.start_dissipation_study(True)
+    with pytest.raises(ValueError, match="moments failed"):
+        finish()
+    assert study._STUDIES == {}
+
+
+@pytest.fixture(scope="module")
+def quick_study():
+    from reports.paper.studies import dissipation_study as study
+
+    return study._finished_study(True, *study._study_moments(True))
+
+
+@pytest.mark.slow
+def test_a_written_study_reads_back_with_the_same_numbers(quick_study):
+    from reports.paper.studies.dissipation_study import from_json, same_numbers, to_json
+
+    again = from_json(to_json(quick_study))
+    assert same_numbers(again, quick_study)
+    assert type(again.window) is tuple
+    assert again.elastic.sum_v.dtype == quick_study.elastic.sum_v.dtype
+    assert not same_numbers(dataclasses.replace(again, beta=again.beta + 1e-15), quick_study)
+
+
+@pytest.mark.slow
+def test_the_recheck_finds_each_committed_number_that_this_code_does_not_compute(quick_study):
+    from reports.paper.studies import dissipation_study as study
+
+    parts, _ = study._study_moments(True, study.RECHECKED)
+    assert study.recheck(quick_study, parts, quick=True) == []
+    curve = quick_study.restitution[-1]
+    assert curve.label in study.RECHECKED
+    mean_v = curve.mean_v.copy()
+    mean_v[-1] *= 1 + 2**-52
+    tampered = dataclasses.replace(quick_study, restitution=[
+        *quick_study.restitution[:-1], dataclasses.replace(curve, mean_v=mean_v)])
+    assert study.recheck(tampered, parts, quick=True) == [f"the curve {curve.label}"]
+    tampered = dataclasses.replace(quick_study, verification={
+        **quick_study.verification, "worst_error": quick_study.verification["worst_error"] * 2})
+    assert study.recheck(tampered, parts, quick=True) == ["the verify spot check"]
+    tampered = dataclasses.replace(quick_study, strip_halves=quick_study.strip_halves[:-1])
+    assert study.recheck(tampered, parts, quick=True) == ["the velocity strip"]
+
+
+@pytest.mark.slow
+def test_the_report_takes_the_committed_study_only_where_its_recheck_passes(
+        quick_study, tmp_path, monkeypatch):
+    from reports.paper.studies import dissipation_study as study
+
+    path = tmp_path / "study.json"
+    path.write_text(study.to_json(quick_study), encoding="utf-8")
+    monkeypatch.setattr(study, "_committed_for", lambda quick: path)
+    monkeypatch.setattr(study, "_STUDIES", {})
+    said = []
+    got = study.start_dissipation_study(True, said.append)()
+    assert same_numbers_but_source(got, quick_study)
+    assert "the committed study (`study.json`" in got.source and not said
+    # a committed number this code does not reproduce: the whole study computed here
+    study._STUDIES.clear()
+    elastic = dataclasses.replace(quick_study.elastic, plateau=quick_study.elastic.plateau * 2)
+    path.write_text(study.to_json(dataclasses.replace(quick_study, elastic=elastic)),
+                    encoding="utf-8")
+    got = study.start_dissipation_study(True, said.append)()
+    assert same_numbers_but_source(got, quick_study)
+    assert got.source.startswith("computed here") and "the curve elastic" in got.source
+    assert len(said) == 1 and "differ" in said[0]
+
+
+def same_numbers_but_source(a, b):
+    from reports.paper.studies.dissipation_study import same_numbers
+
+    return same_numbers(dataclasses.replace(a, source="", seconds=0.0),
+                        dataclasses.replace(b, source="", seconds=0.0))
+
+
+def test_the_committed_study_is_the_full_study_and_installed_with_the_package():
+    """The committed study has the full sizes and the curves of ``STUDY`` (else every report
+    would recompute it), and the package data names it, so that an installed copy re-checks it
+    instead of spending minutes on it."""
+    import fnmatch
+    import tomllib
+    from pathlib import Path
+
+    from reports.paper.studies import dissipation_study as study
+
+    committed = study.from_json(study.COMMITTED.read_text(encoding="utf-8"))
+    assert committed.particles == STUDY[False]["particles"]
+    assert committed.n[-1] == STUDY[False]["n_max"]
+    labels = [c.label for c in [committed.elastic, *committed.restitution, *committed.drag]]
+    assert labels == [label for label, _ in study._curves_of_study()]
+    assert set(study.RECHECKED) <= set(labels) and len(set(study.RECHECKED)) == 4
+    assert [r for r, _, _ in committed.sticking] == list(STUDY["sticking_r"])
+    package = Path(study.__file__).resolve().parents[3]
+    assert study.COMMITTED.is_relative_to(package / "reports")
+    pyproject = tomllib.loads((package / "pyproject.toml").read_text(encoding="utf-8"))
+    data = pyproject["tool"]["setuptools"]["package-data"]
+    module = ".".join(study.COMMITTED.parent.relative_to(package).parts)
+    assert any(fnmatch.fnmatch(study.COMMITTED.name, pattern) for pattern in data[module])
