@@ -88,13 +88,19 @@ def _header(particles, quick):
     ])
 
 
+# the speed section's sizes: (particles per curve, turns) of the paper-escape ensembles and
+# (collisions, rounds) of the orbits; ``bouncer bench`` takes larger ones (docs/performance.md)
+SPEED_ENSEMBLES = (500_000, 2)
+SPEED_ORBITS = (3_000_000, 3)
+
+
 def _speed_section(quick, echo):
-    particles, turns = (20_000, 1) if quick else (1_000_000, 2)
+    particles, turns = (20_000, 1) if quick else SPEED_ENSEMBLES
     echo(f"speed: paper-escape ensembles of {particles:,} particles per curve, exact and Holmes,"
          f" {turns} turns")
     ensembles = time_ensembles(particles, repeats=turns)
     ratio, kernel = headline_ratios(ensembles)
-    collisions, repeats = (200_000, 2) if quick else (10_000_000, 3)
+    collisions, repeats = (200_000, 2) if quick else SPEED_ORBITS
     echo(f"speed: orbits of {collisions:,} collisions, exact and Holmes, {repeats} rounds")
     best = time_orbits(0.6, collisions, repeats)
     return "\n".join([
@@ -182,6 +188,7 @@ class ReportProgress:
         self.labels = list(labels)
         self.done_weight = self.done_seconds = 0.0
         self.stage = -1
+        self.running = False  # a stage has begun and not yet ended
         self.start = self.stage_start = time.perf_counter()
         self.bar = None
         if enabled:
@@ -199,7 +206,7 @@ class ReportProgress:
         overruns, so that a stage far behind its weight never shows a constant time left."""
         now = time.perf_counter() if now is None else now
         done, seconds = self.done_weight, self.done_seconds
-        if 0 <= self.stage < len(self.weights):
+        if self.running:
             elapsed = now - self.stage_start
             done += min(elapsed / self.pace(), 0.95 * self.weights[self.stage])
             seconds += elapsed
@@ -220,6 +227,7 @@ class ReportProgress:
         """The stage ``label`` (the next of ``labels``) while the block runs."""
         self.stage = self.labels.index(label, self.stage + 1)
         self.stage_start = time.perf_counter()
+        self.running = True
         stop = threading.Event()
         ticker = None
         if self.bar is not None:
@@ -237,6 +245,7 @@ class ReportProgress:
             stop.set()
             if ticker is not None:
                 ticker.join()
+            self.running = False
             self.done_weight += self.weights[self.stage]
             self.done_seconds += time.perf_counter() - self.stage_start
             if self.bar is not None:

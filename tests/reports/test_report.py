@@ -113,7 +113,7 @@ def test_report_progress_weighs_the_stages_and_scales_the_time_left_by_the_pace(
     speed, physics = STAGE_S["speed"], STAGE_S["physics checks"]
     progress = ReportProgress(labels, enabled=False)
     assert progress.fraction_and_left(progress.start) == (0.0, speed + physics)
-    progress.stage, progress.stage_start = 0, 100.0
+    progress.stage, progress.stage_start, progress.running = 0, 100.0, True
     fraction, left = progress.fraction_and_left(100.0 + speed / 2)
     assert fraction == pytest.approx(speed / 2 / (speed + physics))
     assert left == pytest.approx(speed / 2 + physics)
@@ -128,6 +128,23 @@ def test_report_progress_weighs_the_stages_and_scales_the_time_left_by_the_pace(
     assert fraction == pytest.approx(speed / (speed + physics))
     assert left == pytest.approx(2 * physics)
     assert "stage 2 of 2: physics checks" in progress.line(500.0)
+
+
+def test_report_progress_counts_a_finished_stage_once():
+    """Once a stage has ended (the line drawn right after it, before the next begins) its
+    weight counts once: the fraction never passes 1 and is the finished weight's share."""
+    from reports.report import STAGE_S, ReportProgress
+
+    labels = ["speed", "physics checks"]
+    speed, physics = STAGE_S["speed"], STAGE_S["physics checks"]
+    progress = ReportProgress(labels, enabled=False)
+    with progress.stage_of("speed"):
+        pass
+    fraction, _ = progress.fraction_and_left(progress.stage_start + speed)
+    assert fraction == pytest.approx(speed / (speed + physics))
+    with progress.stage_of("physics checks"):
+        pass
+    assert progress.fraction_and_left(progress.stage_start + 10 * physics)[0] == pytest.approx(1)
 
 
 def test_included_run_says_threads_in_words():
