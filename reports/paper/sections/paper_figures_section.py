@@ -120,8 +120,10 @@ def _hole_centre(hole):
     return float(hole)
 
 
-def decide(out_dir, runs, quick, echo):
-    """Every claim, with what the figures need: (claims, context dict)."""
+def decide(out_dir, runs, quick, echo, on_one_core=None):
+    """Every claim, with what the figures need: (claims, context dict). ``on_one_core()`` is
+    called where the rest of the claims run mostly on one core (Python, numpy, mpmath): work
+    begun there in the background has the other core."""
     echo("paper figures: Fermi acceleration ensemble (diffusive onset, fermi claims)")
     fermi = fermi_ensemble(bool(quick))
     t_d = diffusive_onset(fermi.t, fermi.mean_v_t, T_DIFFUSIVE)
@@ -145,6 +147,8 @@ def decide(out_dir, runs, quick, echo):
     samples = {entry: transport_sample(1.0, entry, bool(quick)) for entry in (1, 2)}
     replicas = {entry: transport_sample(1.0, entry, bool(quick), replica=1)
                 for entry in (1, 2)}
+    if on_one_core is not None:
+        on_one_core()
     echo("paper figures: island geometry and the island-start studies")
     claims = escape_hole_claims(quick)
     tails = {}
@@ -204,13 +208,18 @@ def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
     runs_dir.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     runs = _runs(out_dir, runs_dir, particles, quick, include_runs, echo)
-    # the dissipation study's moments (or their re-check) run beside the claims (mostly on one
-    # core)
-    echo("paper figures: dissipation (restitution and drag at eps = 2) begun in the background")
-    dissipation_done = start_dissipation_study(bool(quick), echo)
-    claims, ctx = decide(out_dir, runs, quick, echo)
+    dissipation_done = []
+
+    def begin_dissipation():  # its moments (or their re-check) beside the one-core claims
+        echo("paper figures: dissipation (restitution and drag at eps = 2) begun in the "
+             "background")
+        dissipation_done.append(start_dissipation_study(bool(quick), echo))
+
+    claims, ctx = decide(out_dir, runs, quick, echo, on_one_core=begin_dissipation)
     echo("paper figures: dissipation (restitution and drag at eps = 2)")
-    dissipation = dissipation_done()
+    if not dissipation_done:
+        begin_dissipation()
+    dissipation = dissipation_done[0]()
     claims += dissipation_claims(dissipation)
     echo("paper figures: drawing")
     figure_phase_space(runs["paper-phase-space"], out_dir)

@@ -67,7 +67,6 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
-import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -76,6 +75,7 @@ import numpy as np
 
 import fastpath
 from fastpath import moments
+from reports.paper.studies.background import begin
 from reports.paper.studies.sampling import (
     ESCAPE_BOX,
     bootstrap_blocks,
@@ -439,28 +439,18 @@ def start_dissipation_study(quick=False, echo=None, background=True):
     path = _committed_for(quick)
     committed = None if path is None else from_json(path.read_text(encoding="utf-8"))
     only = RECHECKED if committed is not None else None
-    box = {}
-
-    def work():
-        try:
-            box["parts"] = _study_moments(quick, only)
-        except BaseException as err:  # handed to the caller of finish()
-            box["error"] = err
-
-    thread = threading.Thread(target=work, name="dissipation-moments", daemon=True)
     if background:
-        thread.start()
+        moments_done = begin(_study_moments, quick, only, name="dissipation-moments")
     else:
-        work()
+        computed = _study_moments(quick, only)
+
+        def moments_done():
+            return computed
 
     def finish():
         if quick in _STUDIES:
             return _STUDIES[quick]
-        if background:
-            thread.join()
-        if "error" in box:
-            raise box["error"]
-        parts, seconds = box["parts"]
+        parts, seconds = moments_done()
         if committed is None:
             _STUDIES[quick] = _finished_study(quick, parts, seconds)
             return _STUDIES[quick]
