@@ -147,8 +147,6 @@ def decide(out_dir, runs, quick, echo, on_one_core=None):
     samples = {entry: transport_sample(1.0, entry, bool(quick)) for entry in (1, 2)}
     replicas = {entry: transport_sample(1.0, entry, bool(quick), replica=1)
                 for entry in (1, 2)}
-    if on_one_core is not None:
-        on_one_core()
     echo("paper figures: island geometry and the island-start studies")
     claims = escape_hole_claims(quick)
     tails = {}
@@ -173,6 +171,8 @@ def decide(out_dir, runs, quick, echo, on_one_core=None):
     claims += transport_claims(tr, runs["paper-transport"], samples,
                                joint=run_joint(runs["paper-transport"], width="1") or None,
                                replicas=replicas)
+    if on_one_core is not None:  # the rest: mpmath, numpy fits and bootstraps, few kernels
+        on_one_core()
     echo("paper figures: the method, the near periodicity, the phase space, the saddle point")
     claims += method_claims(quick) + periodicity_claims(quick)
     claims += [large_eps_claim(quick), coexist_claim(fermi, quick), gaussian_tail_claim(quick)]

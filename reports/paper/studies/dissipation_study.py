@@ -242,17 +242,23 @@ def _curves_of_study():
                for law, ks in STUDY["drag"].items() for k in ks])
 
 
+def _starts(quick):
+    """The study's starts (phi0, v0), the same for every physics."""
+    return uniform_box(np.random.default_rng(SAMPLING_SEED), ESCAPE_BOX,
+                       STUDY[bool(quick)]["particles"])
+
+
 def _study_moments(quick, only=None):
-    """The study's starts, grid and <v_n> curves with the stuck fractions (``only``: just the
-    curves of these labels, no stuck fractions): ``fastpath.moments`` and numpy only (no
+    """The study's starts, grid, <v_n> curves, stuck fractions and velocity strip (``only``:
+    just the curves of these labels, no stuck fractions): compiled code and numpy only (no
     mpmath; the GIL released while the kernels run), so that it may run in a background thread
-    (``start_dissipation_study``). Returns ((phi0, v0, n, window, curves, sticking), seconds)."""
+    (``start_dissipation_study``). Returns ((phi0, v0, n, window, curves, sticking, strip),
+    seconds)."""
     t0 = time.perf_counter()
     cfg = STUDY[bool(quick)]
     eps = STUDY["eps"]
-    rng = np.random.default_rng(SAMPLING_SEED)
     m = cfg["particles"]
-    phi0, v0 = uniform_box(rng, ESCAPE_BOX, m)
+    phi0, v0 = _starts(quick)
     n = np.unique(np.round(np.logspace(0, math.log10(cfg["n_max"]), 41)).astype(np.int64))
     window = (cfg["n_max"] / 10.0, float(cfg["n_max"]))
     curves = [_curve(label, physics, phi0, v0, eps, n, window)
@@ -261,7 +267,8 @@ def _study_moments(quick, only=None):
     for r in STUDY["sticking_r"] if only is None else ():
         mom = moments(phi0, v0, STUDY["sticking_eps"], n, blocks=BLOCKS, restitution=r)
         sticking.append((r, float(mom.stuck_n.sum(axis=0)[-1]) / m, m))
-    return (phi0, v0, n, window, curves, sticking), time.perf_counter() - t0
+    strip = _strip(phi0, v0, quick)
+    return (phi0, v0, n, window, curves, sticking, strip), time.perf_counter() - t0
 
 
 def _spot_check(phi0, v0, quick):
@@ -284,11 +291,12 @@ def _strip(phi0, v0, quick):
                            STUDY[bool(quick)]["n_max"])
 
 
-def _finished_study(quick, parts, seconds):
+def _finished_study(quick, parts, seconds, ver=None):
     """The study from ``_study_moments``'s parts: the exponent with its bootstrap and
-    systematic errors, the verify spot check (mpmath: in the calling thread) and the strip."""
+    systematic errors, and the verify spot check ``ver`` (computed here if None: mpmath, in
+    the calling thread)."""
     t0 = time.perf_counter()
-    phi0, v0, n, window, curves, sticking = parts
+    phi0, v0, n, window, curves, sticking, (k, halves) = parts
     elastic = curves[0]
     rest = curves[1:1 + len(STUDY["one_minus_r"])]
     drag = curves[1 + len(STUDY["one_minus_r"]):]
@@ -299,8 +307,8 @@ def _finished_study(quick, parts, seconds):
     stacked_den = np.hstack([c.count for c in rest])
     beta_err = bootstrap_blocks(stacked_num, stacked_den, _beta_of_stacked(nf, omr, window))
     beta_sys = _beta_systematic(nf, omr, rest, window)
-    ver = _spot_check(phi0, v0, quick)
-    k, halves = _strip(phi0, v0, quick)
+    if ver is None:
+        ver = _spot_check(phi0, v0, quick)
     return Dissipation(STUDY["eps"], len(phi0), nf, window, elastic, rest, drag, omr, beta,
                        beta_err, beta_sys, math.exp(amp) if math.isfinite(amp) else math.nan,
                        sticking, ver, seconds + time.perf_counter() - t0,
@@ -384,11 +392,11 @@ def same_numbers(a, b):
     return a == b
 
 
-def recheck(committed, parts, quick=False):
+def recheck(committed, parts, ver):
     """Compare the committed study with ``parts`` recomputed now (``_study_moments`` of the
-    ``RECHECKED`` curves), the spot check and the strip recomputed here: [] if every number is
-    the same bit for bit, else what differs."""
-    phi0, v0, n, window, curves, _ = parts
+    ``RECHECKED`` curves, with the strip) and the verify spot check ``ver``: [] if every
+    number is the same bit for bit, else what differs."""
+    _, _, n, window, curves, _, (k, halves) = parts
     stored = {c.label: c for c in [committed.elastic, *committed.restitution, *committed.drag]}
     differ = []
     if not (same_numbers(n.astype(float), committed.n) and tuple(window) == committed.window):
@@ -396,9 +404,8 @@ def recheck(committed, parts, quick=False):
     for c in curves:
         if c.label not in stored or not same_numbers(c, stored[c.label]):
             differ.append(f"the curve {c.label}")
-    if not same_numbers(_spot_check(phi0, v0, quick), committed.verification):
+    if not same_numbers(ver, committed.verification):
         differ.append("the verify spot check")
-    k, halves = _strip(phi0, v0, quick)
     if not (k == committed.strip_orbits and same_numbers(halves, committed.strip_halves)):
         differ.append("the velocity strip")
     return differ
@@ -427,10 +434,11 @@ def start_dissipation_study(quick=False, echo=None, background=True):
     strip with the committed numbers and returns the committed study (``source`` says so), or
     computes the whole study if anything differs. Otherwise the whole study begins.
 
-    ``background``: the moments (``_study_moments``, most of the time) run in a daemon thread
-    while the caller goes on (a report's claims, mostly on one core), so an interrupted
-    report does not wait for them; the spot check stays in the caller's thread, since mpmath's
-    precision is process-wide.
+    ``background``: the moments and the strip (``_study_moments``, most of the time) run in a
+    daemon thread while the caller goes on (a report's claims, mostly on one core), so an
+    interrupted report does not wait for them; the verify spot check runs in the caller's
+    thread when it finishes the study, beside them if they are still running (mpmath's
+    precision is process-wide).
     """
     quick = bool(quick)
     echo = echo or (lambda _msg: None)
@@ -450,17 +458,19 @@ def start_dissipation_study(quick=False, echo=None, background=True):
     def finish():
         if quick in _STUDIES:
             return _STUDIES[quick]
-        parts, seconds = moments_done()
-        if committed is None:
-            _STUDIES[quick] = _finished_study(quick, parts, seconds)
-            return _STUDIES[quick]
         t0 = time.perf_counter()
-        differ = recheck(committed, parts, quick)
-        seconds += time.perf_counter() - t0
+        ver = _spot_check(*_starts(quick), quick)
+        spot_seconds = time.perf_counter() - t0
+        parts, seconds = moments_done()
+        seconds += spot_seconds
+        if committed is None:
+            _STUDIES[quick] = _finished_study(quick, parts, seconds, ver)
+            return _STUDIES[quick]
+        differ = recheck(committed, parts, ver)
         if differ:
             echo(f"dissipation: the committed study {path.name} is not what this code "
                  f"computes ({', '.join(differ)} differ): computing the whole study")
-            study = _finished_study(quick, *_study_moments(quick))
+            study = _finished_study(quick, *_study_moments(quick), ver)
             study.source = (f"computed here: the committed study differs from this code's in "
                             f"{', '.join(differ)}")
         else:

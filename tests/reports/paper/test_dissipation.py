@@ -251,19 +251,20 @@ def test_the_recheck_finds_each_committed_number_that_this_code_does_not_compute
     from reports.paper.studies import dissipation_study as study
 
     parts, _ = study._study_moments(True, study.RECHECKED)
-    assert study.recheck(quick_study, parts, quick=True) == []
+    ver = study._spot_check(*study._starts(True), True)
+    assert study.recheck(quick_study, parts, ver) == []
     curve = quick_study.restitution[-1]
     assert curve.label in study.RECHECKED
     mean_v = curve.mean_v.copy()
     mean_v[-1] *= 1 + 2**-52
     tampered = dataclasses.replace(quick_study, restitution=[
         *quick_study.restitution[:-1], dataclasses.replace(curve, mean_v=mean_v)])
-    assert study.recheck(tampered, parts, quick=True) == [f"the curve {curve.label}"]
+    assert study.recheck(tampered, parts, ver) == [f"the curve {curve.label}"]
     tampered = dataclasses.replace(quick_study, verification={
         **quick_study.verification, "worst_error": quick_study.verification["worst_error"] * 2})
-    assert study.recheck(tampered, parts, quick=True) == ["the verify spot check"]
+    assert study.recheck(tampered, parts, ver) == ["the verify spot check"]
     tampered = dataclasses.replace(quick_study, strip_halves=quick_study.strip_halves[:-1])
-    assert study.recheck(tampered, parts, quick=True) == ["the velocity strip"]
+    assert study.recheck(tampered, parts, ver) == ["the velocity strip"]
 
 
 @pytest.mark.slow
