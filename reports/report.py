@@ -37,11 +37,13 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
+from reports.paper.checks.diffusion import begin_ensembles
 from reports.paper.claims.claim import claims_markdown, write_report_json
 from reports.paper.figures.specification import specification_markdown
 from reports.paper.sections.dynamics_section import dynamics_section
 from reports.paper.sections.paper_figures_section import paper_figures_section
 from reports.paper.sections.physics_checks_section import physics_checks_section
+from reports.paper.studies.background import Worker
 from reports.precision.bench import (
     ensemble_table,
     headline_ratios,
@@ -268,14 +270,17 @@ FIGURES_HEADING = "## The paper's figures from trusted runs"
 PHYSICS_HEADING = "## Physics checks against published results"
 
 
-def claim_sections(out_dir, particles, quick, echo, include_runs):
+def claim_sections(out_dir, particles, quick, echo, include_runs, worker=None):
     """(label, make) of every section that contributes claims; make() -> (markdown, claims),
     the claims as ``Claim``s or as dicts with the keys of ``reports.paper.claims.claim.FIELDS``. A
-    section of more claims is one more entry here."""
+    section of more claims is one more entry here. ``worker`` (a ``background.Worker``): where
+    the paper's claims come to run on one core, the dissipation study and the physics checks'
+    diffusion ensembles begin on it."""
+    ahead = None if worker is None else (lambda: begin_ensembles(quick, worker.submit))
     return [
         ("paper's figures and claims", lambda: paper_figures_section(
             out_dir, particles=particles, quick=quick, echo=echo, runs_dir=out_dir / "runs",
-            include_runs=include_runs)),
+            include_runs=include_runs, worker=worker, on_one_core=ahead)),
         ("dynamics: periodic orbits, Lyapunov exponents, Fermi acceleration",
          lambda: dynamics_section(out_dir, quick=quick, echo=echo)),
     ]
@@ -343,7 +348,7 @@ def build_report(out_dir=DEFAULT_OUT, particles=None, quick=False, compare=(), i
     out_dir.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     timings = []
-    sections = claim_sections(out_dir, particles, quick, echo, include_runs)
+    sections = claim_sections(out_dir, particles, quick, echo, include_runs, Worker())
     labels = [label for label, _ in sections] + ["physics checks"]
     if not (paper_only and (out_dir / "report.md").is_file()):
         if not paper_only:

@@ -56,16 +56,38 @@ class Diffusion:
     extra: dict = field(default_factory=dict)
 
 
-def diffusion(eps, model, quick=False):
+def _ensemble(eps, model, quick):
+    """(phi0, v0, n grid, arguments of ``moments``) of one diffusion ensemble."""
     cfg = DIFFUSION[bool(quick)]
     m, n = cfg[model], cfg["n"]
     rng = np.random.default_rng(SAMPLING_SEED + int(eps * 1000))
     phi0 = rng.uniform(0, TWO_PI, m)
     v0 = DIFFUSION_V0 + rng.uniform(0, math.pi, m)
     grid = np.array([0, n // 4, n], np.int64)
-    # the ensemble (compiled code) runs beside the verify spot check (mpmath, this thread)
-    ensemble_done = begin(moments, phi0, v0, eps, grid, model=model, blocks=64,
-                          name="diffusion-moments")
+    return phi0, v0, grid, (phi0, v0, eps, grid)
+
+
+_BEGUN = {}  # (eps, model, quick) -> finish() of an ensemble begun ahead (``begin_ensembles``)
+
+
+def begin_ensembles(quick=False, start=begin):
+    """Begin every ensemble of ``diffusion_checks`` ahead of it (``start``: ``begin`` or a
+    ``Worker``'s ``submit``); ``diffusion`` takes their results. Compiled code only."""
+    for eps in DIFFUSION_EPS[bool(quick)]:
+        for model in ("exact", "holmes"):
+            key = (eps, model, bool(quick))
+            if key not in _BEGUN:
+                _BEGUN[key] = start(moments, *_ensemble(eps, model, quick)[3], model=model,
+                                    blocks=64, name="diffusion-moments")
+
+
+def diffusion(eps, model, quick=False):
+    n = DIFFUSION[bool(quick)]["n"]
+    phi0, v0, grid, args = _ensemble(eps, model, quick)
+    # the ensemble (compiled code) runs beside the verify spot check (mpmath, this thread),
+    # unless it was begun ahead
+    ensemble_done = _BEGUN.pop((eps, model, bool(quick)), None) or begin(
+        moments, *args, model=model, blocks=64, name="diffusion-moments")
     ver = None
     if model == "exact":
         ver = verify_sample(list(zip(phi0[:3], v0[:3], strict=True)), eps, n,
@@ -77,7 +99,8 @@ def diffusion(eps, model, quick=False):
     d4 = float(mom.mean_dv2_n[1] / (n // 4))
     ratio = per_block[:, 2] / per_block[:, 1]
     return Diffusion(eps, model, d, d_err, d4, d / d4,
-                     float(ratio.std(ddof=1) / math.sqrt(len(ratio))), m, n, mom.flagged, ver)
+                     float(ratio.std(ddof=1) / math.sqrt(len(ratio))), len(phi0), n, mom.flagged,
+                     ver)
 
 
 def diffusion_checks(quick=False, echo=say_nothing):

@@ -58,6 +58,7 @@ from reports.paper.figures.paper_fig2_escape import escape_markdown, figure_esca
 from reports.paper.figures.paper_fig3_transport import figure_transport, transport_markdown
 from reports.paper.figures.paper_fig4_h1 import figure_h1, h1_markdown
 from reports.paper.figures.paper_survivors import figure_survivors
+from reports.paper.studies.background import begin
 from reports.paper.studies.dissipation_study import start_dissipation_study
 from reports.paper.studies.escape_regimes import diffusive_onset
 from reports.paper.studies.fermi_ensemble import fermi_ensemble
@@ -198,9 +199,11 @@ def joint_samples(run_dir, follow):
 
 
 def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
-                          runs_dir=None, include_runs=()):
+                          runs_dir=None, include_runs=(), worker=None, on_one_core=None):
     """Run or reuse the runs, decide the claims, write the figures; returns (Markdown with
-    image links relative to ``out_dir``, the claims)."""
+    image links relative to ``out_dir``, the claims). Where the claims come to run on one
+    core, the dissipation study begins on ``worker`` (a ``background.Worker``; default: a
+    thread of its own), then ``on_one_core()`` is called (more work for the worker)."""
     echo = echo or say_nothing
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -213,7 +216,10 @@ def paper_figures_section(out_dir, particles=None, quick=False, echo=None,
     def begin_dissipation():  # its moments (or their re-check) beside the one-core claims
         echo("paper figures: dissipation (restitution and drag at eps = 2) begun in the "
              "background")
-        dissipation_done.append(start_dissipation_study(bool(quick), echo))
+        dissipation_done.append(start_dissipation_study(
+            bool(quick), echo, start=begin if worker is None else worker.submit))
+        if on_one_core is not None:
+            on_one_core()
 
     claims, ctx = decide(out_dir, runs, quick, echo, on_one_core=begin_dissipation)
     echo("paper figures: dissipation (restitution and drag at eps = 2)")

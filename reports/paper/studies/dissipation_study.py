@@ -425,7 +425,7 @@ def dissipation_study(quick=False, echo=None):
     return start_dissipation_study(quick, echo, background=False)()
 
 
-def start_dissipation_study(quick=False, echo=None, background=True):
+def start_dissipation_study(quick=False, echo=None, background=True, start=begin):
     """Begin the study; returns a function that finishes it in the calling thread and
     returns the ``Dissipation``.
 
@@ -438,7 +438,8 @@ def start_dissipation_study(quick=False, echo=None, background=True):
     daemon thread while the caller goes on (a report's claims, mostly on one core), so an
     interrupted report does not wait for them; the verify spot check runs in the caller's
     thread when it finishes the study, beside them if they are still running (mpmath's
-    precision is process-wide).
+    precision is process-wide). ``start``: how they begin (``background.begin``, or a
+    ``background.Worker``'s ``submit``).
     """
     quick = bool(quick)
     echo = echo or (lambda _msg: None)
@@ -448,7 +449,7 @@ def start_dissipation_study(quick=False, echo=None, background=True):
     committed = None if path is None else from_json(path.read_text(encoding="utf-8"))
     only = RECHECKED if committed is not None else None
     if background:
-        moments_done = begin(_study_moments, quick, only, name="dissipation-moments")
+        moments_done = start(_study_moments, quick, only, name="dissipation-moments")
     else:
         computed = _study_moments(quick, only)
 
