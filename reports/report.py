@@ -160,14 +160,14 @@ def _included_run(out_dir, run_dir, echo):
     ])
 
 
-# What each stage of a report took at the default size on 2 cores (the committed report's "How
-# long this report took", docs/report/report.md): the weights of the overall progress line. A
-# stage not named here (an included run) weighs INCLUDED_RUN_S.
+# What each stage of a report took at the default size on 2 cores, kernels compiled afresh
+# (docs/performance.md, "Where the default report's time goes"): the weights of the overall
+# progress line. A stage not named here (an included run) weighs INCLUDED_RUN_S.
 STAGE_S = {
-    "paper's figures and claims": 622.0,
-    "dynamics: periodic orbits, Lyapunov exponents, Fermi acceleration": 7.0,
-    "physics checks": 46.0,
-    "speed": 115.0,
+    "paper's figures and claims": 445.0,
+    "dynamics: periodic orbits, Lyapunov exponents, Fermi acceleration": 12.0,
+    "physics checks": 38.0,
+    "speed": 50.0,
     "work-precision and hard cases": 57.0,
 }
 INCLUDED_RUN_S = 2.0

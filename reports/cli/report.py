@@ -32,7 +32,7 @@ def add_parser(subparsers):
     report.add_argument("--out", default=DEFAULT_OUT, help=f"output folder (default {DEFAULT_OUT})")
     report.add_argument("--particles", type=count, default=None,
                         help="particles per curve of the ensemble runs (default: 10^6; the"
-                        " whole report then takes about 19 minutes on 2 cores)")
+                        " whole report then takes about 11 minutes on 2 cores)")
     report.add_argument("--quick", action="store_true", help="tiny sizes, for a smoke test")
     report.add_argument("--compare", action="append", default=[], metavar="MODULE:FUNCTION",
                         help="add your flight_time(phi, v, eps) to the comparison (repeatable)")
