@@ -39,6 +39,40 @@ def test_quick_section_asks_for_the_six_runs_at_their_quick_sizes(tmp_path, monk
         paper_figures_section(tmp_path, quick=True)
     assert asked == QUICK_RUNS
 
+@pytest.mark.parametrize(("particles", "second_box"), [
+    (None, 1_000_000), (300_000, 300_000), (10**8, 10**7)])
+def test_the_second_start_box_is_made_at_the_reports_size_and_a_larger_included_run_used(
+        tmp_path, monkeypatch, particles, second_box):
+    """escape-second-box is compared curve by curve with paper-escape: made with the report's
+    particles per curve (at most its scene's 10^7); a larger complete run given to the report
+    replaces it, as for paper-escape."""
+    asked, used = [], {}
+
+    def ensure_run(scene, runs_dir, n, echo, scene_text=None):
+        asked.append((scene, n))
+        return runs_dir / f"{scene}-{n}"
+
+    included = tmp_path / "escape-second-box-big"
+
+    def largest_run(scene, runs):
+        return included if scene == "escape-second-box" and included in runs else None
+
+    def decide(out_dir, runs, quick, echo, on_one_core=None):
+        used.update(runs)
+        raise RunsInHand
+
+    monkeypatch.setattr(figures, "ensure_run", ensure_run)
+    monkeypatch.setattr(figures, "largest_run", largest_run)
+    monkeypatch.setattr(figures, "decide", decide)
+    with pytest.raises(RunsInHand):
+        paper_figures_section(tmp_path, particles=particles)
+    assert ("escape-second-box", second_box) in asked
+    assert used["escape-second-box"].name == f"escape-second-box-{second_box}"
+    with pytest.raises(RunsInHand):
+        paper_figures_section(tmp_path, particles=particles, include_runs=[included])
+    assert used["escape-second-box"] == included
+
+
 STEMS = ("paper_fig1_phase_space", "paper_fig2_escape", "paper_fig3_transport", "paper_fig4_h1",
          "paper_survivors", "paper_fermi", "paper_dissipation")
 
