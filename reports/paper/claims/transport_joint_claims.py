@@ -113,8 +113,12 @@ def _median_n(sample):
 
 
 def _median_n_ratio(sample_ij, sample_11, lo, hi):
-    a = sample_ij.select((sample_ij.t >= lo) & (sample_ij.t < hi))
-    b = sample_11.select((sample_11.t >= lo) & (sample_11.t < hi))
+    return _ratio_of_medians(sample_ij.select((sample_ij.t >= lo) & (sample_ij.t < hi)),
+                             sample_11.select((sample_11.t >= lo) & (sample_11.t < hi)))
+
+
+def _ratio_of_medians(a, b):
+    """The ratio of the median n of two samples of one window of t (NaN with too few)."""
     if a.count < MIN_PER_BIN or b.count < MIN_PER_BIN:
         return math.nan
     return _median_n(a) / _median_n(b)
@@ -133,10 +137,8 @@ def _ratio_bootstraps(s_ij, s_11, windows, reps=INTERVAL_REPLICATES, seed=TRANSP
     for k in range(reps):
         w_ij = rng.poisson(s_ij.weight).astype(np.float64)
         w_11 = rng.poisson(s_11.weight).astype(np.float64)
-        kept_ij, kept_11 = w_ij > 0, w_11 > 0
-        for i, ((lo, hi), (in_ij, in_11)) in enumerate(zip(windows, inside, strict=True)):
-            got[i, k] = _median_n_ratio(s_ij._keep(kept_ij & in_ij, w_ij),
-                                        s_11._keep(kept_11 & in_11, w_11), lo, hi)
+        for i, (in_ij, in_11) in enumerate(inside):
+            got[i, k] = _ratio_of_medians(s_ij.redrawn(w_ij, in_ij), s_11.redrawn(w_11, in_11))
     out = []
     for row in got:
         row = row[np.isfinite(row)]

@@ -60,8 +60,13 @@ class JointSample:
 
     def resampled(self, rng):
         """The Poisson bootstrap of this sample (module docstring)."""
-        w = rng.poisson(self.weight).astype(np.float64)
-        return self._keep(w > 0, w)
+        return self.redrawn(rng.poisson(self.weight).astype(np.float64))
+
+    def redrawn(self, weight, within=None):
+        """This sample with the redrawn weights ``weight``, the points drawn 0 times left out
+        (``resampled``'s sample for that draw), and only those of the mask ``within``."""
+        kept = weight > 0
+        return self._keep(kept if within is None else kept & within, weight)
 
     @property
     def count(self):
