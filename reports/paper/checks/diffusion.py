@@ -56,15 +56,20 @@ class Diffusion:
     extra: dict = field(default_factory=dict)
 
 
-def _ensemble(eps, model, quick):
-    """(phi0, v0, n grid, arguments of ``moments``) of one diffusion ensemble."""
+def _starts(eps, model, quick):
+    """(phi0, v0, n grid) of one diffusion ensemble."""
     cfg = DIFFUSION[bool(quick)]
     m, n = cfg[model], cfg["n"]
     rng = np.random.default_rng(SAMPLING_SEED + int(eps * 1000))
     phi0 = rng.uniform(0, TWO_PI, m)
     v0 = DIFFUSION_V0 + rng.uniform(0, math.pi, m)
-    grid = np.array([0, n // 4, n], np.int64)
-    return phi0, v0, grid, (phi0, v0, eps, grid)
+    return phi0, v0, np.array([0, n // 4, n], np.int64)
+
+
+def _begin_ensemble(eps, model, quick, start=begin):
+    """Begin the moments of one diffusion ensemble (compiled code only); returns finish()."""
+    phi0, v0, grid = _starts(eps, model, quick)
+    return start(moments, phi0, v0, eps, grid, model=model, blocks=64, name="diffusion-moments")
 
 
 _BEGUN = {}  # (eps, model, quick) -> finish() of an ensemble begun ahead (``begin_ensembles``)
@@ -77,17 +82,16 @@ def begin_ensembles(quick=False, start=begin):
         for model in ("exact", "holmes"):
             key = (eps, model, bool(quick))
             if key not in _BEGUN:
-                _BEGUN[key] = start(moments, *_ensemble(eps, model, quick)[3], model=model,
-                                    blocks=64, name="diffusion-moments")
+                _BEGUN[key] = _begin_ensemble(eps, model, quick, start)
 
 
 def diffusion(eps, model, quick=False):
     n = DIFFUSION[bool(quick)]["n"]
-    phi0, v0, grid, args = _ensemble(eps, model, quick)
+    phi0, v0, grid = _starts(eps, model, quick)
     # the ensemble (compiled code) runs beside the verify spot check (mpmath, this thread),
     # unless it was begun ahead
-    ensemble_done = _BEGUN.pop((eps, model, bool(quick)), None) or begin(
-        moments, *args, model=model, blocks=64, name="diffusion-moments")
+    ensemble_done = (_BEGUN.pop((eps, model, bool(quick)), None)
+                     or _begin_ensemble(eps, model, quick))
     ver = None
     if model == "exact":
         ver = verify_sample(list(zip(phi0[:3], v0[:3], strict=True)), eps, n,

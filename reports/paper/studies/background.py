@@ -3,9 +3,10 @@
 Much of a report runs on one core (Python, numpy, mpmath); the kernels of ``fastpath`` release
 the GIL. ``begin(fn, *args)`` starts ``fn(*args)`` in a daemon thread (an interrupted report
 does not wait for it) and returns a function that waits for it and returns its result, or
-raises its exception in the caller's thread. A ``Worker`` runs the jobs handed to it one after
-another in one daemon thread, its numba kernels on one thread: what a report hands it while
-its own work runs on one core uses the other core, and only that one. What runs in the
+raises its exception in the caller's thread (``at_once``: the same, computed at once). A
+``Worker`` runs the jobs handed to it one after another in one daemon thread, its numba kernels
+on one thread: what a report hands it while its own work runs on one core uses the other core,
+and only that one. What runs in the
 background must not use mpmath: its working precision is process-wide, so two threads computing
 with it at once could change each other's precision.
 """
@@ -45,6 +46,15 @@ def begin(fn, *args, name="background", **kwargs):
     it and returns its result (or raises what it raised)."""
     result = _Result()
     threading.Thread(target=result.run, args=(fn, args, kwargs), name=name, daemon=True).start()
+    return result.finish
+
+
+def at_once(fn, *args, name=None, **kwargs):
+    """``begin``'s contract without a thread: ``fn(*args, **kwargs)`` computed now, in the
+    caller's thread; returns ``finish()``, which returns the result (or raises what it
+    raised)."""
+    result = _Result()
+    result.run(fn, args, kwargs)
     return result.finish
 
 

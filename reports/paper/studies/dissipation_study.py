@@ -75,7 +75,7 @@ import numpy as np
 
 import fastpath
 from fastpath import moments
-from reports.paper.studies.background import begin
+from reports.paper.studies.background import at_once, begin
 from reports.paper.studies.sampling import (
     ESCAPE_BOX,
     bootstrap_blocks,
@@ -422,10 +422,10 @@ def _committed_for(quick):
 def dissipation_study(quick=False, echo=None):
     """The study (cached; module docstring): for the full size the committed one
     (``COMMITTED``) where its re-check passes, else computed here."""
-    return start_dissipation_study(quick, echo, background=False)()
+    return start_dissipation_study(quick, echo, start=at_once)()
 
 
-def start_dissipation_study(quick=False, echo=None, background=True, start=begin):
+def start_dissipation_study(quick=False, echo=None, start=begin):
     """Begin the study; returns a function that finishes it in the calling thread and
     returns the ``Dissipation``.
 
@@ -434,12 +434,12 @@ def start_dissipation_study(quick=False, echo=None, background=True, start=begin
     strip with the committed numbers and returns the committed study (``source`` says so), or
     computes the whole study if anything differs. Otherwise the whole study begins.
 
-    ``background``: the moments and the strip (``_study_moments``, most of the time) run in a
-    daemon thread while the caller goes on (a report's claims, mostly on one core), so an
-    interrupted report does not wait for them; the verify spot check runs in the caller's
-    thread when it finishes the study, beside them if they are still running (mpmath's
-    precision is process-wide). ``start``: how they begin (``background.begin``, or a
-    ``background.Worker``'s ``submit``).
+    ``start`` begins the moments and the strip (``_study_moments``, most of the time): by
+    default (``background.begin``) in a daemon thread while the caller goes on (a report's
+    claims, mostly on one core), so an interrupted report does not wait for them; or a
+    ``background.Worker``'s ``submit``; or ``background.at_once``. The verify spot check runs
+    in the caller's thread when it finishes the study, beside them if they are still running
+    (mpmath's precision is process-wide).
     """
     quick = bool(quick)
     echo = echo or (lambda _msg: None)
@@ -448,13 +448,7 @@ def start_dissipation_study(quick=False, echo=None, background=True, start=begin
     path = _committed_for(quick)
     committed = None if path is None else from_json(path.read_text(encoding="utf-8"))
     only = RECHECKED if committed is not None else None
-    if background:
-        moments_done = start(_study_moments, quick, only, name="dissipation-moments")
-    else:
-        computed = _study_moments(quick, only)
-
-        def moments_done():
-            return computed
+    moments_done = start(_study_moments, quick, only, name="dissipation-moments")
 
     def finish():
         if quick in _STUDIES:

@@ -174,32 +174,6 @@ def test_bench_dissipative_rows_make_every_collision():
     assert "| elastic |" in table and "| 1.00 |" in table
 
 
-def _fields(study):
-    """The study's numbers, the time it took left out."""
-    out = {}
-    for name, value in vars(study).items():
-        if name == "seconds":
-            continue
-        if isinstance(value, list) and value and isinstance(value[0], Curve):
-            value = [_fields(c) for c in value]
-        elif isinstance(value, Curve):
-            value = _fields(value)
-        out[name] = value
-    return out
-
-
-def _same(a, b):
-    if isinstance(a, dict):
-        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
-    if isinstance(a, (list, tuple)):
-        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b, strict=True))
-    if isinstance(a, np.ndarray):
-        return np.array_equal(a, b, equal_nan=True)
-    if isinstance(a, float):
-        return a == b or (math.isnan(a) and math.isnan(b))
-    return a == b
-
-
 @pytest.mark.slow
 def test_the_study_begun_in_the_background_is_the_study_computed_in_line(monkeypatch):
     from reports.paper.studies import dissipation_study as study
@@ -210,7 +184,7 @@ def test_the_study_begun_in_the_background_is_the_study_computed_in_line(monkeyp
     finish = study.start_dissipation_study(True)
     background = finish()
     assert background is not in_line
-    assert _same(_fields(background), _fields(in_line))
+    assert same_numbers_but_source(background, in_line)
     assert study.dissipation_study(True) is background  # one study for figure and claims
 
 
